@@ -1,0 +1,342 @@
+//! The `sticky` command line: a thin layer over the library.
+//!
+//! * `sticky` — runs the embedded default scene (Appendix C's two blocks) and
+//!   prints a short summary: collisions, final clusters, checks passed.
+//! * `sticky run SCENE --at T [--at T2 …] [--json]` — the state at each time.
+//! * `sticky events SCENE [--json]` — every collision.
+//! * `sticky check SCENE` — the summary of the default run, for any scene.
+//!
+//! Errors go to stderr as one line `error: SCENE: message`, exit code 1.
+
+use std::io::{self, BufWriter, Write};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand, ValueEnum};
+use num_rational::BigRational;
+
+use sticky::claims::micro::{check_trajectory, probe_times};
+use sticky::cluster::Cluster;
+use sticky::projection::state_at;
+use sticky::rational::parse_exact;
+use sticky::scene::{self, Scene, SceneKind};
+use sticky::trajectory::Trajectory;
+use sticky::{json, Scalar, State};
+
+#[derive(Parser)]
+#[command(
+    name = "sticky",
+    version,
+    about = "Exact sticky particles on a line (Signorini constraint), after C. Perrin's 'Microscopic derivation of the one-dimensional constrained Euler equations'.",
+    long_about = None
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Option<Command>,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// The state x(t), u(t), λ(t) and the contact clusters at each requested time.
+    Run {
+        /// Scene file (TOML, see DESIGN.md §2).
+        scene: PathBuf,
+        /// A time t ≥ 0, exact: "3/2", "0.125", "1e-3" (repeat for several).
+        #[arg(long = "at", required = true, value_parser = parse_time)]
+        at: Vec<BigRational>,
+        /// One JSON object per time (the interop contract, DESIGN.md §3).
+        #[arg(long)]
+        json: bool,
+        /// Which exact algorithm answers: the one-shot projection P_K(x⁰+tu⁰)
+        /// (O(N) per time) or the event-driven merge (O(N log N) once).
+        #[arg(long, value_enum, default_value_t = Engine::Projection)]
+        engine: Engine,
+    },
+    /// Every collision: time, cluster formed, sizes of the clusters that merged.
+    Events {
+        /// Scene file (TOML).
+        scene: PathBuf,
+        /// `{"events": [...]}` (the interop contract, DESIGN.md §3).
+        #[arg(long)]
+        json: bool,
+    },
+    /// Summary of a scene: collisions, final clusters, and the section-2
+    /// checks (event-driven = projection, signs of λ and of the pressure).
+    Check {
+        /// Scene file (TOML).
+        scene: PathBuf,
+    },
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum Engine {
+    /// x(t) = P_K(x⁰ + t u⁰) by pool-adjacent-violators.
+    Projection,
+    /// The event-driven cluster merge.
+    Events,
+}
+
+fn parse_time(s: &str) -> Result<BigRational, String> {
+    let t = parse_exact(s).map_err(|e| e.to_string())?;
+    if t < <BigRational as Scalar>::zero() {
+        return Err(format!("time {s} is negative"));
+    }
+    Ok(t)
+}
+
+/// What went wrong, already phrased for the user.
+struct Failure(String);
+
+fn load(path: &std::path::Path) -> Result<Scene, Failure> {
+    scene::load(path).map_err(|e| Failure(format!("{}: {e}", path.display())))
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let stdout = io::stdout();
+    let mut out = BufWriter::new(stdout.lock());
+    let result = match cli.command {
+        None => scene::default_scene()
+            .map_err(|e| Failure(format!("embedded default scene: {e}")))
+            .and_then(|s| summary(&mut out, &s, "embedded default scene")),
+        Some(Command::Run {
+            scene,
+            at,
+            json,
+            engine,
+        }) => load(&scene).and_then(|s| run(&mut out, &s, &at, json, engine)),
+        Some(Command::Events { scene, json }) => {
+            load(&scene).and_then(|s| events(&mut out, &s, json))
+        }
+        Some(Command::Check { scene }) => {
+            load(&scene).and_then(|s| summary(&mut out, &s, &scene.display().to_string()))
+        }
+    };
+    let flushed = out.flush();
+    match result {
+        Ok(()) if flushed.is_ok() || is_broken_pipe(&flushed) => ExitCode::SUCCESS,
+        Ok(()) => {
+            eprintln!("error: cannot write the output: {:?}", flushed.err());
+            ExitCode::FAILURE
+        }
+        Err(Failure(msg)) if msg.is_empty() => ExitCode::SUCCESS,
+        Err(Failure(msg)) => {
+            eprintln!("error: {msg}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn is_broken_pipe(r: &io::Result<()>) -> bool {
+    matches!(r, Err(e) if e.kind() == io::ErrorKind::BrokenPipe)
+}
+
+/// Maps a write error to a failure; a closed pipe ends the output quietly.
+fn io_err(e: io::Error) -> Failure {
+    if e.kind() == io::ErrorKind::BrokenPipe {
+        Failure(String::new())
+    } else {
+        Failure(format!("cannot write the output: {e}"))
+    }
+}
+
+fn run(
+    out: &mut impl Write,
+    scene: &Scene,
+    times: &[BigRational],
+    as_json: bool,
+    engine: Engine,
+) -> Result<(), Failure> {
+    let data = &scene.data;
+    let traj = match engine {
+        Engine::Events => Some(Trajectory::new(data.clone())),
+        Engine::Projection => None,
+    };
+    for t in times {
+        let state = match &traj {
+            Some(traj) => traj.at(t),
+            None => state_at(data, t),
+        }
+        .map_err(|e| Failure(e.to_string()))?;
+        if as_json {
+            writeln!(out, "{}", json::state(&state, data.radius())).map_err(io_err)?;
+        } else {
+            write_state_table(out, &state, data.radius()).map_err(io_err)?;
+        }
+    }
+    Ok(())
+}
+
+fn range_1based(c: &Cluster) -> String {
+    if c.size == 1 {
+        format!("{}", c.first + 1)
+    } else {
+        format!("{}–{}", c.first + 1, c.end())
+    }
+}
+
+/// Left-aligned columns, two spaces apart.
+fn write_table(out: &mut impl Write, header: &[&str], rows: &[Vec<String>]) -> io::Result<()> {
+    let mut widths: Vec<usize> = header.iter().map(|h| h.chars().count()).collect();
+    for row in rows {
+        for (w, cell) in widths.iter_mut().zip(row) {
+            *w = (*w).max(cell.chars().count());
+        }
+    }
+    let line = |cells: Vec<&str>| -> String {
+        let padded: Vec<String> = cells
+            .iter()
+            .zip(&widths)
+            .map(|(c, w)| format!("{c}{}", " ".repeat(w - c.chars().count())))
+            .collect();
+        format!("  {}", padded.join("  ").trim_end())
+    };
+    writeln!(out, "{}", line(header.to_vec()))?;
+    for row in rows {
+        writeln!(out, "{}", line(row.iter().map(String::as_str).collect()))?;
+    }
+    Ok(())
+}
+
+fn write_state_table(
+    out: &mut impl Write,
+    s: &State<BigRational>,
+    radius: &BigRational,
+) -> io::Result<()> {
+    writeln!(
+        out,
+        "t = {}   N = {}   r = {}   {} contact cluster{}",
+        s.t.render(),
+        s.positions.len(),
+        radius.render(),
+        s.clusters.len(),
+        if s.clusters.len() == 1 { "" } else { "s" }
+    )?;
+    let mut rows = Vec::with_capacity(s.positions.len());
+    for c in &s.clusters {
+        for i in c.range() {
+            rows.push(vec![
+                (i + 1).to_string(),
+                s.positions[i].render(),
+                s.velocities[i].render(),
+                s.multipliers
+                    .get(i)
+                    .map_or_else(|| "—".into(), |l| l.render()),
+                range_1based(c),
+            ]);
+        }
+    }
+    write_table(out, &["i", "x_i", "u_i", "λ_i", "cluster"], &rows)?;
+    writeln!(out)
+}
+
+fn events(out: &mut impl Write, scene: &Scene, as_json: bool) -> Result<(), Failure> {
+    let traj = Trajectory::new(scene.data.clone());
+    if as_json {
+        writeln!(out, "{}", json::events(traj.impulses())).map_err(io_err)?;
+        return Ok(());
+    }
+    write_events_table(out, &traj).map_err(io_err)
+}
+
+fn write_events_table(out: &mut impl Write, traj: &Trajectory<BigRational>) -> io::Result<()> {
+    let n = traj.impulses().len();
+    writeln!(out, "{n} collision{}", if n == 1 { "" } else { "s" })?;
+    if n == 0 {
+        return Ok(());
+    }
+    let rows: Vec<Vec<String>> = traj
+        .impulses()
+        .iter()
+        .map(|i| {
+            vec![
+                i.t.render(),
+                range_1based(&i.cluster),
+                i.cluster.size.to_string(),
+                i.parts
+                    .iter()
+                    .map(|p| p.size.to_string())
+                    .collect::<Vec<_>>()
+                    .join(" + "),
+                i.velocity.render(),
+            ]
+        })
+        .collect();
+    write_table(
+        out,
+        &["t", "particles", "size", "parts", "velocity after"],
+        &rows,
+    )
+}
+
+fn summary(out: &mut impl Write, scene: &Scene, origin: &str) -> Result<(), Failure> {
+    let data = &scene.data;
+    let name = scene.name.as_deref().unwrap_or("(unnamed)");
+    let kind = match &scene.kind {
+        SceneKind::Particles => "particles".to_string(),
+        SceneKind::Macro { datum, .. } => format!(
+            "quantile sampling of {} macroscopic block{}",
+            datum.blocks().len(),
+            if datum.blocks().len() == 1 { "" } else { "s" }
+        ),
+    };
+    let traj = Trajectory::new(data.clone());
+    let w = |out: &mut dyn Write, s: String| writeln!(out, "{s}").map_err(io_err);
+    w(out, format!("sticky — scene \"{name}\" ({origin})"))?;
+    if let Some(d) = &scene.description {
+        w(out, format!("  {}", d.trim()))?;
+    }
+    w(
+        out,
+        format!(
+            "  N = {} particles, r = {}, {kind}",
+            data.n(),
+            data.radius().render()
+        ),
+    )?;
+    w(out, String::new())?;
+    write_events_table(out, &traj).map_err(io_err)?;
+    let t_final = traj
+        .last_collision()
+        .cloned()
+        .unwrap_or_else(<BigRational as Scalar>::zero);
+    let last = traj.at(&t_final).map_err(|e| Failure(e.to_string()))?;
+    let clusters: Vec<String> = last
+        .clusters
+        .iter()
+        .map(|c| format!("[{}]", range_1based(c)))
+        .collect();
+    w(out, String::new())?;
+    w(
+        out,
+        format!(
+            "final clusters (t ≥ {}): {}",
+            t_final.render(),
+            abbreviate(&clusters, 12)
+        ),
+    )?;
+    let limit = (data.n() > 200).then_some(50);
+    let times = probe_times(&traj, limit).len();
+    match check_trajectory(&traj, limit) {
+        Ok(count) => {
+            w(out, format!("checks: all {count} passed"))?;
+            w(out, format!("  ✓ event-driven merge = projection P_K(x⁰ + t u⁰), exactly, at {times} times   [prop:proj-micro]"))?;
+            w(out, "  ✓ λ_0 = λ_N = 0, λ ≥ 0, λ_i·(x_{i+1} − x_i − 2r) = 0 at the same times        [eq:dyn-micro]".to_string())?;
+            w(out, format!("  ✓ all {} pressure impulses ≥ 0 (λ never decreases)                         [prop:micro-pressure]", traj.impulses().len()))
+        }
+        Err(v) => Err(Failure(format!("check failed: {v}"))),
+    }
+}
+
+fn abbreviate(items: &[String], keep: usize) -> String {
+    if items.len() <= keep {
+        items.join(" ")
+    } else {
+        format!(
+            "{} … {} ({} clusters)",
+            items[..keep / 2].join(" "),
+            items[items.len() - keep / 2..].join(" "),
+            items.len()
+        )
+    }
+}

@@ -1,0 +1,236 @@
+//! Valid initial data from arbitrary bytes, and a small deterministic PRNG.
+//!
+//! One decoder serves every engine: the agreement tests, proptest and
+//! quickcheck (which generate byte vectors and shrink them), the fuzz targets
+//! (which hand in raw bytes) and `sticky` itself (random scenes from a seed).
+//! Every byte string decodes to admissible data — `x⁰ ∈ K^N` (`df:KN`) and
+//! `u⁰ ∈ C_{x⁰}` (`def:velcone`) — so no input is wasted on rejection.
+//!
+//! The decoder builds the data in translated coordinates (`df:translat-x`) as
+//! a sequence of *groups*. A group is either one cluster (particles in
+//! contact with one velocity) or a chain of 2–4 clusters built to meet at a
+//! single instant `T`: cluster `c` gets a velocity `v_c` (decreasing from left
+//! to right) and the translated position `m − T v_c`, so that all of them
+//! reach `m` at `T` — simultaneous multi-cluster collisions on purpose.
+//! Consecutive groups are separated by a gap that may be zero: a contact at
+//! `t = 0`, whose velocities then either agree (the clusters are one) or
+//! separate (`u⁰_{i+1} > u⁰_i`, allowed by the velocity cone).
+
+use num_bigint::BigInt;
+use num_rational::BigRational;
+
+use crate::initial::{unshift, InitialData};
+
+/// Reads small integers from a byte string; yields zeros once it is used up.
+#[derive(Debug, Clone)]
+pub struct ByteSource<'a> {
+    bytes: &'a [u8],
+    pos: usize,
+}
+
+impl<'a> ByteSource<'a> {
+    /// Reads from `bytes`.
+    pub fn new(bytes: &'a [u8]) -> Self {
+        ByteSource { bytes, pos: 0 }
+    }
+    /// The next byte (0 when exhausted).
+    pub fn byte(&mut self) -> u8 {
+        let b = self.bytes.get(self.pos).copied().unwrap_or(0);
+        self.pos += 1;
+        b
+    }
+    /// A value in `0..m` (`m ≥ 1`).
+    pub fn below(&mut self, m: u32) -> u32 {
+        let v = u32::from(self.byte()) << 8 | u32::from(self.byte());
+        v % m.max(1)
+    }
+    /// `true` if any byte is left.
+    pub fn has_more(&self) -> bool {
+        self.pos < self.bytes.len()
+    }
+}
+
+fn q(n: i64, d: i64) -> BigRational {
+    BigRational::new(BigInt::from(n), BigInt::from(d.max(1)))
+}
+
+/// Limits for [`initial_data`].
+#[derive(Debug, Clone, Copy)]
+pub struct Limits {
+    /// Largest number of particles.
+    pub max_n: usize,
+    /// Largest denominator used for gaps, velocities and times.
+    pub max_den: u32,
+    /// Largest velocity numerator in absolute value.
+    pub max_speed: u32,
+}
+
+impl Default for Limits {
+    fn default() -> Self {
+        Limits {
+            max_n: 200,
+            max_den: 8,
+            max_speed: 16,
+        }
+    }
+}
+
+/// Decodes `bytes` into admissible initial data (never fails).
+///
+/// The first byte fixes the radius (the paper's `2r = 1/N` or a small
+/// rational). The rest is a sequence of groups (see the module
+/// documentation); decoding stops at `limits.max_n` particles or when the
+/// bytes run out (at least one particle is always produced).
+pub fn initial_data(bytes: &[u8], limits: Limits) -> InitialData<BigRational> {
+    let mut src = ByteSource::new(bytes);
+    let max_n = limits.max_n.max(1);
+    let den = |src: &mut ByteSource| i64::from(1 + src.below(limits.max_den.max(1)));
+    let speed = |src: &mut ByteSource, d: i64| {
+        let s = i64::from(limits.max_speed.max(1));
+        q(i64::from(src.below(2 * s as u32 + 1)) - s, d)
+    };
+    let radius_code = src.byte() % 4;
+    let mut shifted: Vec<BigRational> = Vec::new();
+    let mut velocity: Vec<BigRational> = Vec::new();
+    let mut last_pos = q(0, 1);
+    let mut last_vel: Option<BigRational> = None;
+    while shifted.len() < max_n && (shifted.is_empty() || src.has_more()) {
+        let room = max_n - shifted.len();
+        let kind = src.byte() % 4;
+        // Gap to the previous group: zero (contact) one time in four.
+        let gap = if src.byte() % 4 == 0 || shifted.is_empty() {
+            q(0, 1)
+        } else {
+            q(i64::from(1 + src.below(16)), den(&mut src))
+        };
+        if kind == 0 && room >= 2 {
+            // A chain of clusters meeting at one instant T.
+            let clusters = (2 + src.below(3) as usize).min(room);
+            let d = den(&mut src);
+            let t = q(i64::from(1 + src.below(12)), den(&mut src));
+            let mut speeds: Vec<i64> = Vec::with_capacity(clusters);
+            let mut v =
+                i64::from(src.below(2 * limits.max_speed.max(1) + 1)) - i64::from(limits.max_speed);
+            for _ in 0..clusters {
+                speeds.push(v);
+                v -= i64::from(1 + src.below(4));
+            }
+            let v0 = q(speeds[0], d);
+            let mut meet = last_pos.clone() + &gap + &(t.clone() * &v0);
+            if gap == q(0, 1) && last_vel.as_ref().is_some_and(|lv| *lv > v0) {
+                meet += q(1, d);
+            }
+            let mut left = room;
+            for (c, &s) in speeds.iter().enumerate() {
+                // Keep at least one particle for each cluster still to come.
+                let size = (1 + src.below(3) as usize)
+                    .min(left.saturating_sub(clusters - c - 1))
+                    .max(1);
+                left -= size;
+                let v = q(s, d);
+                let p = meet.clone() - &(t.clone() * &v);
+                for _ in 0..size {
+                    shifted.push(p.clone());
+                    velocity.push(v.clone());
+                }
+                last_pos = p;
+                last_vel = Some(v);
+            }
+        } else {
+            // One cluster (often a single particle).
+            let size = if kind == 1 {
+                (1 + src.below(4) as usize).min(room)
+            } else {
+                1
+            };
+            let d = den(&mut src);
+            let mut v = speed(&mut src, d);
+            let pos = last_pos.clone() + &gap;
+            if gap == q(0, 1) {
+                if let Some(lv) = &last_vel {
+                    // Contact: equal velocities (one cluster) or separating.
+                    if v < *lv {
+                        v = lv.clone() + &q(i64::from(src.byte() % 2), 1);
+                    }
+                }
+            }
+            for _ in 0..size {
+                shifted.push(pos.clone());
+                velocity.push(v.clone());
+            }
+            last_pos = pos;
+            last_vel = Some(v);
+        }
+    }
+    let n = shifted.len();
+    let radius = match radius_code {
+        0 | 1 => q(1, 2 * n as i64),
+        2 => q(1, 2),
+        _ => q(1, 64),
+    };
+    let two_r = radius.clone() + &radius;
+    let positions = unshift(&shifted, &two_r);
+    // Built admissible by construction; `new` re-checks it.
+    match InitialData::new(radius, positions, velocity) {
+        Ok(d) => d,
+        Err(e) => unreachable_data(e),
+    }
+}
+
+#[cold]
+fn unreachable_data(e: crate::Error) -> InitialData<BigRational> {
+    // The construction above only produces admissible data; reaching this is
+    // a bug in the decoder, reported loudly in tests.
+    panic!("generate::initial_data produced invalid data: {e}")
+}
+
+/// SplitMix64: a tiny, well-mixed deterministic generator (for seeds and test
+/// data, not for cryptography).
+#[derive(Debug, Clone)]
+pub struct SplitMix64(u64);
+
+impl SplitMix64 {
+    /// A generator started from `seed`.
+    pub fn new(seed: u64) -> Self {
+        SplitMix64(seed)
+    }
+    /// The next 64 random bits.
+    pub fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+    /// `len` random bytes.
+    pub fn bytes(&mut self, len: usize) -> Vec<u8> {
+        (0..len).map(|_| self.next_u64() as u8).collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_byte_string_decodes() {
+        let mut rng = SplitMix64::new(7);
+        for len in 0..200 {
+            let bytes = rng.bytes(len);
+            let d = initial_data(&bytes, Limits::default());
+            assert!(d.n() >= 1 && d.n() <= 200);
+        }
+        assert!(initial_data(&[], Limits::default()).n() >= 1);
+    }
+
+    #[test]
+    fn respects_max_n() {
+        let mut rng = SplitMix64::new(1);
+        let bytes = rng.bytes(4000);
+        let lim = Limits {
+            max_n: 37,
+            ..Limits::default()
+        };
+        assert_eq!(initial_data(&bytes, lim).n(), 37);
+    }
+}

@@ -1,0 +1,122 @@
+//! The machine-readable output of DESIGN.md §3 — the interop contract.
+//!
+//! ```json
+//! {"n": 4, "radius": "1/8", "t": "3/2", "positions": ["-1/4", "0", "1/4", "1/2"], "velocities": ["0", "0", "0", "0"], "multipliers": ["1/4", "1/2", "1/4"], "clusters": [[0, 4]]}
+//! ```
+//!
+//! * every rational is a string in lowest terms, `"p/q"` or `"p"`;
+//! * `velocities` are right derivatives (post-collision);
+//! * `multipliers` are `λ_1 … λ_{N−1}` of `eq:dyn-micro`;
+//! * `clusters` lists the contact clusters of `x(t)` as
+//!   `[first index (0-based), size]`, left to right.
+//!
+//! `sticky events --json` prints
+//! `{"events": [{"t": "...", "first": i, "size": k, "parts": [a, b, ...]}, ...]}`,
+//! one entry per cluster formed by a collision, sorted by time then `first`.
+//!
+//! The writer is hand-made and tiny: the values are numbers-as-strings and
+//! integers, so no escaping beyond what [`string`] does is needed, and the
+//! key order is the documented one.
+
+use std::fmt::Write as _;
+
+use crate::cluster::Cluster;
+use crate::contact::Impulse;
+use crate::scalar::Scalar;
+use crate::state::State;
+
+/// A JSON string literal.
+pub fn string(s: &str) -> String {
+    let mut out = String::with_capacity(s.len() + 2);
+    out.push('"');
+    for ch in s.chars() {
+        match ch {
+            '"' => out.push_str("\\\""),
+            '\\' => out.push_str("\\\\"),
+            '\n' => out.push_str("\\n"),
+            '\r' => out.push_str("\\r"),
+            '\t' => out.push_str("\\t"),
+            c if (c as u32) < 0x20 => {
+                let _ = write!(out, "\\u{:04x}", c as u32);
+            }
+            c => out.push(c),
+        }
+    }
+    out.push('"');
+    out
+}
+
+/// A JSON array of numbers-as-strings.
+pub fn number_array<S: Scalar>(v: &[S]) -> String {
+    let items: Vec<String> = v.iter().map(|x| string(&x.render())).collect();
+    format!("[{}]", items.join(", "))
+}
+
+/// `[[first, size], …]`.
+pub fn cluster_array(clusters: &[Cluster]) -> String {
+    let items: Vec<String> = clusters
+        .iter()
+        .map(|c| format!("[{}, {}]", c.first, c.size))
+        .collect();
+    format!("[{}]", items.join(", "))
+}
+
+/// One state as the contract's JSON object (one line).
+pub fn state<S: Scalar>(s: &State<S>, radius: &S) -> String {
+    format!(
+        "{{\"n\": {}, \"radius\": {}, \"t\": {}, \"positions\": {}, \"velocities\": {}, \"multipliers\": {}, \"clusters\": {}}}",
+        s.positions.len(),
+        string(&radius.render()),
+        string(&s.t.render()),
+        number_array(&s.positions),
+        number_array(&s.velocities),
+        number_array(&s.multipliers),
+        cluster_array(&s.clusters),
+    )
+}
+
+/// The collision history as `{"events": [...]}` (one line).
+pub fn events<S: Scalar>(impulses: &[Impulse<S>]) -> String {
+    let items: Vec<String> = impulses
+        .iter()
+        .map(|i| {
+            let parts: Vec<String> = i.parts.iter().map(|p| p.size.to_string()).collect();
+            format!(
+                "{{\"t\": {}, \"first\": {}, \"size\": {}, \"parts\": [{}]}}",
+                string(&i.t.render()),
+                i.cluster.first,
+                i.cluster.size,
+                parts.join(", ")
+            )
+        })
+        .collect();
+    format!("{{\"events\": [{}]}}", items.join(", "))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use num_rational::BigRational;
+
+    #[test]
+    fn design_example_verbatim() {
+        let q = |n: i64, d: i64| BigRational::from_i64(n) / BigRational::from_i64(d);
+        let s = State {
+            t: q(3, 2),
+            positions: vec![q(-1, 4), q(0, 1), q(1, 4), q(1, 2)],
+            velocities: vec![q(0, 1); 4],
+            multipliers: vec![q(1, 4), q(1, 2), q(1, 4)],
+            clusters: vec![Cluster { first: 0, size: 4 }],
+        };
+        assert_eq!(
+            state(&s, &q(1, 8)),
+            r#"{"n": 4, "radius": "1/8", "t": "3/2", "positions": ["-1/4", "0", "1/4", "1/2"], "velocities": ["0", "0", "0", "0"], "multipliers": ["1/4", "1/2", "1/4"], "clusters": [[0, 4]]}"#
+        );
+        assert_eq!(events::<BigRational>(&[]), r#"{"events": []}"#);
+    }
+
+    #[test]
+    fn strings_are_escaped() {
+        assert_eq!(string("a\"b\\c\n\u{1}"), r#""a\"b\\c\n\u0001""#);
+    }
+}

@@ -1,0 +1,633 @@
+//! Scene files (TOML), DESIGN.md §2.
+//!
+//! A scene is one TOML document:
+//!
+//! ```toml
+//! name = "two-blocks"                      # optional string
+//! description = "Appendix C: two blocks"   # optional string
+//! t_end = "2"                              # optional exact number ≥ 0
+//!
+//! [particles]                              # either this table ...
+//! radius = "1/16"                          # optional, default 1/(2N)
+//! positions  = ["0", "1/8", "1/2", "5/8"]  # x_{i+1} − x_i ≥ 2r (df:KN)
+//! velocities = ["1", "1", "-1", "-1"]      # u_{i+1} ≥ u_i across contacts (def:velcone)
+//! ```
+//!
+//! or, instead of `[particles]`, a macroscopic datum sampled at the quantiles
+//! (paper §2.1, `thm:main`; see [`crate::quantile`]):
+//!
+//! ```toml
+//! [macro]
+//! particles = 64                           # N, an integer in 1 ..= 10_000_000
+//! blocks = [
+//!   { from = "0", to = "1/2", density = "1",   velocity = "1" },
+//!   { from = "1", to = "2",   density = "1/2", velocity = ["-1", "0"] },  # affine
+//! ]
+//! ```
+//!
+//! **Exact numbers.** Every number is a TOML integer or a string holding an
+//! integer (`"3"`), a fraction (`"-7/4"`), a decimal (`"0.125"`) or scientific
+//! form (`"1.5e-3"`), read exactly by [`crate::rational::parse_exact`]. A TOML
+//! float is refused ([`Error::Float`], the message says to quote it): nothing
+//! is rounded silently.
+//!
+//! **Strictness.** Exactly one of `[particles]` and `[macro]`
+//! ([`Error::SceneKind`]); a key the format does not know is an error
+//! ([`Error::UnknownField`]: a typo is never silently ignored); so are a
+//! missing required key ([`Error::MissingField`]) and a value of the wrong
+//! TOML type ([`Error::WrongType`]).
+//!
+//! **Field names** in errors are dotted paths with **0-based** array indices,
+//! as TOML tools show them: `particles.positions[3]`,
+//! `macro.blocks[2].density`, `macro.blocks[0].velocity[1]`. Constraint
+//! violations found after reading use the paper's **1-based** numbering:
+//! particles `x_1 … x_N` ([`Error::Overlap`], [`Error::Approaching`]) and
+//! blocks `1 … B` ([`Error::Block`], [`Error::Density`]). So
+//! `macro.blocks[0]` is "macro block 1".
+//!
+//! **Robustness.** [`parse`] never panics. The only allocation whose size the
+//! file chooses beyond its own length is the `[macro]` sample, bounded by
+//! [`MAX_MACRO_PARTICLES`] particles and by [`MAX_SAMPLE_BYTES`] bytes of
+//! estimated number storage; the numbers read are bounded in total by
+//! [`MAX_NUMBER_BITS`] (a short scientific form can stand for a long
+//! integer), the blocks by [`MAX_MACRO_BLOCKS`]; [`load`] refuses files
+//! larger than [`MAX_SCENE_BYTES`].
+
+use std::io::Read;
+use std::path::Path;
+
+use num_bigint::BigInt;
+use num_rational::BigRational;
+use num_traits::{Signed, ToPrimitive, Zero};
+use toml::{Table, Value};
+
+use crate::error::Error;
+use crate::initial::InitialData;
+use crate::quantile::{render_short, Block, BlockVelocity, MacroDatum};
+use crate::rational::parse_exact;
+
+/// The default scene, embedded in the binary: Appendix C (`app:uniqueness`)
+/// of the paper, two congested blocks colliding at `t* = η/2 = 1/8`
+/// (`scenes/appendix-c-two-blocks.toml`).
+pub const DEFAULT_SCENE: &str = include_str!("../scenes/appendix-c-two-blocks.toml");
+
+/// Largest scene file [`load`] reads: 64 MiB.
+pub const MAX_SCENE_BYTES: u64 = 64 * 1024 * 1024;
+
+/// Largest particle count a `[macro]` scene may ask for.
+pub const MAX_MACRO_PARTICLES: usize = 10_000_000;
+
+/// Upper bound on the estimated storage of the digits of a `[macro]` sample
+/// (positions and velocities), 4 GiB: a file with huge numbers and many
+/// particles is refused before sampling rather than exhausting memory.
+/// [`MAX_MACRO_PARTICLES`] particles with small numbers fit.
+pub const MAX_SAMPLE_BYTES: u64 = 4 * 1024 * 1024 * 1024;
+
+/// Largest number of blocks a `[macro]` scene may give (the exact masses
+/// of many blocks with unrelated denominators grow quickly).
+pub const MAX_MACRO_BLOCKS: usize = 10_000;
+
+/// Upper bound on the total size of the exact numbers of one scene, in bits
+/// (numerators and denominators; 1 GiB). Text such as `"1e4096"` is short
+/// but stands for a 13 607-bit integer: without this bound a 64 MiB file
+/// could ask for tens of gigabytes.
+pub const MAX_NUMBER_BITS: u64 = 8 * 1024 * 1024 * 1024;
+
+/// Longest offending text quoted verbatim in an [`Error::Number`]; longer
+/// texts are cut (with `…`) so that messages stay readable.
+const MAX_QUOTED_CHARS: usize = 64;
+
+/// A parsed and validated scene.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scene {
+    /// The `name` field, if given.
+    pub name: Option<String>,
+    /// The `description` field, if given.
+    pub description: Option<String>,
+    /// The `t_end` field (a horizon for plots and studies), if given; `≥ 0`.
+    pub t_end: Option<BigRational>,
+    /// Whether the scene gave particles or a macroscopic datum.
+    pub kind: SceneKind,
+    /// The validated initial data: given directly by `[particles]`, or the
+    /// quantile sampling of `[macro]` (radius `1/(2N)`).
+    pub data: InitialData<BigRational>,
+}
+
+impl Scene {
+    /// Number of particles N.
+    pub fn n(&self) -> usize {
+        self.data.n()
+    }
+}
+
+/// Where a scene's initial data came from.
+#[derive(Debug, Clone, PartialEq)]
+pub enum SceneKind {
+    /// A `[particles]` table: positions and velocities given one by one.
+    Particles,
+    /// A `[macro]` table: a macroscopic datum `(ρ⁰, u⁰)` and the particle
+    /// count N of its quantile sampling (`thm:main` (i)).
+    Macro {
+        /// The validated macroscopic datum.
+        datum: MacroDatum,
+        /// The particle count N.
+        particles: usize,
+    },
+}
+
+/// Parses and validates a scene from TOML text. Never panics; every failure
+/// is an [`Error`] naming the field (see the module documentation for the
+/// field-path and numbering conventions).
+pub fn parse(text: &str) -> Result<Scene, Error> {
+    let table: Table = text.parse::<Table>().map_err(|e| toml_error(text, &e))?;
+    check_keys(
+        &table,
+        "",
+        &["name", "description", "t_end", "particles", "macro"],
+    )?;
+    let budget = Budget::new();
+    let name = optional_string(&table, "name")?;
+    let description = optional_string(&table, "description")?;
+    let t_end = match table.get("t_end") {
+        None => None,
+        Some(v) => {
+            let t = exact(v, "t_end", &budget)?;
+            if t.is_negative() {
+                return Err(Error::NegativeTime {
+                    t: render_short(&t),
+                });
+            }
+            Some(t)
+        }
+    };
+    let (kind, data) = match (table.get("particles"), table.get("macro")) {
+        (Some(_), Some(_)) => return Err(Error::SceneKind {
+            message:
+                "a scene must have exactly one of [particles] and [macro], but this one has both"
+                    .to_string(),
+        }),
+        (None, None) => return Err(Error::SceneKind {
+            message:
+                "a scene must have exactly one of [particles] and [macro], but this one has neither"
+                    .to_string(),
+        }),
+        (Some(p), None) => (SceneKind::Particles, particles_table(p, &budget)?),
+        (None, Some(m)) => macro_table(m, &budget)?,
+    };
+    Ok(Scene {
+        name,
+        description,
+        t_end,
+        kind,
+        data,
+    })
+}
+
+/// Reads a scene file and parses it with [`parse`]. I/O failures (with the
+/// operating system's message and the path), files larger than
+/// [`MAX_SCENE_BYTES`] and text that is not UTF-8 are reported as
+/// [`Error::Io`].
+pub fn load(path: &Path) -> Result<Scene, Error> {
+    let io = |e: std::io::Error| Error::Io {
+        message: format!("{}: {e}", path.display()),
+    };
+    let too_big = || Error::Io {
+        message: format!(
+            "{}: the file is larger than the {} MiB limit for scene files",
+            path.display(),
+            MAX_SCENE_BYTES / (1024 * 1024)
+        ),
+    };
+    let file = std::fs::File::open(path).map_err(io)?;
+    if let Ok(meta) = file.metadata() {
+        if meta.is_file() && meta.len() > MAX_SCENE_BYTES {
+            return Err(too_big());
+        }
+    }
+    let mut bytes = Vec::new();
+    file.take(MAX_SCENE_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(io)?;
+    if bytes.len() as u64 > MAX_SCENE_BYTES {
+        return Err(too_big());
+    }
+    let text = String::from_utf8(bytes).map_err(|e| Error::Io {
+        message: format!(
+            "{}: not UTF-8 text (invalid byte at offset {})",
+            path.display(),
+            e.utf8_error().valid_up_to()
+        ),
+    })?;
+    parse(&text)
+}
+
+/// The embedded [`DEFAULT_SCENE`], parsed.
+pub fn default_scene() -> Result<Scene, Error> {
+    parse(DEFAULT_SCENE)
+}
+
+// ---------------------------------------------------------------- helpers
+
+/// A one-line TOML syntax error: "line L, column C: message".
+fn toml_error(text: &str, e: &toml::de::Error) -> Error {
+    let message = e
+        .message()
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty())
+        .collect::<Vec<_>>()
+        .join("; ");
+    let message = match e.span() {
+        Some(span) => {
+            let start = span.start.min(text.len());
+            let before = text.get(..start).unwrap_or("");
+            let line = before.matches('\n').count() + 1;
+            let column = before
+                .rsplit('\n')
+                .next()
+                .map(|l| l.chars().count())
+                .unwrap_or(0)
+                + 1;
+            format!("line {line}, column {column}: {message}")
+        }
+        None => message,
+    };
+    Error::Toml { message }
+}
+
+/// `prefix.key`, or `key` at top level.
+fn join(prefix: &str, key: &str) -> String {
+    if prefix.is_empty() {
+        key.to_string()
+    } else {
+        format!("{prefix}.{key}")
+    }
+}
+
+/// Refuses any key of `table` not in `allowed` (the first in TOML order).
+fn check_keys(table: &Table, prefix: &str, allowed: &[&str]) -> Result<(), Error> {
+    match table.keys().find(|k| !allowed.contains(&k.as_str())) {
+        Some(k) => Err(Error::UnknownField {
+            field: join(prefix, k),
+        }),
+        None => Ok(()),
+    }
+}
+
+fn optional_string(table: &Table, key: &str) -> Result<Option<String>, Error> {
+    match table.get(key) {
+        None => Ok(None),
+        Some(Value::String(s)) => Ok(Some(s.clone())),
+        Some(_) => Err(Error::WrongType {
+            field: key.to_string(),
+            expected: "a string",
+        }),
+    }
+}
+
+fn required<'a>(table: &'a Table, prefix: &str, key: &str) -> Result<&'a Value, Error> {
+    table.get(key).ok_or_else(|| Error::MissingField {
+        field: join(prefix, key),
+    })
+}
+
+fn as_table<'a>(value: &'a Value, field: &str) -> Result<&'a Table, Error> {
+    match value {
+        Value::Table(t) => Ok(t),
+        _ => Err(Error::WrongType {
+            field: field.to_string(),
+            expected: "a table",
+        }),
+    }
+}
+
+/// What [`exact`] expects, for [`Error::WrongType`].
+const EXACT_NUMBER: &str =
+    "an exact number: a TOML integer, or a quoted integer, fraction, decimal or scientific number such as \"-7/4\" or \"1.5e-3\"";
+
+/// Cuts `text` to [`MAX_QUOTED_CHARS`] characters.
+fn quoted(text: &str) -> String {
+    match text.char_indices().nth(MAX_QUOTED_CHARS) {
+        Some((cut, _)) => format!("{}…", text.get(..cut).unwrap_or("")),
+        None => text.to_string(),
+    }
+}
+
+/// The running total of number sizes of one scene, against
+/// [`MAX_NUMBER_BITS`].
+struct Budget {
+    left: std::cell::Cell<u64>,
+}
+
+impl Budget {
+    fn new() -> Self {
+        Budget {
+            left: std::cell::Cell::new(MAX_NUMBER_BITS),
+        }
+    }
+
+    /// Charges the bits of `q` (plus a fixed 64 for its header).
+    fn charge(&self, q: &BigRational, field: &str) -> Result<(), Error> {
+        let cost = bits(q).saturating_add(64);
+        match self.left.get().checked_sub(cost) {
+            Some(left) => {
+                self.left.set(left);
+                Ok(())
+            }
+            None => Err(Error::Unsupported {
+                message: format!(
+                    "field `{field}`: the exact numbers of this scene exceed {} MiB in total",
+                    MAX_NUMBER_BITS / (8 * 1024 * 1024)
+                ),
+            }),
+        }
+    }
+}
+
+/// An exact number: a TOML integer or a string read by [`parse_exact`].
+fn exact(value: &Value, field: &str, budget: &Budget) -> Result<BigRational, Error> {
+    match value {
+        Value::Integer(i) => Ok(BigRational::from_integer(BigInt::from(*i))),
+        Value::String(s) => {
+            let q = parse_exact(s).map_err(|reason| Error::Number {
+                field: field.to_string(),
+                text: quoted(s),
+                reason,
+            })?;
+            budget.charge(&q, field)?;
+            Ok(q)
+        }
+        Value::Float(f) if f.is_finite() => Err(Error::Float {
+            field: field.to_string(),
+            // Shortest round-trip form ("0.5", "1e-7"): quoting it gives the
+            // decimal the author most likely meant.
+            value: format!("{f:?}"),
+        }),
+        Value::Float(_) => Err(Error::WrongType {
+            field: field.to_string(),
+            expected: "a finite exact number (inf and nan are not numbers here)",
+        }),
+        _ => Err(Error::WrongType {
+            field: field.to_string(),
+            expected: EXACT_NUMBER,
+        }),
+    }
+}
+
+/// An array of exact numbers.
+fn exact_array(value: &Value, field: &str, budget: &Budget) -> Result<Vec<BigRational>, Error> {
+    let Value::Array(items) = value else {
+        return Err(Error::WrongType {
+            field: field.to_string(),
+            expected: "an array of exact numbers",
+        });
+    };
+    items
+        .iter()
+        .enumerate()
+        .map(|(i, v)| exact(v, &format!("{field}[{i}]"), budget))
+        .collect()
+}
+
+/// `[particles]`: `radius` (optional), `positions`, `velocities`.
+fn particles_table(value: &Value, budget: &Budget) -> Result<InitialData<BigRational>, Error> {
+    const P: &str = "particles";
+    let table = as_table(value, P)?;
+    check_keys(table, P, &["radius", "positions", "velocities"])?;
+    let positions = exact_array(
+        required(table, P, "positions")?,
+        "particles.positions",
+        budget,
+    )?;
+    let velocities = exact_array(
+        required(table, P, "velocities")?,
+        "particles.velocities",
+        budget,
+    )?;
+    match table.get("radius") {
+        Some(r) => {
+            let radius = exact(r, "particles.radius", budget)?;
+            InitialData::new(radius, positions, velocities)
+        }
+        None => InitialData::with_paper_radius(positions, velocities),
+    }
+}
+
+/// `[macro]`: `particles` and `blocks`, sampled at the quantiles.
+fn macro_table(
+    value: &Value,
+    budget: &Budget,
+) -> Result<(SceneKind, InitialData<BigRational>), Error> {
+    const M: &str = "macro";
+    let table = as_table(value, M)?;
+    check_keys(table, M, &["particles", "blocks"])?;
+    let n = particle_count(required(table, M, "particles")?, budget)?;
+    let blocks_value = required(table, M, "blocks")?;
+    let Value::Array(items) = blocks_value else {
+        return Err(Error::WrongType {
+            field: "macro.blocks".to_string(),
+            expected: "an array of tables { from, to, density, velocity }",
+        });
+    };
+    if items.len() > MAX_MACRO_BLOCKS {
+        return Err(Error::Unsupported {
+            message: format!(
+                "field `macro.blocks`: {} blocks is more than the limit of {MAX_MACRO_BLOCKS}",
+                items.len()
+            ),
+        });
+    }
+    let blocks = items
+        .iter()
+        .enumerate()
+        .map(|(k, v)| block(v, &format!("macro.blocks[{k}]"), budget))
+        .collect::<Result<Vec<_>, _>>()?;
+    let datum = MacroDatum::new(blocks)?;
+    check_sample_size(&datum, n)?;
+    let data = datum.sample(n)?;
+    Ok((
+        SceneKind::Macro {
+            datum,
+            particles: n,
+        },
+        data,
+    ))
+}
+
+/// `macro.particles`: an integer N with `1 ≤ N ≤ MAX_MACRO_PARTICLES`.
+fn particle_count(value: &Value, budget: &Budget) -> Result<usize, Error> {
+    const FIELD: &str = "macro.particles";
+    let wrong = || Error::WrongType {
+        field: FIELD.to_string(),
+        expected: "a positive integer (the particle count N)",
+    };
+    let n = exact(value, FIELD, budget).map_err(|e| match e {
+        Error::WrongType { .. } => wrong(),
+        other => other,
+    })?;
+    if !n.is_integer() || n.is_negative() {
+        return Err(wrong());
+    }
+    if n.is_zero() {
+        return Err(Error::NoParticles);
+    }
+    match n.to_integer().to_usize() {
+        Some(k) if k <= MAX_MACRO_PARTICLES => Ok(k),
+        _ => Err(Error::Unsupported {
+            message: format!(
+                "field `{FIELD}`: {} particles is more than the limit of {MAX_MACRO_PARTICLES}",
+                render_short(&n)
+            ),
+        }),
+    }
+}
+
+/// One block `{ from, to, density, velocity }`.
+fn block(value: &Value, field: &str, budget: &Budget) -> Result<Block, Error> {
+    let Value::Table(t) = value else {
+        return Err(Error::WrongType {
+            field: field.to_string(),
+            expected: "a table { from, to, density, velocity }",
+        });
+    };
+    check_keys(t, field, &["from", "to", "density", "velocity"])?;
+    let get = |key: &str| -> Result<BigRational, Error> {
+        exact(required(t, field, key)?, &join(field, key), budget)
+    };
+    let from = get("from")?;
+    let to = get("to")?;
+    let density = get("density")?;
+    let vfield = join(field, "velocity");
+    let velocity = match required(t, field, "velocity")? {
+        Value::Array(ab) => match ab.as_slice() {
+            [a, b] => BlockVelocity::Affine(
+                exact(a, &format!("{vfield}[0]"), budget)?,
+                exact(b, &format!("{vfield}[1]"), budget)?,
+            ),
+            _ => {
+                return Err(Error::WrongType {
+                    field: vfield,
+                    expected: "an exact number, or an array of two exact numbers [a, b] (affine: a at `from`, b at `to`)",
+                })
+            }
+        },
+        v => BlockVelocity::Constant(exact(v, &vfield, budget).map_err(|e| match e {
+            Error::WrongType { field, .. } => Error::WrongType {
+                field,
+                expected: "an exact number, or an array of two exact numbers [a, b] (affine: a at `from`, b at `to`)",
+            },
+            other => other,
+        })?),
+    };
+    Ok(Block {
+        from,
+        to,
+        density,
+        velocity,
+    })
+}
+
+/// Bits of a rational's numerator and denominator.
+fn bits(q: &BigRational) -> u64 {
+    q.numer().bits() + q.denom().bits()
+}
+
+/// Refuses a sampling whose numbers would need more than
+/// [`MAX_SAMPLE_BYTES`]: each `x_i = from_b + (i/N − m_{b−1})/ρ_b` and `u_i`
+/// has at most about the bits of the block's data, of `m_{b−1}` and of `N`.
+fn check_sample_size(datum: &MacroDatum, n: usize) -> Result<(), Error> {
+    let breakpoints = datum.mass_breakpoints();
+    let n_bits = u64::from(usize::BITS - n.leading_zeros());
+    let per_particle_bits = datum
+        .blocks()
+        .iter()
+        .zip(&breakpoints)
+        .map(|(b, m)| {
+            let v = match &b.velocity {
+                BlockVelocity::Constant(c) => bits(c),
+                BlockVelocity::Affine(a, c) => bits(a) + bits(c),
+            };
+            let x = bits(&b.from) + bits(&b.to) + bits(&b.density) + bits(m) + 2 * n_bits;
+            // Position and velocity (the affine one involves x).
+            x.saturating_mul(2).saturating_add(v)
+        })
+        .max()
+        .unwrap_or(0);
+    // 8 bits per byte, plus a fixed overhead of 256 bytes per particle for
+    // the big-integer headers and allocations.
+    let bytes = (n as u64).saturating_mul(per_particle_bits / 8 + 256);
+    if bytes > MAX_SAMPLE_BYTES {
+        return Err(Error::Unsupported {
+            message: format!(
+                "field `macro.particles`: sampling {n} particles from blocks with numbers this large would need about {} MiB; use fewer particles or simpler numbers",
+                bytes / (1024 * 1024)
+            ),
+        });
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn default_scene_parses() {
+        let scene = default_scene().unwrap();
+        assert_eq!(scene.n(), 16);
+        assert!(matches!(scene.kind, SceneKind::Macro { particles: 16, .. }));
+    }
+
+    #[test]
+    fn module_doc_examples_parse() {
+        let head =
+            "name = \"two-blocks\"\ndescription = \"Appendix C: two blocks\"\nt_end = \"2\"\n";
+        let particles = format!(
+            "{head}[particles]\nradius = \"1/16\"\npositions  = [\"0\", \"1/8\", \"1/2\", \"5/8\"]\nvelocities = [\"1\", \"1\", \"-1\", \"-1\"]\n"
+        );
+        assert_eq!(parse(&particles).unwrap().n(), 4);
+        let macro_ = "[macro]\nparticles = 64\nblocks = [\n  { from = \"0\", to = \"1/2\", density = \"1\",   velocity = \"1\" },\n  { from = \"1\", to = \"2\",   density = \"1/2\", velocity = [\"-1\", \"0\"] },  # affine\n]\n";
+        assert_eq!(parse(macro_).unwrap().n(), 64);
+    }
+
+    #[test]
+    fn toml_errors_are_one_line() {
+        let e = parse("a = \n[").unwrap_err();
+        assert!(matches!(e, Error::Toml { .. }));
+        assert!(!e.to_string().contains('\n'), "{e}");
+        assert!(e.to_string().contains("line "), "{e}");
+    }
+
+    #[test]
+    fn number_budget_is_enforced() {
+        let budget = Budget {
+            left: std::cell::Cell::new(14_000),
+        };
+        let big = Value::String("1e4096".into());
+        assert!(exact(&big, "x", &budget).is_ok());
+        let e = exact(&big, "particles.positions[1]", &budget).unwrap_err();
+        assert!(matches!(e, Error::Unsupported { .. }), "{e:?}");
+        assert!(e.to_string().contains("particles.positions[1]"), "{e}");
+        // TOML integers are small and not charged.
+        assert!(exact(&Value::Integer(7), "y", &budget).is_ok());
+    }
+
+    #[test]
+    fn too_many_blocks() {
+        let blocks = vec!["{ from = 0, to = 1, density = 1, velocity = 0 }"; MAX_MACRO_BLOCKS + 1];
+        let text = format!("[macro]\nparticles = 2\nblocks = [{}]\n", blocks.join(","));
+        let e = parse(&text).unwrap_err();
+        assert!(matches!(e, Error::Unsupported { .. }), "{e:?}");
+        assert!(e.to_string().contains("macro.blocks"), "{e}");
+    }
+
+    #[test]
+    fn long_number_text_is_cut() {
+        let long = "x".repeat(1000);
+        let e = parse(&format!(
+            "[particles]\npositions = [\"{long}\"]\nvelocities = [0]"
+        ))
+        .unwrap_err();
+        assert!(e.to_string().len() < 400, "{e}");
+    }
+}

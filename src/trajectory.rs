@@ -1,0 +1,420 @@
+//! The event-driven cluster merge: the whole history of sticky collisions.
+//!
+//! Collisions are perfectly inelastic: colliding clusters stick and move on
+//! with their mean velocity (momentum is conserved, all masses are equal).
+//! Hence a cluster `C` of `k` particles, once formed, moves rigidly and its
+//! translated position (`df:translat-x`) is affine in `t` *from time 0*:
+//!
+//! `x̃_C(t) = (Σ_{i∈C} x̃⁰_i + t Σ_{i∈C} u⁰_i) / k`,
+//!
+//! so collision times are ratios of cluster sums of the initial data and never
+//! accumulate digits. Two adjacent clusters `L`, `R` approach when
+//! `ū_L > ū_R` and meet at
+//!
+//! `t = (S^x_R k_L − S^x_L k_R) / (S^u_L k_R − S^u_R k_L)`.
+//!
+//! A priority queue holds the next collision time of every adjacent pair;
+//! all pairs meeting at the same instant are merged in one step (a chain of
+//! three or more clusters becomes one cluster, recorded as one event with all
+//! its parts). There are at most N − 1 merges; the cost is O(N log N)
+//! arithmetic operations.
+//!
+//! `prop:proj-micro` asserts that this history is the projection formula
+//! `x(t) = P_K(x⁰ + t u⁰)`: [`Trajectory::at`] and
+//! [`crate::projection::state_at`] are compared exactly by the tests.
+//!
+//! **Initial clusters.** At `t = 0`, particles in contact with equal velocities
+//! form a cluster; particles in contact with `u⁰_{i+1} > u⁰_i` (allowed by the
+//! velocity cone `def:velcone`) separate at once and are different clusters.
+
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+
+use crate::cluster::{runs, Cluster};
+use crate::contact::{multipliers, Impulse};
+use crate::error::Error;
+use crate::initial::{unshift, InitialData};
+use crate::scalar::Scalar;
+use crate::state::State;
+
+/// A cluster during the merge, with the sums that fix its motion.
+#[derive(Debug, Clone)]
+struct Node<S> {
+    first: usize,
+    size: usize,
+    sum_x: S,
+    sum_u: S,
+    alive: bool,
+    prev: Option<usize>,
+    next: Option<usize>,
+    /// Set while the current instant lasts for a cluster formed at it: the
+    /// pre-collision clusters that merged into it, with their velocities.
+    born: Option<Vec<(Cluster, S)>>,
+}
+
+impl<S: Scalar> Node<S> {
+    fn cluster(&self) -> Cluster {
+        Cluster {
+            first: self.first,
+            size: self.size,
+        }
+    }
+    fn velocity(&self) -> S {
+        self.sum_u.clone() / S::from_usize(self.size)
+    }
+}
+
+/// A candidate collision between the adjacent clusters `left` and `right`.
+#[derive(Debug, Clone)]
+struct Candidate<S> {
+    t: S,
+    first: usize,
+    left: usize,
+    right: usize,
+}
+
+impl<S: Scalar> PartialEq for Candidate<S> {
+    fn eq(&self, other: &Self) -> bool {
+        self.cmp(other) == Ordering::Equal
+    }
+}
+impl<S: Scalar> Eq for Candidate<S> {}
+impl<S: Scalar> PartialOrd for Candidate<S> {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+impl<S: Scalar> Ord for Candidate<S> {
+    /// Reversed, so that `BinaryHeap` pops the earliest time (then the
+    /// leftmost pair) first.
+    fn cmp(&self, other: &Self) -> Ordering {
+        other
+            .t
+            .total_cmp(&self.t)
+            .then_with(|| other.first.cmp(&self.first))
+    }
+}
+
+/// The complete sticky history of one initial datum.
+#[derive(Debug, Clone)]
+pub struct Trajectory<S> {
+    data: InitialData<S>,
+    prefix_x: Vec<S>,
+    prefix_u: Vec<S>,
+    join_time: Vec<Option<S>>,
+    impulses: Vec<Impulse<S>>,
+}
+
+/// The collision time of adjacent clusters, if they approach.
+fn meeting_time<S: Scalar>(l: &Node<S>, r: &Node<S>) -> Option<S> {
+    let kl = S::from_usize(l.size);
+    let kr = S::from_usize(r.size);
+    let closing = l.sum_u.clone() * &kr - r.sum_u.clone() * &kl;
+    if closing.total_cmp(&S::zero()).is_le() {
+        return None;
+    }
+    let gap = r.sum_x.clone() * &kl - l.sum_x.clone() * &kr;
+    Some(gap / closing)
+}
+
+fn prefix<S: Scalar>(v: &[S]) -> Vec<S> {
+    let mut out = Vec::with_capacity(v.len() + 1);
+    let mut acc = S::zero();
+    out.push(acc.clone());
+    for x in v {
+        acc = acc + x;
+        out.push(acc.clone());
+    }
+    out
+}
+
+impl<S: Scalar> Trajectory<S> {
+    /// Computes every collision of the sticky dynamics started from `data`.
+    pub fn new(data: InitialData<S>) -> Self {
+        let n = data.n();
+        let shifted = data.shifted_positions();
+        let u0 = data.velocities();
+        let prefix_x = prefix(&shifted);
+        let prefix_u = prefix(u0);
+        let mut join_time: Vec<Option<S>> = vec![None; n.saturating_sub(1)];
+
+        // Initial clusters: contacts with equal velocities.
+        let initial = runs(n, |j| shifted[j] == shifted[j + 1] && u0[j] == u0[j + 1]);
+        let mut nodes: Vec<Node<S>> = Vec::with_capacity(2 * initial.len());
+        for (k, c) in initial.iter().enumerate() {
+            for jt in &mut join_time[c.first..c.end() - 1] {
+                *jt = Some(S::zero());
+            }
+            nodes.push(Node {
+                first: c.first,
+                size: c.size,
+                sum_x: prefix_x[c.end()].clone() - &prefix_x[c.first],
+                sum_u: prefix_u[c.end()].clone() - &prefix_u[c.first],
+                alive: true,
+                prev: k.checked_sub(1),
+                next: (k + 1 < initial.len()).then_some(k + 1),
+                born: None,
+            });
+        }
+        let mut heap = BinaryHeap::new();
+        let push = |heap: &mut BinaryHeap<Candidate<S>>, nodes: &[Node<S>], l: usize, r: usize| {
+            if let Some(t) = meeting_time(&nodes[l], &nodes[r]) {
+                heap.push(Candidate {
+                    t,
+                    first: nodes[l].first,
+                    left: l,
+                    right: r,
+                });
+            }
+        };
+        for k in 1..nodes.len() {
+            push(&mut heap, &nodes, k - 1, k);
+        }
+
+        let mut impulses = Vec::new();
+        while let Some(head) = heap.pop() {
+            if !(nodes[head.left].alive && nodes[head.right].alive) {
+                continue;
+            }
+            let t = head.t.clone();
+            let mut pending = vec![head];
+            let mut born_now: Vec<usize> = Vec::new();
+            loop {
+                // Every pair meeting at `t` (or, in floating point, computed
+                // at or before `t`) joins this instant.
+                while heap
+                    .peek()
+                    .is_some_and(|c| c.t.total_cmp(&t) != Ordering::Greater)
+                {
+                    if let Some(c) = heap.pop() {
+                        if nodes[c.left].alive && nodes[c.right].alive {
+                            pending.push(c);
+                        }
+                    }
+                }
+                if pending.is_empty() {
+                    break;
+                }
+                pending.sort_by_key(|c| c.first);
+                let mut fresh: Vec<usize> = Vec::new();
+                let mut last_new: Option<usize> = None;
+                for c in pending.drain(..) {
+                    // The left cluster may already have been absorbed, as a
+                    // right part, into the cluster formed just before.
+                    let l = if nodes[c.left].alive {
+                        c.left
+                    } else {
+                        match last_new {
+                            Some(id) => id,
+                            None => continue,
+                        }
+                    };
+                    if !nodes[c.right].alive || nodes[l].next != Some(c.right) {
+                        continue;
+                    }
+                    let id = merge(&mut nodes, l, c.right, &t, &mut join_time);
+                    last_new = Some(id);
+                    fresh.push(id);
+                }
+                for &id in &fresh {
+                    if !nodes[id].alive {
+                        continue;
+                    }
+                    born_now.push(id);
+                    if let Some(p) = nodes[id].prev {
+                        push(&mut heap, &nodes, p, id);
+                    }
+                    if let Some(q) = nodes[id].next {
+                        push(&mut heap, &nodes, id, q);
+                    }
+                }
+            }
+            born_now.retain(|&id| nodes[id].alive);
+            born_now.sort_by_key(|&id| nodes[id].first);
+            for id in born_now {
+                let parts = nodes[id].born.take().unwrap_or_default();
+                let (parts, part_velocities) = parts.into_iter().unzip();
+                impulses.push(Impulse {
+                    t: t.clone(),
+                    cluster: nodes[id].cluster(),
+                    parts,
+                    part_velocities,
+                    velocity: nodes[id].velocity(),
+                    n,
+                });
+            }
+        }
+        Trajectory {
+            data,
+            prefix_x,
+            prefix_u,
+            join_time,
+            impulses,
+        }
+    }
+
+    /// The initial data.
+    pub fn data(&self) -> &InitialData<S> {
+        &self.data
+    }
+
+    /// Every collision, sorted by time then by first particle: one
+    /// [`Impulse`] per cluster formed, with its parts. These are the Dirac
+    /// masses of the pressure `p = dλ/dt` (`prop:micro-pressure`).
+    pub fn impulses(&self) -> &[Impulse<S>] {
+        &self.impulses
+    }
+
+    /// For each pair `(j, j+1)`, the time from which particles `j` and `j+1`
+    /// belong to one cluster (`Some(0)` for initial clusters, `None` if
+    /// never).
+    pub fn join_times(&self) -> &[Option<S>] {
+        &self.join_time
+    }
+
+    /// The clusters moving together just after `t` (right-continuous: merges
+    /// at `t` included).
+    pub fn clusters_after(&self, t: &S) -> Vec<Cluster> {
+        runs(self.data.n(), |j| {
+            self.join_time[j]
+                .as_ref()
+                .is_some_and(|jt| jt.total_cmp(t).is_le())
+        })
+    }
+
+    /// The state at time `t ≥ 0`: positions, right-derivative velocities,
+    /// multipliers and contact clusters, from the recorded history.
+    pub fn at(&self, t: &S) -> Result<State<S>, Error> {
+        if t.total_cmp(&S::zero()).is_lt() {
+            return Err(Error::NegativeTime { t: t.render() });
+        }
+        let n = self.data.n();
+        let mut shifted = Vec::with_capacity(n);
+        let mut velocities = Vec::with_capacity(n);
+        for c in self.clusters_after(t) {
+            let k = S::from_usize(c.size);
+            let sum_x = self.prefix_x[c.end()].clone() - &self.prefix_x[c.first];
+            let sum_u = self.prefix_u[c.end()].clone() - &self.prefix_u[c.first];
+            let x = (sum_x + &(t.clone() * &sum_u)) / &k;
+            let v = sum_u / &k;
+            shifted.extend(std::iter::repeat_n(x, c.size));
+            velocities.extend(std::iter::repeat_n(v, c.size));
+        }
+        let clusters = runs(n, |j| shifted[j] == shifted[j + 1]);
+        let positions = unshift(&shifted, &self.data.two_r());
+        let (multipliers, _lambda_n) = multipliers(self.data.velocities(), &velocities);
+        Ok(State {
+            t: t.clone(),
+            positions,
+            velocities,
+            multipliers,
+            clusters,
+        })
+    }
+
+    /// The time of the last collision (`None` when nothing ever collides).
+    pub fn last_collision(&self) -> Option<&S> {
+        self.impulses.last().map(|i| &i.t)
+    }
+}
+
+/// Merges the adjacent alive clusters `l` and `r` at time `t`; returns the new
+/// cluster's id.
+fn merge<S: Scalar>(
+    nodes: &mut Vec<Node<S>>,
+    l: usize,
+    r: usize,
+    t: &S,
+    join_time: &mut [Option<S>],
+) -> usize {
+    let parts_of = |node: &mut Node<S>| -> Vec<(Cluster, S)> {
+        node.born
+            .take()
+            .unwrap_or_else(|| vec![(node.cluster(), node.velocity())])
+    };
+    let mut parts = parts_of(&mut nodes[l]);
+    parts.extend(parts_of(&mut nodes[r]));
+    let id = nodes.len();
+    let (left, right) = (&nodes[l], &nodes[r]);
+    join_time[left.first + left.size - 1] = Some(t.clone());
+    let node = Node {
+        first: left.first,
+        size: left.size + right.size,
+        sum_x: left.sum_x.clone() + &right.sum_x,
+        sum_u: left.sum_u.clone() + &right.sum_u,
+        alive: true,
+        prev: left.prev,
+        next: right.next,
+        born: Some(parts),
+    };
+    if let Some(p) = node.prev {
+        nodes[p].next = Some(id);
+    }
+    if let Some(q) = node.next {
+        nodes[q].prev = Some(id);
+    }
+    nodes[l].alive = false;
+    nodes[r].alive = false;
+    nodes.push(node);
+    id
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::projection::state_at;
+    use num_rational::{BigRational, Rational64};
+
+    fn q<S: Scalar>(n: i64, d: i64) -> S {
+        S::from_i64(n) / S::from_i64(d)
+    }
+
+    fn three_clusters_at_once<S: Scalar>() {
+        // 2r = 1. Clusters {0,1} (v = 1), {2,3,4} (v = 0), {5,6} (v = −1),
+        // gaps of 1 on each side: both contacts close at t = 1.
+        let x: Vec<S> = [0, 1, 3, 4, 5, 7, 8]
+            .iter()
+            .map(|&v| S::from_i64(v))
+            .collect();
+        let u: Vec<S> = [1, 1, 0, 0, 0, -1, -1]
+            .iter()
+            .map(|&v| S::from_i64(v))
+            .collect();
+        let data = InitialData::new(q::<S>(1, 2), x, u).unwrap();
+        let traj = Trajectory::new(data.clone());
+        assert_eq!(traj.impulses().len(), 1);
+        let imp = &traj.impulses()[0];
+        assert_eq!(imp.t, S::one());
+        assert_eq!(imp.cluster, Cluster { first: 0, size: 7 });
+        assert_eq!(
+            imp.parts.iter().map(|c| c.size).collect::<Vec<_>>(),
+            vec![2, 3, 2]
+        );
+        for t in [q(0, 1), q(1, 2), q(1, 1), q(3, 1)] {
+            assert_eq!(traj.at(&t).unwrap(), state_at(&data, &t).unwrap());
+        }
+        // λ just after the collision equals the sum of the jumps.
+        assert_eq!(traj.at(&S::one()).unwrap().multipliers, imp.jumps());
+    }
+
+    fn single_particle<S: Scalar>() {
+        let data = InitialData::new(q::<S>(1, 2), vec![q(3, 1)], vec![q(-2, 1)]).unwrap();
+        let traj = Trajectory::new(data.clone());
+        assert!(traj.impulses().is_empty());
+        let s = traj.at(&q(5, 2)).unwrap();
+        assert_eq!(s.positions, vec![q(-2, 1)]);
+        assert!(s.multipliers.is_empty());
+        assert_eq!(s, state_at(&data, &q(5, 2)).unwrap());
+    }
+
+    #[test]
+    fn events_rational64() {
+        three_clusters_at_once::<Rational64>();
+        single_particle::<Rational64>();
+    }
+    #[test]
+    fn events_bigrational() {
+        three_clusters_at_once::<BigRational>();
+        single_particle::<BigRational>();
+    }
+}
