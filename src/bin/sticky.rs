@@ -15,6 +15,7 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand, ValueEnum};
 use num_rational::BigRational;
 
+use sticky::claims::ledger::{self, Budget};
 use sticky::claims::micro::{check_trajectory, probe_times};
 use sticky::cluster::Cluster;
 use sticky::projection::state_at;
@@ -42,7 +43,7 @@ enum Command {
         /// Scene file (TOML, see DESIGN.md §2).
         scene: PathBuf,
         /// A time t ≥ 0, exact: "3/2", "0.125", "1e-3" (repeat for several).
-        #[arg(long = "at", required = true, value_parser = parse_time)]
+        #[arg(long = "at", required = true, allow_hyphen_values = true, value_parser = parse_time)]
         at: Vec<BigRational>,
         /// One JSON object per time (the interop contract, DESIGN.md §3).
         #[arg(long)]
@@ -65,6 +66,35 @@ enum Command {
     Check {
         /// Scene file (TOML).
         scene: PathBuf,
+    },
+    /// Prints a random admissible `[particles]` scene (exact rationals, with
+    /// contacts, separating contacts and simultaneous collisions on purpose).
+    Generate {
+        /// Number of particles.
+        #[arg(long, default_value_t = 1000)]
+        n: usize,
+        /// Seed of the generator (same seed, same scene).
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+    },
+    /// The claims ledger: runs every checker of the paper's claims and prints
+    /// the computed statuses.
+    Claims {
+        /// Print the ledger as JSON.
+        #[arg(long, conflicts_with = "markdown")]
+        json: bool,
+        /// Print the ledger as a Markdown document (CLAIMS.md).
+        #[arg(long)]
+        markdown: bool,
+        /// Random cases per claim.
+        #[arg(long, default_value_t = Budget::default().cases)]
+        cases: usize,
+        /// Largest N of a random case.
+        #[arg(long, default_value_t = Budget::default().max_n)]
+        max_n: usize,
+        /// Largest N of the checks across N (a power of two).
+        #[arg(long, default_value_t = Budget::default().scaling_max_n)]
+        scaling_max_n: usize,
     },
 }
 
@@ -92,7 +122,28 @@ fn load(path: &std::path::Path) -> Result<Scene, Failure> {
 }
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        // --help, --version: clap's own output on stdout.
+        Err(e) if !e.use_stderr() => {
+            let _ = e.print();
+            return ExitCode::SUCCESS;
+        }
+        // One line, as for every other error: clap's first paragraph (no
+        // usage or help hints), joined.
+        Err(e) => {
+            let text = e.render().to_string();
+            let lines: Vec<&str> = text
+                .lines()
+                .take_while(|l| !l.trim().is_empty())
+                .map(str::trim)
+                .collect();
+            let message = lines.join(" ");
+            let message = message.strip_prefix("error: ").unwrap_or(&message);
+            eprintln!("error: {message}");
+            return ExitCode::from(2);
+        }
+    };
     let stdout = io::stdout();
     let mut out = BufWriter::new(stdout.lock());
     let result = match cli.command {
@@ -108,6 +159,24 @@ fn main() -> ExitCode {
         Some(Command::Events { scene, json }) => {
             load(&scene).and_then(|s| events(&mut out, &s, json))
         }
+        Some(Command::Claims {
+            json,
+            markdown,
+            cases,
+            max_n,
+            scaling_max_n,
+        }) => claims(
+            &mut out,
+            Budget {
+                cases,
+                max_n: max_n.max(1),
+                scaling_max_n: scaling_max_n.max(8),
+                ..Budget::default()
+            },
+            json,
+            markdown,
+        ),
+        Some(Command::Generate { n, seed }) => generate(&mut out, n, seed),
         Some(Command::Check { scene }) => {
             load(&scene).and_then(|s| summary(&mut out, &s, &scene.display().to_string()))
         }
@@ -339,4 +408,49 @@ fn abbreviate(items: &[String], keep: usize) -> String {
             items.len()
         )
     }
+}
+
+fn claims(
+    out: &mut impl Write,
+    budget: Budget,
+    as_json: bool,
+    as_markdown: bool,
+) -> Result<(), Failure> {
+    let tty = io::IsTerminal::is_terminal(&io::stderr());
+    let entries = ledger::run(budget, |id| {
+        if tty {
+            eprint!("\r\x1b[2Kchecking {id}");
+        }
+    });
+    if tty {
+        eprint!("\r\x1b[2K");
+    }
+    let text = if as_json {
+        ledger::json(&entries)
+    } else if as_markdown {
+        ledger::markdown(&entries, budget)
+    } else {
+        ledger::table(&entries)
+    };
+    writeln!(out, "{}", text.trim_end()).map_err(io_err)
+}
+
+fn generate(out: &mut impl Write, n: usize, seed: u64) -> Result<(), Failure> {
+    if n == 0 || n > 10_000_000 {
+        return Err(Failure(format!("--n must be in 1 ..= 10000000, got {n}")));
+    }
+    let mut rng = sticky::generate::SplitMix64::new(seed);
+    let limits = sticky::generate::Limits {
+        max_n: n,
+        ..Default::default()
+    };
+    // Enough bytes for n particles even when every group is a single one.
+    let mut bytes = rng.bytes(16 * n + 16);
+    let mut data = sticky::generate::initial_data(&bytes, limits);
+    while data.n() < n {
+        bytes.extend(rng.bytes(16 * n));
+        data = sticky::generate::initial_data(&bytes, limits);
+    }
+    let name = format!("random-{n}-seed-{seed}");
+    write!(out, "{}", scene::particles_toml(&data, Some(&name))).map_err(io_err)
 }

@@ -1,14 +1,36 @@
-//! One checker per claim of the paper.
+//! The claims ledger: one checker per claim of the paper.
 //!
 //! Every checker is a plain function returning `Result<(), Violation>`; the
-//! `Violation` names the claim by the paper's `\label` (plus `#step` for a
-//! step inside a proof) and carries the exact witness. Unit tests, proptest
-//! (`prop_*`), quickcheck (`qc_*`), the bounded-exhaustive proofs
-//! (`verify_*`) and the fuzz targets all call these same functions.
+//! [`Violation`] names the claim by the paper's `\label` (plus `#step` for a
+//! step inside a proof) and carries the exact witness. The ledger runner
+//! ([`ledger`]), the unit tests, proptest (`prop_*`), quickcheck (`qc_*`), the
+//! bounded-exhaustive proofs (`verify_*`) and the fuzz targets all iterate
+//! the same [`registry`], so every engine checks every claim with the same
+//! code (Firecracker reuses one `is_valid()`; memchr runs one oracle battery
+//! against every implementation).
+//!
+//! A claim found false stays reported false: its [`Claim::correction`] (a
+//! corrected statement, itself checked by every engine) is what the test
+//! suites require to hold; the original's status is computed by the ledger.
+
+// The checkers index vectors with the paper's subscripts (`x_i`, `λ_{i−1}`,
+// pairs `(i, i+1)`), which reads closer to the statements than iterators.
+#![allow(clippy::needless_range_loop)]
 
 use std::fmt;
 
+use crate::initial::InitialData;
+use crate::scalar::Scalar;
+use crate::trajectory::Trajectory;
+
+pub mod appendix_c;
+pub mod discrete;
+pub mod ledger;
 pub mod micro;
+pub mod registry;
+pub mod scaling;
+
+pub use registry::registry;
 
 /// A claim found false on a concrete input, with the exact witness.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -36,3 +58,136 @@ impl fmt::Display for Violation {
 }
 
 impl std::error::Error for Violation {}
+
+/// One initial datum with its whole sticky history and the times at which
+/// claims are evaluated (0, collision instants, midpoints, after the last).
+#[derive(Debug, Clone)]
+pub struct Case<S> {
+    /// The exact trajectory.
+    pub traj: Trajectory<S>,
+    /// The probe times, increasing.
+    pub times: Vec<S>,
+}
+
+impl<S: Scalar> Case<S> {
+    /// The case for `data`, probing every collision instant (`limit = None`)
+    /// or a spread of `limit` of them.
+    pub fn new(data: InitialData<S>, limit: Option<usize>) -> Self {
+        let traj = Trajectory::new(data);
+        let times = micro::probe_times(&traj, limit);
+        Case { traj, times }
+    }
+    /// The initial data.
+    pub fn data(&self) -> &InitialData<S> {
+        self.traj.data()
+    }
+    /// N.
+    pub fn n(&self) -> usize {
+        self.traj.data().n()
+    }
+    /// The collisions to check one by one: all of them, or a spread of 40
+    /// (first and last included) when there are more.
+    pub fn impulse_spread(&self) -> Vec<&crate::contact::Impulse<S>> {
+        let all = self.traj.impulses();
+        if all.len() <= 40 {
+            return all.iter().collect();
+        }
+        let m = all.len() - 1;
+        let mut idx: Vec<usize> = (0..40).map(|j| j * m / 39).collect();
+        idx.dedup();
+        idx.into_iter().map(|i| &all[i]).collect()
+    }
+    /// Σ of the sizes of the clusters formed by collisions: the cost of
+    /// materialising every pressure jump.
+    pub fn jump_work(&self) -> usize {
+        self.traj.impulses().iter().map(|i| i.cluster.size).sum()
+    }
+    /// `true` when the radius is the paper's, `2r = 1/N` (section 3 needs it).
+    pub fn paper_radius(&self) -> bool {
+        self.data().two_r() * S::from_usize(self.n()) == S::one()
+    }
+}
+
+/// A checker run on one case.
+pub type CaseCheck<S> = fn(&Case<S>) -> Result<(), Violation>;
+
+/// How a claim is checked.
+pub enum Kind<S> {
+    /// On every case (random initial data, shipped scenes, exhaustive
+    /// domains, fuzz inputs).
+    Case(CaseCheck<S>),
+    /// Across N on quantile-sampled macroscopic data: a bound "independent
+    /// of N" ([`scaling`]).
+    Scaling(scaling::ScalingCheck),
+    /// A fixed formula printed in the paper, checked exactly once.
+    Formula(fn() -> Result<(), Violation>),
+    /// Not checkable by a computer, with the reason.
+    NotCheckable(&'static str),
+}
+
+/// A corrected statement for a claim found false as printed.
+pub struct Correction<S> {
+    /// The corrected statement.
+    pub statement: &'static str,
+    /// Its checker (run by every engine, required to hold).
+    pub check: Kind<S>,
+    /// Whether the enclosing result's conclusion survives, and why.
+    pub conclusion: &'static str,
+}
+
+/// One claim of the paper.
+pub struct Claim<S> {
+    /// `\label` or `\label#step`.
+    pub id: &'static str,
+    /// Where it is (section or appendix).
+    pub section: &'static str,
+    /// The statement, quoted from the paper (LaTeX simplified).
+    pub statement: &'static str,
+    /// How it is checked.
+    pub kind: Kind<S>,
+    /// Only cases satisfying this are checked (e.g. `2r = 1/N`).
+    pub applies: fn(&Case<S>) -> bool,
+    /// For a claim known to fail as printed: the corrected statement.
+    pub correction: Option<Correction<S>>,
+}
+
+/// `applies` for claims valid for every admissible datum.
+pub fn always<S: Scalar>(_: &Case<S>) -> bool {
+    true
+}
+
+/// `applies` for section 3's claims, which assume `2r = 1/N`.
+pub fn paper_radius<S: Scalar>(c: &Case<S>) -> bool {
+    c.paper_radius()
+}
+
+/// Runs every [`Kind::Case`] claim (and correction) of the registry that
+/// applies to `case`. Returns the original claims found violated (reported,
+/// not an error) or the first violation of a claim that must hold (a claim
+/// without correction, or a correction).
+pub fn check_case<S: Scalar>(
+    claims: &[Claim<S>],
+    case: &Case<S>,
+) -> Result<Vec<Violation>, Violation> {
+    let mut reported = Vec::new();
+    for claim in claims {
+        if !(claim.applies)(case) {
+            continue;
+        }
+        if let Kind::Case(check) = &claim.kind {
+            match (check(case), &claim.correction) {
+                (Ok(()), _) => {}
+                (Err(v), Some(_)) => reported.push(v),
+                (Err(v), None) => return Err(v),
+            }
+        }
+        if let Some(Correction {
+            check: Kind::Case(check),
+            ..
+        }) = &claim.correction
+        {
+            check(case)?;
+        }
+    }
+    Ok(reported)
+}

@@ -1,0 +1,564 @@
+//! The ledger runner: runs every claim of the [`registry`](super::registry)
+//! and computes its status — never typed in.
+//!
+//! * [`Kind::Case`] claims run on the shipped scenes and on random admissible
+//!   data decoded by [`crate::generate`]; the first violation is shrunk
+//!   (greedy byte-level shrinking of the generator input: drop chunks, then
+//!   lower bytes) to a small exact witness scene.
+//! * [`Kind::Scaling`] claims run across N on quantile-sampled data.
+//! * [`Kind::Formula`] claims are checked once, exactly.
+//!
+//! Statuses: `holds` (no counterexample in all cases run), `counterexample`
+//! (with the witness), `not checkable` (with the reason).
+
+use num_rational::BigRational;
+
+use super::{scaling, Case, Claim, Kind, Violation};
+use crate::generate::{initial_data, Limits, SplitMix64};
+use crate::scene::{self, particles_toml};
+
+/// The engines that call every [`Kind::Case`] checker of the registry
+/// (kept in step with the test suites: see README "Claims").
+pub const CASE_ENGINES: &[&str] = &["ledger", "proptest", "quickcheck", "exhaustive", "fuzz"];
+
+/// How much work the ledger does.
+#[derive(Debug, Clone, Copy)]
+pub struct Budget {
+    /// Random cases per claim.
+    pub cases: usize,
+    /// Largest N of a random case.
+    pub max_n: usize,
+    /// Largest N of the scaling checks.
+    pub scaling_max_n: usize,
+    /// Seed of the random cases.
+    pub seed: u64,
+}
+
+impl Default for Budget {
+    fn default() -> Self {
+        Budget {
+            cases: 200,
+            max_n: 24,
+            scaling_max_n: 256,
+            seed: 0x5EED,
+        }
+    }
+}
+
+/// A computed status.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Status {
+    /// No counterexample in all cases run.
+    Holds,
+    /// A counterexample was found.
+    Counterexample,
+    /// Not checkable, with the reason.
+    NotCheckable(String),
+}
+
+impl Status {
+    /// `holds`, `counterexample` or `not checkable`.
+    pub fn label(&self) -> &'static str {
+        match self {
+            Status::Holds => "holds",
+            Status::Counterexample => "counterexample",
+            Status::NotCheckable(_) => "not checkable",
+        }
+    }
+}
+
+/// The result of running one statement.
+#[derive(Debug, Clone)]
+pub struct Outcome {
+    /// The status.
+    pub status: Status,
+    /// Cases run.
+    pub cases: usize,
+    /// The violation, with the exact witness scene when there is one.
+    pub witness: Option<String>,
+    /// Measurements (scaling checks).
+    pub note: Option<String>,
+}
+
+/// One row of the ledger.
+#[derive(Debug, Clone)]
+pub struct Entry {
+    /// Claim id.
+    pub id: &'static str,
+    /// Section.
+    pub section: &'static str,
+    /// The statement as printed.
+    pub statement: &'static str,
+    /// Engines that check it.
+    pub engines: Vec<&'static str>,
+    /// The outcome for the statement as printed.
+    pub outcome: Outcome,
+    /// For a counterexample: the corrected statement, its outcome, and
+    /// whether the enclosing result's conclusion holds.
+    pub correction: Option<(&'static str, Outcome, &'static str)>,
+}
+
+/// A random case from `seed`, with the generator bytes (for shrinking).
+fn random_bytes(rng: &mut SplitMix64, max_n: usize) -> (Vec<u8>, Limits) {
+    let n = 1 + (rng.next_u64() % max_n.max(1) as u64) as usize;
+    let limits = Limits {
+        max_n: n,
+        max_den: 6,
+        max_speed: 8,
+    };
+    (rng.bytes(6 * n + 8), limits)
+}
+
+fn case_of(bytes: &[u8], limits: Limits) -> Case<BigRational> {
+    Case::new(initial_data(bytes, limits), None)
+}
+
+/// Greedy shrinking of the generator input while `check` still fails.
+fn shrink(
+    bytes: Vec<u8>,
+    limits: Limits,
+    check: super::CaseCheck<BigRational>,
+) -> (Vec<u8>, Limits, Violation) {
+    let fails = |b: &[u8], l: Limits| -> Option<Violation> { check(&case_of(b, l)).err() };
+    let mut best = bytes;
+    let mut lim = limits;
+    let Some(mut v) = fails(&best, lim) else {
+        unreachable_shrink()
+    };
+    let mut budget = 3000usize;
+    // Fewer particles first.
+    while lim.max_n > 1 && budget > 0 {
+        budget -= 1;
+        let l = Limits {
+            max_n: lim.max_n - 1,
+            ..lim
+        };
+        match fails(&best, l) {
+            Some(w) => {
+                lim = l;
+                v = w;
+            }
+            None => break,
+        }
+    }
+    let mut chunk = best.len().max(1);
+    while chunk >= 1 && budget > 0 {
+        let mut i = 0;
+        while i < best.len() && budget > 0 {
+            budget -= 1;
+            let mut cand = best.clone();
+            cand.drain(i..(i + chunk).min(best.len()));
+            if let Some(w) = fails(&cand, lim) {
+                best = cand;
+                v = w;
+            } else {
+                i += chunk;
+            }
+        }
+        chunk /= 2;
+    }
+    for i in 0..best.len() {
+        for target in [0u8, best[i] / 2, best[i].saturating_sub(1)] {
+            if budget == 0 || target >= best[i] {
+                continue;
+            }
+            budget -= 1;
+            let mut cand = best.clone();
+            cand[i] = target;
+            if let Some(w) = fails(&cand, lim) {
+                best = cand;
+                v = w;
+            }
+        }
+    }
+    (best, lim, v)
+}
+
+#[cold]
+fn unreachable_shrink() -> ! {
+    panic!("shrink called on a passing input")
+}
+
+fn shipped_cases() -> Vec<(&'static str, Case<BigRational>)> {
+    const SCENES: [(&str, &str); 6] = [
+        (
+            "appendix-c-two-blocks",
+            include_str!("../../scenes/appendix-c-two-blocks.toml"),
+        ),
+        (
+            "three-cluster-simultaneous",
+            include_str!("../../scenes/three-cluster-simultaneous.toml"),
+        ),
+        (
+            "collision-cascade",
+            include_str!("../../scenes/collision-cascade.toml"),
+        ),
+        (
+            "riemann-compression",
+            include_str!("../../scenes/riemann-compression.toml"),
+        ),
+        (
+            "riemann-expansion-affine",
+            include_str!("../../scenes/riemann-expansion-affine.toml"),
+        ),
+        ("random-1000", include_str!("../../scenes/random-1000.toml")),
+    ];
+    SCENES
+        .iter()
+        .filter_map(|(name, text)| {
+            let s = scene::parse(text).ok()?;
+            let limit = Some(if s.data.n() > 100 { 4 } else { 8 });
+            Some((*name, Case::new(s.data, limit)))
+        })
+        .collect()
+}
+
+/// Runs one case-checker over the random cases then the shipped scenes.
+fn run_case_check(
+    check: super::CaseCheck<BigRational>,
+    applies: fn(&Case<BigRational>) -> bool,
+    budget: Budget,
+    shipped: &[(&'static str, Case<BigRational>)],
+) -> Outcome {
+    let mut rng = SplitMix64::new(budget.seed);
+    let mut cases = 0;
+    for _ in 0..budget.cases {
+        let (bytes, limits) = random_bytes(&mut rng, budget.max_n);
+        let case = case_of(&bytes, limits);
+        if !applies(&case) {
+            continue;
+        }
+        cases += 1;
+        if check(&case).is_err() {
+            let (b, l, v) = shrink(bytes, limits, check);
+            let data = initial_data(&b, l);
+            return Outcome {
+                status: Status::Counterexample,
+                cases,
+                witness: Some(format!(
+                    "{}\nwitness scene (N = {}):\n{}",
+                    v.witness,
+                    data.n(),
+                    particles_toml(&data, Some("witness"))
+                )),
+                note: None,
+            };
+        }
+    }
+    for (name, case) in shipped {
+        if !applies(case) {
+            continue;
+        }
+        cases += 1;
+        if let Err(v) = check(case) {
+            return Outcome {
+                status: Status::Counterexample,
+                cases,
+                witness: Some(format!("{}\nwitness: scenes/{name}.toml", v.witness)),
+                note: None,
+            };
+        }
+    }
+    Outcome {
+        status: Status::Holds,
+        cases,
+        witness: None,
+        note: None,
+    }
+}
+
+fn run_kind(
+    kind: &Kind<BigRational>,
+    applies: fn(&Case<BigRational>) -> bool,
+    budget: Budget,
+    shipped: &[(&'static str, Case<BigRational>)],
+) -> (Outcome, Vec<&'static str>) {
+    match kind {
+        Kind::Case(check) => (
+            run_case_check(*check, applies, budget, shipped),
+            CASE_ENGINES.to_vec(),
+        ),
+        Kind::Scaling(check) => {
+            let sb = scaling::Budget {
+                max_n: budget.scaling_max_n,
+            };
+            let outcome = match check(sb) {
+                Ok(reports) => Outcome {
+                    status: Status::Holds,
+                    cases: reports.iter().map(|r| r.values.len()).sum(),
+                    witness: None,
+                    note: Some(
+                        reports
+                            .iter()
+                            .map(|r| r.summary())
+                            .collect::<Vec<_>>()
+                            .join("; "),
+                    ),
+                },
+                Err(v) => Outcome {
+                    status: Status::Counterexample,
+                    // The values of the scene that failed, one per N.
+                    cases: scaling::ns(sb).len(),
+                    witness: Some(v.witness),
+                    note: None,
+                },
+            };
+            (outcome, vec!["ledger (across N)"])
+        }
+        Kind::Formula(check) => {
+            let outcome = match check() {
+                Ok(()) => Outcome {
+                    status: Status::Holds,
+                    cases: 1,
+                    witness: None,
+                    note: None,
+                },
+                Err(v) => Outcome {
+                    status: Status::Counterexample,
+                    cases: 1,
+                    witness: Some(v.witness),
+                    note: None,
+                },
+            };
+            (outcome, vec!["ledger (exact formula)", "cargo test"])
+        }
+        Kind::NotCheckable(reason) => (
+            Outcome {
+                status: Status::NotCheckable((*reason).to_string()),
+                cases: 0,
+                witness: None,
+                note: None,
+            },
+            vec![],
+        ),
+    }
+}
+
+/// Runs the whole registry.
+pub fn run(budget: Budget, mut progress: impl FnMut(&str)) -> Vec<Entry> {
+    let shipped = shipped_cases();
+    let claims: Vec<Claim<BigRational>> = super::registry();
+    let mut out = Vec::with_capacity(claims.len());
+    for claim in &claims {
+        progress(claim.id);
+        let (outcome, engines) = run_kind(&claim.kind, claim.applies, budget, &shipped);
+        let correction = claim.correction.as_ref().map(|c| {
+            let (o, _) = run_kind(&c.check, claim.applies, budget, &shipped);
+            (c.statement, o, c.conclusion)
+        });
+        out.push(Entry {
+            id: claim.id,
+            section: claim.section,
+            statement: claim.statement,
+            engines,
+            outcome,
+            correction,
+        });
+    }
+    out
+}
+
+/// Counts by status: `(holds, counterexample, not checkable)`.
+pub fn counts(entries: &[Entry]) -> (usize, usize, usize) {
+    let mut c = (0, 0, 0);
+    for e in entries {
+        match e.outcome.status {
+            Status::Holds => c.0 += 1,
+            Status::Counterexample => c.1 += 1,
+            Status::NotCheckable(_) => c.2 += 1,
+        }
+    }
+    c
+}
+
+fn first_line(s: &str) -> &str {
+    s.lines().next().unwrap_or("")
+}
+
+/// The ledger as a plain-text table.
+pub fn table(entries: &[Entry]) -> String {
+    let mut out = String::new();
+    let (h, c, n) = counts(entries);
+    out.push_str(&format!(
+        "{} claims: {h} hold, {c} counterexample{}, {n} not checkable\n\n",
+        entries.len(),
+        if c == 1 { "" } else { "s" }
+    ));
+    let w = entries.iter().map(|e| e.id.len()).max().unwrap_or(10);
+    for e in entries {
+        out.push_str(&format!(
+            "{:<w$}  {:<14}  {:>6} cases\n",
+            e.id,
+            e.outcome.status.label(),
+            e.outcome.cases
+        ));
+        if let Some(wit) = &e.outcome.witness {
+            out.push_str(&format!("{:<w$}    ↳ {}\n", "", first_line(wit)));
+        }
+        if let Some((_, o, _)) = &e.correction {
+            out.push_str(&format!(
+                "{:<w$}    corrected statement: {} ({} cases)\n",
+                "",
+                o.status.label(),
+                o.cases
+            ));
+        }
+    }
+    out
+}
+
+fn json_outcome(o: &Outcome) -> String {
+    let s = crate::json::string;
+    format!(
+        "\"status\": {}, \"cases\": {}, \"witness\": {}, \"note\": {}",
+        s(o.status.label()),
+        o.cases,
+        o.witness.as_deref().map_or("null".to_string(), s),
+        o.note
+            .as_deref()
+            .map(s)
+            .or_else(|| match &o.status {
+                Status::NotCheckable(r) => Some(s(r)),
+                _ => None,
+            })
+            .unwrap_or_else(|| "null".to_string())
+    )
+}
+
+/// The ledger as JSON: `[{"id", "statement", "status", "cases", "engines",
+/// "witness", …}, …]`.
+pub fn json(entries: &[Entry]) -> String {
+    let s = crate::json::string;
+    let items: Vec<String> = entries
+        .iter()
+        .map(|e| {
+            let engines: Vec<String> = e.engines.iter().map(|x| s(x)).collect();
+            let correction = match &e.correction {
+                None => "null".to_string(),
+                Some((st, o, concl)) => format!(
+                    "{{\"statement\": {}, {}, \"conclusion\": {}}}",
+                    s(st),
+                    json_outcome(o),
+                    s(concl)
+                ),
+            };
+            format!(
+                "{{\"id\": {}, \"section\": {}, \"statement\": {}, {}, \"engines\": [{}], \"correction\": {}}}",
+                s(e.id),
+                s(e.section),
+                s(e.statement),
+                json_outcome(&e.outcome),
+                engines.join(", "),
+                correction
+            )
+        })
+        .collect();
+    format!("[\n{}\n]", items.join(",\n"))
+}
+
+/// The ledger as a Markdown document (`CLAIMS.md`). It contains no
+/// timings, so it is reproducible for a given budget.
+pub fn markdown(entries: &[Entry], budget: Budget) -> String {
+    let mut out = String::new();
+    let (h, c, n) = counts(entries);
+    out.push_str("# Claims ledger\n\n");
+    out.push_str("Generated by `sticky claims --markdown` (do not edit: `tests/claims_ledger.rs` checks that this file is current).\n");
+    out.push_str(&format!(
+        "Budget: {} random cases per claim (N ≤ {}, seed {:#x}) plus the shipped scenes; scaling checks for N = 4 … {}.\n\n",
+        budget.cases, budget.max_n, budget.seed, budget.scaling_max_n
+    ));
+    out.push_str(&format!(
+        "**{} claims: {h} hold, {c} counterexamples, {n} not checkable.** Every status below is computed by running the checkers; \"holds\" means no counterexample in the cases run, not a proof.\n\n",
+        entries.len()
+    ));
+    out.push_str("| id | status | cases | corrected statement |\n|---|---|---|---|\n");
+    for e in entries {
+        let corr = match &e.correction {
+            Some((_, o, _)) => format!("{} ({} cases)", o.status.label(), o.cases),
+            None => "—".to_string(),
+        };
+        out.push_str(&format!(
+            "| `{}` | {} | {} | {} |\n",
+            e.id,
+            e.outcome.status.label(),
+            e.outcome.cases,
+            corr
+        ));
+    }
+    out.push('\n');
+    let mut section = "";
+    for e in entries {
+        if e.section != section {
+            section = e.section;
+            out.push_str(&format!("## {section}\n\n"));
+        }
+        out.push_str(&format!(
+            "### `{}` — {}\n\n",
+            e.id,
+            e.outcome.status.label()
+        ));
+        out.push_str(&format!("> {}\n\n", e.statement));
+        out.push_str(&format!(
+            "Cases: {}. Engines: {}.\n\n",
+            e.outcome.cases,
+            if e.engines.is_empty() {
+                "none".to_string()
+            } else {
+                e.engines.join(", ")
+            }
+        ));
+        if let Status::NotCheckable(r) = &e.outcome.status {
+            out.push_str(&format!("Not checkable: {r}\n\n"));
+        }
+        if let Some(note) = &e.outcome.note {
+            out.push_str(&format!("Measured: {note}\n\n"));
+        }
+        if let Some(w) = &e.outcome.witness {
+            out.push_str(&format!(
+                "Counterexample:\n\n```\n{}\n```\n\n",
+                w.trim_end()
+            ));
+        }
+        if let Some((st, o, concl)) = &e.correction {
+            out.push_str(&format!(
+                "Corrected statement ({}, {} cases): {}\n\n",
+                o.status.label(),
+                o.cases,
+                st
+            ));
+            if let Some(w) = &o.witness {
+                out.push_str(&format!(
+                    "Counterexample to the correction:\n\n```\n{}\n```\n\n",
+                    w.trim_end()
+                ));
+            }
+            if let Some(note) = &o.note {
+                out.push_str(&format!("Measured: {note}\n\n"));
+            }
+            out.push_str(&format!("Conclusion of the enclosing result: {concl}\n\n"));
+        }
+    }
+    out
+}
+
+/// The README's summary of the ledger: counts by status and each
+/// counterexample in one line (kept current by `tests/claims_ledger.rs`).
+pub fn summary(entries: &[Entry]) -> String {
+    let (h, c, n) = counts(entries);
+    let mut out = format!(
+        "{} claims: {h} hold, {c} counterexamples, {n} not checkable (the corrected statement of every counterexample holds).\n\n",
+        entries.len()
+    );
+    for e in entries {
+        if e.outcome.status == Status::Counterexample {
+            let w = e.outcome.witness.as_deref().map(first_line).unwrap_or("");
+            let w = if w.chars().count() > 160 {
+                format!("{}…", w.chars().take(160).collect::<String>())
+            } else {
+                w.to_string()
+            };
+            out.push_str(&format!("- `{}`: {w}\n", e.id));
+        }
+    }
+    out
+}
