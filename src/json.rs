@@ -25,7 +25,8 @@ use crate::contact::Impulse;
 use crate::scalar::Scalar;
 use crate::state::State;
 
-/// A JSON string literal.
+/// A JSON string literal. Control characters and DEL are written as
+/// `\uXXXX`, so the literal is also a valid TOML basic string.
 pub fn string(s: &str) -> String {
     let mut out = String::with_capacity(s.len() + 2);
     out.push('"');
@@ -36,7 +37,7 @@ pub fn string(s: &str) -> String {
             '\n' => out.push_str("\\n"),
             '\r' => out.push_str("\\r"),
             '\t' => out.push_str("\\t"),
-            c if (c as u32) < 0x20 => {
+            c if (c as u32) < 0x20 || c == '\u{7f}' => {
                 let _ = write!(out, "\\u{:04x}", c as u32);
             }
             c => out.push(c),

@@ -21,6 +21,7 @@
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
+pub mod atlas;
 pub mod claims;
 pub mod cluster;
 pub mod contact;
@@ -29,6 +30,9 @@ pub mod fuzzing;
 pub mod generate;
 pub mod initial;
 pub mod json;
+pub mod kernel;
+pub mod limit;
+pub mod plot;
 pub mod projection;
 pub mod quantile;
 pub mod rational;

@@ -241,35 +241,14 @@ pub fn particles_toml(data: &InitialData<BigRational>, name: Option<&str>) -> St
     let mut out = String::new();
     if let Some(name) = name {
         out.push_str("name = ");
-        out.push_str(&toml_basic_string(name));
+        // A JSON string literal (with DEL escaped) is a valid TOML basic string.
+        out.push_str(&crate::json::string(name));
         out.push('\n');
     }
     out.push_str("\n[particles]\n");
     out.push_str(&format!("radius = \"{}\"\n", render_exact(data.radius())));
     out.push_str(&format!("positions = {}\n", list(data.positions())));
     out.push_str(&format!("velocities = {}\n", list(data.velocities())));
-    out
-}
-
-/// A TOML basic string literal: `"…"` with `"`, `\` and control characters
-/// escaped.
-fn toml_basic_string(s: &str) -> String {
-    let mut out = String::with_capacity(s.len() + 2);
-    out.push('"');
-    for ch in s.chars() {
-        match ch {
-            '"' => out.push_str("\\\""),
-            '\\' => out.push_str("\\\\"),
-            '\n' => out.push_str("\\n"),
-            '\r' => out.push_str("\\r"),
-            '\t' => out.push_str("\\t"),
-            c if (c as u32) < 0x20 || c == '\u{7f}' => {
-                out.push_str(&format!("\\u{:04X}", c as u32));
-            }
-            c => out.push(c),
-        }
-    }
-    out.push('"');
     out
 }
 

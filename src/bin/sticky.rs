@@ -18,6 +18,7 @@ use num_rational::BigRational;
 use sticky::claims::ledger::{self, Budget};
 use sticky::claims::micro::{check_trajectory, probe_times};
 use sticky::cluster::Cluster;
+use sticky::kernel::{self, IntegerData};
 use sticky::projection::state_at;
 use sticky::rational::parse_exact;
 use sticky::scene::{self, Scene, SceneKind};
@@ -49,7 +50,8 @@ enum Command {
         #[arg(long)]
         json: bool,
         /// Which exact algorithm answers: the one-shot projection P_K(x⁰+tu⁰)
-        /// (O(N) per time) or the event-driven merge (O(N log N) once).
+        /// (O(N) per time, on the integer kernel) or the event-driven merge
+        /// (O(N log N) once).
         #[arg(long, value_enum, default_value_t = Engine::Projection)]
         engine: Engine,
     },
@@ -221,10 +223,14 @@ fn run(
         Engine::Events => Some(Trajectory::new(data.clone())),
         Engine::Projection => None,
     };
+    // The projection runs on the integer kernel (common denominators, i128
+    // when the data fit): the same exact result as the generic path.
+    let ints = traj.is_none().then(|| IntegerData::new(data));
     for t in times {
-        let state = match &traj {
-            Some(traj) => traj.at(t),
-            None => state_at(data, t),
+        let state = match (&traj, &ints) {
+            (Some(traj), _) => traj.at(t),
+            (None, Some(ints)) => kernel::state_at(ints, t),
+            (None, None) => state_at(data, t),
         }
         .map_err(|e| Failure(e.to_string()))?;
         if as_json {

@@ -1,0 +1,1 @@
+//! The hydrodynamic limit (being written).
