@@ -104,8 +104,6 @@ pub struct Blocks {
     pub mean_y: Vec<BigRational>,
     /// `u(t)` on each block, in lowest terms.
     pub mean_u: Vec<BigRational>,
-    /// `ΣU` of each block (scaled by `du`), for the multipliers.
-    sum_u: Vec<BigInt>,
     /// The integer width the loop ran on.
     pub width: Width,
 }
@@ -114,7 +112,6 @@ pub struct Blocks {
 trait Word: Clone + Ord {
     fn add(&self, o: &Self) -> Self;
     fn mul_k(&self, k: usize) -> Self;
-    fn big(&self) -> BigInt;
 }
 
 impl Word for i128 {
@@ -126,9 +123,6 @@ impl Word for i128 {
     fn mul_k(&self, k: usize) -> Self {
         self * k as i128
     }
-    fn big(&self) -> BigInt {
-        BigInt::from(*self)
-    }
 }
 
 impl Word for BigInt {
@@ -137,9 +131,6 @@ impl Word for BigInt {
     }
     fn mul_k(&self, k: usize) -> Self {
         self * BigInt::from(k)
-    }
-    fn big(&self) -> BigInt {
-        self.clone()
     }
 }
 
@@ -211,48 +202,88 @@ pub fn blocks_at(d: &IntegerData, t: &BigRational) -> Blocks {
     let limit_u = limit.to_u128().unwrap_or(u128::MAX);
     let fast = small_y(d, &qdu, &pdx)
         .filter(|(_, u, max)| *max <= limit_u && u.iter().all(|v| v.unsigned_abs() <= limit_u));
-    let (raw, width): (Vec<(usize, usize, BigInt, BigInt)>, Width) = match fast {
-        Some((y, u, _)) => (
-            pava_words(&y, &u)
-                .into_iter()
-                .map(|(f, k, sy, su)| (f, k, sy.big(), su.big()))
-                .collect(),
-            Width::I128,
-        ),
+    let (dy_small, du_small) = (dy.to_i128(), d.du.to_i128());
+    let mut out = Blocks {
+        clusters: Vec::new(),
+        mean_y: Vec::new(),
+        mean_u: Vec::new(),
+        width: Width::I128,
+    };
+    let mut push = |first: usize, size: usize, y: BigRational, u: BigRational| {
+        out.clusters.push(Cluster { first, size });
+        out.mean_y.push(y);
+        out.mean_u.push(u);
+    };
+    let small_words = fast.map(|(y, u, _)| (y, u)).or_else(|| {
+        let y: Vec<BigInt> =
+            d.x.iter()
+                .zip(&d.u)
+                .map(|(x, u)| &qdu * x + &pdx * u)
+                .collect();
+        (fits(&y, &limit) && fits(&d.u, &limit)).then(|| (to_i128(&y), to_i128(&d.u)))
+    });
+    match small_words {
+        Some((y, u)) => {
+            for (first, size, sy, su) in pava_words(&y, &u) {
+                push(
+                    first,
+                    size,
+                    reduce_small(sy, &dy, dy_small, size),
+                    reduce_small(su, &d.du, du_small, size),
+                );
+            }
+        }
         None => {
             let y: Vec<BigInt> =
                 d.x.iter()
                     .zip(&d.u)
                     .map(|(x, u)| &qdu * x + &pdx * u)
                     .collect();
-            if fits(&y, &limit) && fits(&d.u, &limit) {
-                (
-                    pava_words(&to_i128(&y), &to_i128(&d.u))
-                        .into_iter()
-                        .map(|(f, k, sy, su)| (f, k, sy.big(), su.big()))
-                        .collect(),
-                    Width::I128,
-                )
-            } else {
-                (pava_words(&y, &d.u), Width::Big)
+            for (first, size, sy, su) in pava_words(&y, &d.u) {
+                let k = BigInt::from(size);
+                push(
+                    first,
+                    size,
+                    BigRational::new(sy, &k * &dy),
+                    BigRational::new(su, &k * &d.du),
+                );
             }
+            out.width = Width::Big;
         }
-    };
-    let mut out = Blocks {
-        clusters: Vec::with_capacity(raw.len()),
-        mean_y: Vec::with_capacity(raw.len()),
-        mean_u: Vec::with_capacity(raw.len()),
-        sum_u: Vec::with_capacity(raw.len()),
-        width,
-    };
-    for (first, size, sy, su) in raw {
-        let k = BigInt::from(size);
-        out.mean_y.push(BigRational::new(sy, &k * &dy));
-        out.mean_u.push(BigRational::new(su.clone(), &k * &d.du));
-        out.sum_u.push(su);
-        out.clusters.push(Cluster { first, size });
     }
     out
+}
+
+/// `s / (k d)` in lowest terms for an `i128` sum `s`: `i128` arithmetic and
+/// a binary gcd when `k d` fits, `BigRational::new` otherwise.
+fn reduce_small(s: i128, d: &BigInt, d_small: Option<i128>, k: usize) -> BigRational {
+    if let Some(den) = d_small.and_then(|d| d.checked_mul(k as i128)) {
+        if den > 0 {
+            // `g` divides both exactly and `den / g > 0`: lowest terms.
+            let g = gcd_u128(s.unsigned_abs(), den.unsigned_abs()) as i128;
+            return BigRational::new_raw(BigInt::from(s / g), BigInt::from(den / g));
+        }
+    }
+    BigRational::new(BigInt::from(s), d * BigInt::from(k))
+}
+
+/// Binary gcd (`gcd(0, b) = b`); `b > 0` here.
+fn gcd_u128(mut a: u128, mut b: u128) -> u128 {
+    if a == 0 {
+        return b;
+    }
+    let shift = (a | b).trailing_zeros();
+    a >>= a.trailing_zeros();
+    loop {
+        b >>= b.trailing_zeros();
+        if a > b {
+            std::mem::swap(&mut a, &mut b);
+        }
+        b -= a;
+        if b == 0 {
+            return a << shift;
+        }
+    }
 }
 
 /// The state at `t ≥ 0` from the integer kernel: equal, field by field, to
@@ -274,6 +305,7 @@ pub fn state_at(d: &IntegerData, t: &BigRational) -> Result<State<BigRational>, 
         // λ_i = (k Σ_{first..=i} U_j − (i − first + 1) S) / (k du N).
         let k = BigInt::from(c.size);
         let den = &k * &d.du * &big_n;
+        let sum_u: BigInt = d.u[c.range()].iter().sum();
         let mut prefix = BigInt::zero();
         for (m, i) in c.range().enumerate() {
             shifted.push(b.mean_y[j].clone());
@@ -287,7 +319,7 @@ pub fn state_at(d: &IntegerData, t: &BigRational) -> Result<State<BigRational>, 
             velocities.push(b.mean_u[j].clone());
             prefix += &d.u[i];
             if i + 1 < n {
-                let num = &k * &prefix - BigInt::from(m + 1) * &b.sum_u[j];
+                let num = &k * &prefix - BigInt::from(m + 1) * &sum_u;
                 multipliers.push(if num.sign() == Sign::NoSign {
                     BigRational::zero()
                 } else {

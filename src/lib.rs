@@ -22,6 +22,7 @@
 #![deny(missing_docs)]
 
 pub mod atlas;
+pub mod bench;
 pub mod claims;
 pub mod cluster;
 pub mod contact;

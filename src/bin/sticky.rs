@@ -79,6 +79,29 @@ enum Command {
         #[arg(long, default_value_t = 1)]
         seed: u64,
     },
+    /// PAVA at one time on random scenes: every method timed in one run on
+    /// fresh inputs, with the ratio to our f64 PAVA and the Python peers.
+    Bench {
+        /// Number of particles.
+        #[arg(long, default_value_t = 1_000_000)]
+        n: usize,
+        /// Repetitions, each on a fresh scene.
+        #[arg(long, default_value_t = 3)]
+        reps: usize,
+        /// Quick run: no event-driven trajectory.
+        #[arg(long)]
+        quick: bool,
+        /// Skip the Python peers.
+        #[arg(long)]
+        no_peers: bool,
+        /// Print JSON.
+        #[arg(long)]
+        json: bool,
+        /// The time t of the projection (small: few clusters; large: few
+        /// large clusters).
+        #[arg(long, default_value = "1/100", value_parser = parse_time)]
+        at: BigRational,
+    },
     /// The claims ledger: runs every checker of the paper's claims and prints
     /// the computed statuses.
     Claims {
@@ -178,6 +201,29 @@ fn main() -> ExitCode {
             json,
             markdown,
         ),
+        Some(Command::Bench {
+            n,
+            reps,
+            quick,
+            no_peers,
+            json,
+            at,
+        }) => {
+            let opts = sticky::bench::BenchOptions {
+                n,
+                reps,
+                peers: !no_peers,
+                events: !quick,
+            };
+            let scripts = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scripts");
+            let report = sticky::bench::run(&opts, &at, &scripts);
+            let text = if json {
+                sticky::bench::json(&report)
+            } else {
+                sticky::bench::table(&report)
+            };
+            writeln!(out, "{}", text.trim_end()).map_err(io_err)
+        }
         Some(Command::Generate { n, seed }) => generate(&mut out, n, seed),
         Some(Command::Check { scene }) => {
             load(&scene).and_then(|s| summary(&mut out, &s, &scene.display().to_string()))
