@@ -28,6 +28,7 @@ pub mod discrete;
 pub mod ledger;
 pub mod micro;
 pub mod registry;
+pub mod sampling;
 pub mod scaling;
 
 pub use registry::registry;

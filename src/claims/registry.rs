@@ -4,7 +4,7 @@
 //! them. A `correction` is attached to a claim once it has been found false
 //! as printed; the corrected statement is then what the test engines require.
 
-use super::{always, appendix_c, discrete, micro, paper_radius, scaling};
+use super::{always, appendix_c, discrete, micro, paper_radius, sampling, scaling};
 use super::{Claim, Correction, Kind};
 use crate::scalar::Scalar;
 
@@ -56,6 +56,8 @@ pub fn registry<S: Scalar>() -> Vec<Claim<S>> {
         c
     };
     vec![
+        fixed("thm:main#sampling-mass", "§2.1 discretisation", "\"By construction, one has ∫_{x_i^0}^{x_{i+1}^0} ρ^0(x) dx = 1/N. Since ρ^0 ≤ 1, it follows that x_{i+1}^0 − x_i^0 ≥ 1/N\" (quantile sampling x⁰_i = X⁰(i/N); shipped macro scenes, N = 2 … 256).", sampling::mass_between),
+        fixed("thm:main#sampling-contacts", "§2.1 discretisation", "\"if two particles are in contact then they have the same velocity\" (u⁰_i = U⁰(i/N), under hyp:u0; shipped macro scenes, N = 2 … 256).", sampling::contacts_equal_velocities),
         case("df:KN", S2, "K^N = {x ∈ R^N ; x_{i+1} − x_i ≥ 2r}: the trajectory stays admissible, x(t) ∈ K^N for all t ≥ 0.", micro::admissible),
         corrected(
             case("df:H-micro#contacts-grow", S2, "\"the set of active constraints is non-decreasing in time … N_{x(s)}K^N ⊂ N_{x(t)}K^N for all s ≤ t\" (for x⁰ ∈ K^N, u⁰ ∈ C^N_{x⁰}).", micro::contacts_grow_printed),
