@@ -27,6 +27,7 @@ pub mod claims;
 pub mod cluster;
 pub mod contact;
 pub mod error;
+pub mod figures;
 pub mod fuzzing;
 pub mod generate;
 pub mod initial;

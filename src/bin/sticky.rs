@@ -102,6 +102,33 @@ enum Command {
         #[arg(long, default_value = "1/100", value_parser = parse_time)]
         at: BigRational,
     },
+    /// The hydrodynamic limit: distances between the particles and the
+    /// continuum solution for N = 8 … 2^16, with fitted rates; CSV and charts.
+    Converge {
+        /// A `[macro]` scene.
+        scene: PathBuf,
+        /// Output folder (default ./out/converge/).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Largest N (a power of two).
+        #[arg(long, default_value_t = 65536)]
+        n_max: usize,
+        /// Largest N computed exactly (beyond: f64 through the same code).
+        #[arg(long, default_value_t = 4096)]
+        exact_max: usize,
+    },
+    /// Pictures of a scene: space-time diagram of the worldlines, density
+    /// heat map, pressure impulses (SVG and PNG).
+    Plot {
+        /// Scene file (TOML).
+        scene: PathBuf,
+        /// Output folder (default ./out/plot/).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Horizon (default: the scene's t_end, else 1 after the last collision).
+        #[arg(long, value_parser = parse_time)]
+        t_end: Option<BigRational>,
+    },
     /// The claims ledger: runs every checker of the paper's claims and prints
     /// the computed statuses.
     Claims {
@@ -224,6 +251,32 @@ fn main() -> ExitCode {
             };
             writeln!(out, "{}", text.trim_end()).map_err(io_err)
         }
+        Some(Command::Converge {
+            scene,
+            out: dir,
+            n_max,
+            exact_max,
+        }) => load(&scene).and_then(|s| {
+            converge(
+                &mut out,
+                &s,
+                dir.unwrap_or_else(|| PathBuf::from("out/converge")),
+                n_max,
+                exact_max,
+            )
+        }),
+        Some(Command::Plot {
+            scene,
+            out: dir,
+            t_end,
+        }) => load(&scene).and_then(|s| {
+            plot(
+                &mut out,
+                &s,
+                dir.unwrap_or_else(|| PathBuf::from("out/plot")),
+                t_end,
+            )
+        }),
         Some(Command::Generate { n, seed }) => generate(&mut out, n, seed),
         Some(Command::Check { scene }) => {
             load(&scene).and_then(|s| summary(&mut out, &s, &scene.display().to_string()))
@@ -505,4 +558,117 @@ fn generate(out: &mut impl Write, n: usize, seed: u64) -> Result<(), Failure> {
     }
     let name = format!("random-{n}-seed-{seed}");
     write!(out, "{}", scene::particles_toml(&data, Some(&name))).map_err(io_err)
+}
+
+fn lib_err(e: sticky::Error) -> Failure {
+    Failure(e.to_string())
+}
+
+fn print_paths(out: &mut impl Write, paths: &[PathBuf]) -> Result<(), Failure> {
+    for p in paths {
+        writeln!(out, "wrote {}", p.display()).map_err(io_err)?;
+    }
+    Ok(())
+}
+
+fn converge(
+    out: &mut impl Write,
+    scene: &Scene,
+    dir: PathBuf,
+    n_max: usize,
+    exact_max: usize,
+) -> Result<(), Failure> {
+    use sticky::limit::converge::{converge_with_progress, write_csv, ConvergeOptions};
+    let opts = ConvergeOptions {
+        n_max: n_max.max(8),
+        exact_max,
+        ..ConvergeOptions::default()
+    };
+    let tty = io::IsTerminal::is_terminal(&io::stderr());
+    let report = converge_with_progress(scene, &opts, &mut |row| {
+        if tty {
+            eprint!(
+                "\r\x1b[2Kconverge: N = {} done ({})",
+                row.n,
+                row.engine.name()
+            );
+        }
+    })
+    .map_err(lib_err)?;
+    if tty {
+        eprint!("\r\x1b[2K");
+    }
+    std::fs::create_dir_all(&dir)
+        .map_err(|e| Failure(format!("cannot create {}: {e}", dir.display())))?;
+    writeln!(out, "{}", report.summary().trim_end()).map_err(io_err)?;
+    let mut paths = write_csv(&report, &dir).map_err(lib_err)?;
+    paths.extend(sticky::figures::convergence(&report, &dir).map_err(lib_err)?);
+    print_paths(out, &paths)
+}
+
+fn plot(
+    out: &mut impl Write,
+    scene: &Scene,
+    dir: PathBuf,
+    t_end: Option<BigRational>,
+) -> Result<(), Failure> {
+    use sticky::limit::eulerian::{
+        continuum_density_grid, particle_density_grid, particle_pressure_atoms,
+    };
+    let traj = Trajectory::new(scene.data.clone());
+    let t_end = t_end.or_else(|| scene.t_end.clone()).unwrap_or_else(|| {
+        traj.last_collision()
+            .cloned()
+            .unwrap_or_else(<BigRational as Scalar>::zero)
+            + <BigRational as Scalar>::one()
+    });
+    std::fs::create_dir_all(&dir)
+        .map_err(|e| Failure(format!("cannot create {}: {e}", dir.display())))?;
+    let mut paths =
+        sticky::figures::spacetime(&traj, &t_end, &dir, "spacetime").map_err(lib_err)?;
+    // The x range: everything the particles visit on [0, t_end], with a margin.
+    let (mut lo, mut hi) = (None::<BigRational>, None::<BigRational>);
+    for t in [<BigRational as Scalar>::zero(), t_end.clone()] {
+        let s = traj.at(&t).map_err(lib_err)?;
+        for x in [s.positions.first(), s.positions.last()]
+            .into_iter()
+            .flatten()
+        {
+            lo = Some(lo.map_or(x.clone(), |l| if *x < l { x.clone() } else { l }));
+            hi = Some(hi.map_or(x.clone(), |h| if *x > h { x.clone() } else { h }));
+        }
+    }
+    let (lo, hi) = (lo.unwrap_or_default(), hi.unwrap_or_default());
+    let margin = (hi.clone() - &lo) / BigRational::from_i64(20) + scene.data.two_r();
+    let (lo, hi) = (lo - &margin, hi + &margin);
+    let delta = <BigRational as Scalar>::one();
+    let grid =
+        particle_density_grid(&traj, &delta, &t_end, 60, (&lo, &hi), 160).map_err(lib_err)?;
+    paths.extend(
+        sticky::figures::density(
+            &grid,
+            "particle density ρ_N = 1/∂_w X̃_N",
+            &dir,
+            "density-particles",
+        )
+        .map_err(lib_err)?,
+    );
+    if let SceneKind::Macro { datum, .. } = &scene.kind {
+        let c = sticky::limit::continuum::Continuum::new(datum);
+        let grid = continuum_density_grid(&c, &t_end, 60, (&lo, &hi), 160).map_err(lib_err)?;
+        paths.extend(
+            sticky::figures::density(
+                &grid,
+                "continuum density ρ = X(t)#Leb",
+                &dir,
+                "density-continuum",
+            )
+            .map_err(lib_err)?,
+        );
+    }
+    if scene.data.n() <= 5000 {
+        let atoms = particle_pressure_atoms(&traj, &t_end);
+        paths.extend(sticky::figures::pressure(&atoms, &dir, "pressure").map_err(lib_err)?);
+    }
+    print_paths(out, &paths)
 }
