@@ -45,11 +45,13 @@
 //!
 //! **The stability section** runs each floating-point method once per
 //! scene with its default tolerances: the time-steppers with a power-of-two
-//! number of steps (at most 1024, 256 with `--quick`, fewer for large `N`)
-//! and at most [`STABILITY_STEP_CAP`] sweeps per inner solve, the iterative
-//! projection with a cap of about `2·10⁹/N` sweeps (`2·10⁸/N` with
-//! `--quick`); `stability.md` lists the values used for each scene. The
-//! failure kinds and their thresholds are those of [`Failure`].
+//! number of steps (at most 1024, 256 with `--quick`, down to 4 for large
+//! `N`: about `4·10⁶/N`, `2.56·10⁵/N` with `--quick`) and at most
+//! [`STABILITY_STEP_CAP`] sweeps per inner solve (`10⁸/N` for large `N`,
+//! `2.5·10⁶/N` with `--quick`, at least 100), the iterative projection with
+//! a cap of about `2·10⁹/N` sweeps (`2·10⁸/N` with `--quick`);
+//! `stability.md` lists the values used for each scene. The failure kinds
+//! and their thresholds are those of [`Failure`].
 //!
 //! **Errors** are those of [`crate::reference::measure`], computed exactly
 //! (each `f64` converted to the rational it denotes) against the exact
@@ -83,7 +85,7 @@ use crate::plot::{
 use crate::projection::state_at;
 use crate::reference::{
     measure, round_to_f64, velocity_scale, CatchingUp, Errors, ErrorsF64, EventsF64,
-    IterativeProjection, MoreauJean, PavaF64, Solver, Work,
+    IterativeProjection, MoreauJean, Output, PavaF64, Solver, Work,
 };
 use crate::scalar::Scalar;
 use crate::scene;
@@ -382,8 +384,12 @@ struct Case {
     v: f64,
     /// `Δt` of the time-steppers in the stability section.
     step: f64,
-    /// Sweep cap of the iterative methods in the stability section.
+    /// Sweep cap of the one-time iterative projection in the stability
+    /// section.
     cap: usize,
+    /// Sweep cap of the time-steppers' inner solves in the stability
+    /// section.
+    step_cap: usize,
 }
 
 impl Case {
@@ -410,6 +416,7 @@ impl Case {
             v,
             step: t / 1024.0,
             cap: 100_000,
+            step_cap: STEP_CAP,
             exact,
             data,
             t,
@@ -659,19 +666,20 @@ fn stability_suite(quick: bool) -> Result<Vec<Case>, AtlasError> {
     ];
     // Time-steppers: at most `max_steps` steps and about `steps_budget`
     // particle-steps (a power of two, at least 16 steps).
-    let (max_steps, steps_budget, budget) = if quick {
-        (256usize, 256_000usize, 200_000_000usize)
+    let (max_steps, steps_budget, sweeps_budget, budget) = if quick {
+        (256usize, 256_000usize, 2_500_000usize, 200_000_000usize)
     } else {
-        (1024, 16_000_000, 2_000_000_000)
+        (1024, 4_000_000, 100_000_000, 2_000_000_000)
     };
     for case in &mut out {
         if case.name != "long-horizon" {
-            let mut steps = 16usize;
+            let mut steps = 4usize;
             while steps * 2 <= max_steps && steps * 2 * case.n <= steps_budget {
                 steps *= 2;
             }
             case.step = case.t / steps as f64;
         }
+        case.step_cap = (sweeps_budget / case.n.max(1)).clamp(100, STABILITY_STEP_CAP);
         // A work budget of pair updates for the one-time iterative
         // projection (full sweeps over N − 1 pairs).
         case.cap = (budget / case.n.max(1)).clamp(1000, 1_000_000);
@@ -871,17 +879,17 @@ fn jobs(case: &Case, quick: bool) -> Vec<Job> {
     out
 }
 
-/// The sweep cap of the time-steppers in the stability section (per run of
-/// coupled contacts, per step).
+/// The largest sweep cap of the time-steppers in the stability section (per
+/// run of coupled contacts, per step); large scenes get less (down to 100).
 pub const STABILITY_STEP_CAP: usize = 1000;
 
 /// One run of each floating-point method on a stability scene: default
 /// tolerances, `Δt = case.step`, the time-steppers capped at
-/// [`STABILITY_STEP_CAP`] sweeps, the iterative projection at `case.cap`.
+/// `case.step_cap` sweeps, the iterative projection at `case.cap`.
 fn stability_jobs(case: &Case) -> Vec<Job> {
     let dt = case.step;
     let cap = case.cap;
-    let step_cap = STABILITY_STEP_CAP;
+    let step_cap = case.step_cap;
     vec![
         Job::float(Box::new(PavaF64), "", None, None, None),
         Job::float(
@@ -1061,24 +1069,14 @@ fn exact_errors(
     }
 }
 
-fn run_job(case: &Case, exact: Option<&ExactStates>, job: &Job, min_time: Duration) -> Row {
-    let t0 = Instant::now();
-    let r = run_job_inner(case, exact, job, min_time);
-    if std::env::var_os("ATLAS_TRACE").is_some() {
-        eprintln!(
-            "TRACE {} {} {} solve {:.3} total {:.3} {}",
-            case.name,
-            job.method,
-            job.parameter,
-            r.wall * r.repeats as f64,
-            t0.elapsed().as_secs_f64(),
-            r.status
-        );
-    }
-    r
-}
-
-fn run_job_inner(case: &Case, exact: Option<&ExactStates>, job: &Job, min_time: Duration) -> Row {
+/// Runs (and times) one job. The exact engines' rows are complete; a
+/// floating-point solver's output is returned for [`measure_all`].
+fn solve_job(
+    case: &Case,
+    exact: Option<&ExactStates>,
+    job: &Job,
+    min_time: Duration,
+) -> (Row, Option<Output>) {
     let mut row = Row {
         scene: case.name.clone(),
         n: case.n,
@@ -1128,16 +1126,71 @@ fn run_job_inner(case: &Case, exact: Option<&ExactStates>, job: &Job, min_time: 
                     if !out.converged {
                         row.status = Status::NoConvergence;
                     }
-                    match measure(&out, &case.exact, &case.tq) {
-                        Ok(e) => row.errors = Some(e.to_f64()),
-                        Err(e) => row.status = Status::Refused(format!("measure: {e}")),
-                    }
+                    return (row, Some(out));
                 }
             }
         }
     }
-    row
+    (row, None)
 }
+
+/// Measures every solved output of one scene exactly (`reference::measure`),
+/// on up to [`MEASURE_THREADS`] threads: the solves are all timed before,
+/// one at a time, so the measurement does not disturb the timings.
+fn measure_all(case: &Case, solved: Vec<(Row, Option<Output>)>, bar: &ProgressBar) -> Vec<Row> {
+    let threads = std::thread::available_parallelism()
+        .map_or(1, |n| n.get())
+        .clamp(1, MEASURE_THREADS);
+    let mut slots: Vec<(Row, Option<Output>)> = solved;
+    let mut parts: Vec<Vec<&mut (Row, Option<Output>)>> =
+        (0..threads).map(|_| Vec::new()).collect();
+    for (i, slot) in slots.iter_mut().enumerate() {
+        parts[i % threads].push(slot);
+    }
+    std::thread::scope(|scope| {
+        for part in parts {
+            scope.spawn(move || {
+                for (row, out) in part {
+                    if let Some(out) = out.take() {
+                        match measure(&out, &case.exact, &case.tq) {
+                            Ok(e) => row.errors = Some(e.to_f64()),
+                            Err(e) => row.status = Status::Refused(format!("measure: {e}")),
+                        }
+                    }
+                    bar.inc(1);
+                }
+            });
+        }
+    });
+    slots.into_iter().map(|(row, _)| row).collect()
+}
+
+/// Solves every job of one scene (timed, one at a time), then measures.
+fn run_case(
+    case: &Case,
+    jobs: &[Job],
+    with_exact: bool,
+    min_time: Duration,
+    bar: &ProgressBar,
+) -> Result<Vec<Row>, AtlasError> {
+    let exact = if with_exact {
+        bar.set_message(format!("{}: exact reference", case.name));
+        Some(exact_states(case)?)
+    } else {
+        None
+    };
+    let mut solved = Vec::with_capacity(jobs.len());
+    for job in jobs {
+        bar.set_message(format!("{}: {} {}", case.name, job.method, job.parameter));
+        solved.push(solve_job(case, exact.as_ref(), job, min_time));
+        bar.inc(1);
+    }
+    bar.set_message(format!("{}: measuring exactly", case.name));
+    Ok(measure_all(case, solved, bar))
+}
+
+/// Threads used by the exact measurement.
+const MEASURE_THREADS: usize = 4;
 
 /// The failures of one stability row.
 fn classify(row: &Row) -> Vec<Failure> {
@@ -1662,27 +1715,18 @@ pub fn run(opts: &AtlasOptions, progress: bool) -> Result<Vec<PathBuf>, AtlasErr
     let stability = stability_suite(opts.quick)?;
     let main_jobs: Vec<Vec<Job>> = suite.iter().map(|c| jobs(c, opts.quick)).collect();
     let stab_jobs: Vec<Vec<Job>> = stability.iter().map(stability_jobs).collect();
+    // Each job counts twice: solved, then measured.
     let total: usize = main_jobs.iter().chain(&stab_jobs).map(Vec::len).sum();
-    bar.set_length(total as u64);
+    bar.set_length(2 * total as u64);
     let min_time = Duration::from_millis(if opts.quick { 2 } else { 20 });
 
     let mut rows = Vec::new();
     for (case, jobs) in suite.iter().zip(&main_jobs) {
-        bar.set_message(format!("{}: exact reference", case.name));
-        let exact = exact_states(case)?;
-        for job in jobs {
-            bar.set_message(format!("{}: {}", case.name, job.method));
-            rows.push(run_job(case, Some(&exact), job, min_time));
-            bar.inc(1);
-        }
+        rows.extend(run_case(case, jobs, true, min_time, &bar)?);
     }
     let mut stab_rows = Vec::new();
     for (case, jobs) in stability.iter().zip(&stab_jobs) {
-        for job in jobs {
-            bar.set_message(format!("{}: {}", case.name, job.method));
-            stab_rows.push(run_job(case, None, job, min_time));
-            bar.inc(1);
-        }
+        stab_rows.extend(run_case(case, jobs, false, min_time, &bar)?);
     }
     bar.set_message("writing files");
     let failures: Vec<Vec<Failure>> = stab_rows.iter().map(classify).collect();

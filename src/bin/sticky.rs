@@ -129,6 +129,16 @@ enum Command {
         #[arg(long, value_parser = parse_time)]
         t_end: Option<BigRational>,
     },
+    /// The speed-vs-accuracy atlas of the floating-point reference solvers
+    /// against the exact engine: CSV, charts and the stability table.
+    Atlas {
+        /// The small suite (well under a minute).
+        #[arg(long)]
+        quick: bool,
+        /// Output folder (default ./out/atlas/).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
     /// The claims ledger: runs every checker of the paper's claims and prints
     /// the computed statuses.
     Claims {
@@ -277,6 +287,16 @@ fn main() -> ExitCode {
                 t_end,
             )
         }),
+        Some(Command::Atlas { quick, out: dir }) => {
+            let opts = sticky::atlas::AtlasOptions {
+                quick,
+                out: dir.unwrap_or_else(|| PathBuf::from("out/atlas")),
+            };
+            let tty = io::IsTerminal::is_terminal(&io::stderr());
+            sticky::atlas::run(&opts, tty)
+                .map_err(|e| Failure(e.to_string()))
+                .and_then(|paths| print_paths(&mut out, &paths))
+        }
         Some(Command::Generate { n, seed }) => generate(&mut out, n, seed),
         Some(Command::Check { scene }) => {
             load(&scene).and_then(|s| summary(&mut out, &s, &scene.display().to_string()))
