@@ -53,7 +53,7 @@
 //! `stability.md` lists the values used for each scene. The failure kinds
 //! and their thresholds are those of [`Failure`].
 //!
-//! **Errors** are those of [`crate::reference::measure`], computed exactly
+//! **Errors** are those of [`crate::reference::measure()`], computed exactly
 //! (each `f64` converted to the rational it denotes) against the exact
 //! solution of the *original rational scene* at the exact value of the
 //! `f64` time, so the rounding of the input is part of every error. They
@@ -664,8 +664,9 @@ fn stability_suite(quick: bool) -> Result<Vec<Case>, AtlasError> {
         long_horizon(quick)?,
         velocity_decades()?,
     ];
-    // Time-steppers: at most `max_steps` steps and about `steps_budget`
-    // particle-steps (a power of two, at least 16 steps).
+    // Time-steppers: a power of two of steps, at most `max_steps` and about
+    // `steps_budget` particle-steps (at least 4 steps); inner sweep caps of
+    // about `sweeps_budget / N` (between 100 and STABILITY_STEP_CAP).
     let (max_steps, steps_budget, sweeps_budget, budget) = if quick {
         (256usize, 256_000usize, 2_500_000usize, 200_000_000usize)
     } else {
@@ -1252,6 +1253,16 @@ fn classify(row: &Row) -> Vec<Failure> {
 // ---------------------------------------------------------------------------
 // CSV.
 
+/// A time or step for text: plain decimals in `[10⁻³, 10⁷)`, else
+/// scientific.
+fn short(v: f64) -> String {
+    if v == 0.0 || (1e-3..1e7).contains(&v.abs()) {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
+    }
+}
+
 fn num(v: f64) -> String {
     if v == 0.0 {
         "0".to_string()
@@ -1402,7 +1413,7 @@ fn pareto_chart(case: &str, rows: &[&Row], velocity: bool) -> Option<Chart> {
         format!(
             "{case}, N = {}, t = {}: {} vs wall time (error 0 drawn at {floor:.0e})",
             first.n,
-            first.t,
+            short(first.t),
             if velocity {
                 "velocity error"
             } else {
@@ -1471,7 +1482,8 @@ fn dt_chart(case: &str, rows: &[&Row]) -> Option<Chart> {
     let mut chart = Chart::new(
         format!(
             "{case}, N = {}, t = {}: time-steppers' error vs Δt (error 0 drawn at {floor:.0e})",
-            first.n, first.t
+            first.n,
+            short(first.t)
         ),
         Axis::log("time step Δt"),
         Axis::log("max error"),
@@ -1650,13 +1662,15 @@ fn stability_markdown(cases: &[Case], rows: &[Row], failures: &[Vec<Failure>]) -
     md.push_str("\n## Scenes\n\n");
     for case in cases {
         md.push_str(&format!(
-            "- **{}** (N = {}, t = {}): {}. Time-steppers: Δt = {}; sweep cap {}.\n",
+            "- **{}** (N = {}, t = {}): {}. Time-steppers: Δt = {} ({} steps), at most {} sweeps per inner solve; iterative projection: at most {} sweeps.\n",
             case.name,
             case.n,
-            case.t,
+            short(case.t),
             case.description,
-            case.step,
-            case.cap.min(STEP_CAP)
+            short(case.step),
+            (case.t / case.step).ceil(),
+            case.step_cap,
+            case.cap
         ));
     }
     md.push_str(&format!(
