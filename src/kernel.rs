@@ -214,16 +214,26 @@ pub fn blocks_at(d: &IntegerData, t: &BigRational) -> Blocks {
         out.mean_y.push(y);
         out.mean_u.push(u);
     };
-    let small_words = fast.map(|(y, u, _)| (y, u)).or_else(|| {
-        let y: Vec<BigInt> =
-            d.x.iter()
-                .zip(&d.u)
-                .map(|(x, u)| &qdu * x + &pdx * u)
-                .collect();
-        (fits(&y, &limit) && fits(&d.u, &limit)).then(|| (to_i128(&y), to_i128(&d.u)))
-    });
-    match small_words {
-        Some((y, u)) => {
+    // The i128 words: directly when the factors fit (`small_y`), else from
+    // the BigInt values when those fit the no-overflow bound; otherwise the
+    // BigInt values themselves (computed once).
+    let words = match fast {
+        Some((y, u, _)) => Ok((y, u)),
+        None => {
+            let y: Vec<BigInt> =
+                d.x.iter()
+                    .zip(&d.u)
+                    .map(|(x, u)| &qdu * x + &pdx * u)
+                    .collect();
+            if fits(&y, &limit) && fits(&d.u, &limit) {
+                Ok((to_i128(&y), to_i128(&d.u)))
+            } else {
+                Err(y)
+            }
+        }
+    };
+    match words {
+        Ok((y, u)) => {
             for (first, size, sy, su) in pava_words(&y, &u) {
                 push(
                     first,
@@ -233,12 +243,7 @@ pub fn blocks_at(d: &IntegerData, t: &BigRational) -> Blocks {
                 );
             }
         }
-        None => {
-            let y: Vec<BigInt> =
-                d.x.iter()
-                    .zip(&d.u)
-                    .map(|(x, u)| &qdu * x + &pdx * u)
-                    .collect();
+        Err(y) => {
             for (first, size, sy, su) in pava_words(&y, &d.u) {
                 let k = BigInt::from(size);
                 push(
