@@ -161,11 +161,11 @@ pub fn run(opts: &BenchOptions, t: &BigRational, scripts: &Path) -> BenchReport 
         f64s.push(ns / nf);
         let ints_data = IntegerData::new(&data);
         let (ns, b) = time(|| blocks_at(&ints_data, t));
-        widths.push(b.width);
+        widths.push(b.width());
         ints.push(ns / nf);
         let big = IntegerData::new(&big_scene(&data));
         let (ns, b) = time(|| blocks_at(&big, t));
-        if b.width == Width::Big {
+        if b.width() != Width::I128 {
             bigs.push(ns / nf);
         }
         let small = scene(naive_n, 5000 + rep as u64);

@@ -11,16 +11,33 @@
 //! is `(k, ΣY, ΣU)`, block means are compared by cross-multiplication
 //! (`ΣY_a k_b` against `ΣY_b k_a`, then the same for `U` on ties — the
 //! lexicographic order that gives the right derivative, see
-//! [`crate::projection`]), with no gcd in the loop and one reduction per
-//! block at the end.
+//! [`crate::projection`]), with no gcd and no division in the loop.
 //!
-//! **Width.** Before the loop, `max|Y| · N²/4` and `max|U| · N²/4` are
-//! compared with `2^126`: when both fit, every sum and cross product of the
-//! run fits an `i128` (a block sum is at most `k max|Y|` and
-//! `k_a k_b ≤ N²/4`), so the loop runs on `i128` without overflow checks.
-//! Otherwise the same loop runs on `BigInt`. The result is identical either
-//! way and equal to the generic `BigRational` path, which the tests use as
-//! the oracle.
+//! **The result** ([`Blocks`]) is the partition into blocks with the exact
+//! integer sums `(k, ΣY, ΣU)` of each block: the exact answer, in the form
+//! the loop produced it. The block means `ΣY / (k D_y)` are reduced to lowest
+//! terms only when asked for ([`Blocks::mean_y`], [`Blocks::mean_u`],
+//! [`state_at`]), so that a caller who needs a few of them does not pay for a
+//! gcd per block.
+//!
+//! **Width.** The loop runs on the narrowest of three integer types that
+//! provably cannot overflow (decided before the loop from bit lengths, with
+//! `|v| < 2^bits(v)`):
+//!
+//! * with `b_Y = max(bits(q D_u) + bits(max|X|), bits(p D_x) + bits(max|U|)) + 1`
+//!   (so `|Y_i| < 2^b_Y`) and `b_K = bits(max(N, ⌊N²/4⌋))`, every block sum
+//!   is at most `k max|Y| ≤ N max|Y|` and every cross product
+//!   `|ΣY_a| k_b ≤ k_a k_b max|Y| ≤ (N²/4) max|Y|`, both `< 2^(b_Y + b_K)`;
+//!   the same with `bits(max|U|)` for the `U` sums;
+//! * `i128` when `X_i`, `U_i`, `q D_u`, `p D_x` all fit `i64` (each product
+//!   `< 2^126`) and `b_Y + b_K ≤ 127`, `bits(max|U|) + b_K ≤ 127`;
+//! * [`I256`] when the data fit 255 bits and the same bounds hold with 255;
+//! * `BigInt` otherwise.
+//!
+//! Inside the proved range the fixed-width loops use wrapping operations (the
+//! release profile checks overflow everywhere else). The result is identical
+//! whatever the width and equal to the generic `BigRational` path, which the
+//! tests use as the oracle, on both sides of each width's bound.
 
 use num_bigint::{BigInt, Sign};
 use num_integer::Integer;
@@ -31,14 +48,48 @@ use crate::cluster::{runs, Cluster};
 use crate::error::Error;
 use crate::initial::InitialData;
 use crate::state::State;
+use crate::wide::I256;
 
 /// The integer type the PAVA loop ran on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Width {
-    /// 128-bit integers (the data fitted, see the module documentation).
+    /// 128-bit integers.
     I128,
+    /// 256-bit integers ([`I256`]).
+    I256,
     /// Arbitrary-precision integers.
     Big,
+}
+
+/// The scaled values in the narrowest representation that holds all of them.
+#[derive(Debug, Clone)]
+enum Column {
+    Small(Vec<i64>),
+    Wide(Vec<I256>),
+    Big,
+}
+
+impl Column {
+    fn of(v: &[BigInt]) -> Column {
+        if let Some(s) = v
+            .iter()
+            .map(ToPrimitive::to_i64)
+            .collect::<Option<Vec<_>>>()
+        {
+            return Column::Small(s);
+        }
+        v.iter()
+            .map(|x| (x.bits() <= 254).then(|| I256::from_bigint(x)).flatten())
+            .collect::<Option<Vec<_>>>()
+            .map_or(Column::Big, Column::Wide)
+    }
+    fn wide(&self, i: usize) -> I256 {
+        match self {
+            Column::Small(v) => I256::from_i64(v[i]),
+            Column::Wide(v) => v[i],
+            Column::Big => I256::ZERO,
+        }
+    }
 }
 
 /// Initial data on common denominators: `x̃⁰_i = x[i] / dx`,
@@ -47,8 +98,11 @@ pub enum Width {
 pub struct IntegerData {
     x: Vec<BigInt>,
     u: Vec<BigInt>,
-    /// `x` and `u` as `i64`, when every value fits.
-    small: Option<(Vec<i64>, Vec<i64>)>,
+    x_col: Column,
+    u_col: Column,
+    /// `bits(max|X|)`, `bits(max|U|)`.
+    x_bits: u64,
+    u_bits: u64,
     dx: BigInt,
     du: BigInt,
     two_r: BigRational,
@@ -70,19 +124,14 @@ impl IntegerData {
         let du = lcm_of(data.velocities().iter());
         let x = scale(&shifted, &dx);
         let u = scale(data.velocities(), &du);
-        let small = x
-            .iter()
-            .map(ToPrimitive::to_i64)
-            .collect::<Option<Vec<_>>>()
-            .zip(
-                u.iter()
-                    .map(ToPrimitive::to_i64)
-                    .collect::<Option<Vec<_>>>(),
-            );
+        let max_bits = |v: &[BigInt]| v.iter().map(BigInt::bits).max().unwrap_or(0);
         IntegerData {
+            x_col: Column::of(&x),
+            u_col: Column::of(&u),
+            x_bits: max_bits(&x),
+            u_bits: max_bits(&u),
             x,
             u,
-            small,
             dx,
             du,
             two_r: data.two_r(),
@@ -94,34 +143,131 @@ impl IntegerData {
     }
 }
 
-/// The PAVA blocks at `t + ε`, exact: `mean_y` is the translated position
-/// `x̃(t)` of the block, `mean_u` its velocity (right derivative).
+/// One block of the loop: `k` entries with the sums `sy = ΣY`, `su = ΣU`.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Blocks {
-    /// The blocks, left to right.
-    pub clusters: Vec<Cluster>,
-    /// `x̃(t)` on each block, in lowest terms.
-    pub mean_y: Vec<BigRational>,
-    /// `u(t)` on each block, in lowest terms.
-    pub mean_u: Vec<BigRational>,
-    /// The integer width the loop ran on.
-    pub width: Width,
+struct Run<W> {
+    k: u64,
+    sy: W,
+    su: W,
 }
 
-/// The integer operations the loop needs.
+/// The block sums in the width the loop ran on.
+#[derive(Debug, Clone, PartialEq)]
+enum Sums {
+    I128(Vec<Run<i128>>),
+    I256(Vec<Run<I256>>),
+    Big(Vec<Run<BigInt>>),
+}
+
+/// The PAVA blocks at `t + ε`, exact: the partition and the integer sums of
+/// every block (see the module documentation). Block `j`'s translated
+/// position `x̃(t)` is [`Blocks::mean_y`]`(j)`, its velocity (the right
+/// derivative) [`Blocks::mean_u`]`(j)`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Blocks {
+    sums: Sums,
+    /// `D_y = q D_x D_u` and `D_u`.
+    dy: BigInt,
+    du: BigInt,
+    /// `D_y`, `D_u` as `i128` when they fit.
+    dy_small: Option<i128>,
+    du_small: Option<i128>,
+}
+
+impl Blocks {
+    /// The integer width the loop ran on.
+    pub fn width(&self) -> Width {
+        match self.sums {
+            Sums::I128(_) => Width::I128,
+            Sums::I256(_) => Width::I256,
+            Sums::Big(_) => Width::Big,
+        }
+    }
+    /// The number of blocks.
+    pub fn len(&self) -> usize {
+        match &self.sums {
+            Sums::I128(v) => v.len(),
+            Sums::I256(v) => v.len(),
+            Sums::Big(v) => v.len(),
+        }
+    }
+    /// `true` when there are no particles.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+    fn size(&self, j: usize) -> u64 {
+        match &self.sums {
+            Sums::I128(v) => v[j].k,
+            Sums::I256(v) => v[j].k,
+            Sums::Big(v) => v[j].k,
+        }
+    }
+    /// The blocks as clusters, left to right.
+    pub fn clusters(&self) -> Vec<Cluster> {
+        let mut first = 0;
+        (0..self.len())
+            .map(|j| {
+                let size = self.size(j) as usize;
+                first += size;
+                Cluster {
+                    first: first - size,
+                    size,
+                }
+            })
+            .collect()
+    }
+    /// `x̃(t)` on block `j`, in lowest terms.
+    pub fn mean_y(&self, j: usize) -> BigRational {
+        self.mean(j, true)
+    }
+    /// `u(t)` on block `j` (the right derivative), in lowest terms.
+    pub fn mean_u(&self, j: usize) -> BigRational {
+        self.mean(j, false)
+    }
+    fn mean(&self, j: usize, y: bool) -> BigRational {
+        let (d, d_small) = if y {
+            (&self.dy, self.dy_small)
+        } else {
+            (&self.du, self.du_small)
+        };
+        let pick = |r: &Run<BigInt>| if y { r.sy.clone() } else { r.su.clone() };
+        match &self.sums {
+            Sums::I128(v) => reduce_small(if y { v[j].sy } else { v[j].su }, d, d_small, v[j].k),
+            Sums::I256(v) => {
+                let s = if y { v[j].sy } else { v[j].su };
+                BigRational::new(s.to_bigint(), d * BigInt::from(v[j].k))
+            }
+            Sums::Big(v) => BigRational::new(pick(&v[j]), d * BigInt::from(v[j].k)),
+        }
+    }
+}
+
+/// The integer operations the loop needs. Fixed widths wrap: the caller
+/// has proved that no value leaves the range (module documentation).
 trait Word: Clone + Ord {
     fn add(&self, o: &Self) -> Self;
-    fn mul_k(&self, k: usize) -> Self;
+    fn mul_k(&self, k: u64) -> Self;
 }
 
 impl Word for i128 {
     #[inline]
     fn add(&self, o: &Self) -> Self {
-        self + o
+        self.wrapping_add(*o)
     }
     #[inline]
-    fn mul_k(&self, k: usize) -> Self {
-        self * k as i128
+    fn mul_k(&self, k: u64) -> Self {
+        self.wrapping_mul(i128::from(k))
+    }
+}
+
+impl Word for I256 {
+    #[inline]
+    fn add(&self, o: &Self) -> Self {
+        self.wrapping_add(*o)
+    }
+    #[inline]
+    fn mul_k(&self, k: u64) -> Self {
+        self.wrapping_mul_u64(k)
     }
 }
 
@@ -129,67 +275,46 @@ impl Word for BigInt {
     fn add(&self, o: &Self) -> Self {
         self + o
     }
-    fn mul_k(&self, k: usize) -> Self {
+    fn mul_k(&self, k: u64) -> Self {
         self * BigInt::from(k)
     }
 }
 
-/// PAVA on `(y_i, u_i)` pairs in lexicographic order; returns
-/// `(first, size, Σy, Σu)` per block.
-fn pava_words<W: Word>(y: &[W], u: &[W]) -> Vec<(usize, usize, W, W)> {
-    let mut stack: Vec<(usize, usize, W, W)> = Vec::with_capacity(y.len());
-    for i in 0..y.len() {
-        let mut cur = (i, 1usize, y[i].clone(), u[i].clone());
+/// PAVA on the pairs `(y_i, u_i)` (produced by `item`) in lexicographic
+/// order: adjacent blocks are pooled while the left mean is `≥` the right
+/// one, so the blocks returned have strictly increasing means.
+#[inline]
+fn pava_words<W: Word>(n: usize, mut item: impl FnMut(usize) -> (W, W)) -> Vec<Run<W>> {
+    let mut stack: Vec<Run<W>> = Vec::with_capacity(n);
+    for i in 0..n {
+        let (mut sy, mut su) = item(i);
+        let mut k = 1u64;
         while let Some(top) = stack.last() {
-            let a = top.2.mul_k(cur.1);
-            let b = cur.2.mul_k(top.1);
-            let pool = match a.cmp(&b) {
+            let pool = match top.sy.mul_k(k).cmp(&sy.mul_k(top.k)) {
                 std::cmp::Ordering::Greater => true,
                 std::cmp::Ordering::Less => false,
-                std::cmp::Ordering::Equal => top.3.mul_k(cur.1) >= cur.3.mul_k(top.1),
+                std::cmp::Ordering::Equal => top.su.mul_k(k) >= su.mul_k(top.k),
             };
             if !pool {
                 break;
             }
             if let Some(top) = stack.pop() {
-                cur = (top.0, top.1 + cur.1, top.2.add(&cur.2), top.3.add(&cur.3));
+                sy = top.sy.add(&sy);
+                su = top.su.add(&su);
+                k += top.k;
             }
         }
-        stack.push(cur);
+        stack.push(Run { k, sy, su });
     }
     stack
 }
 
-/// `2^126 / (N²/4)`: the largest magnitude for which the `i128` loop cannot
-/// overflow.
-fn i128_limit(n: usize) -> BigInt {
-    let quarter = (BigInt::from(n) * BigInt::from(n) / 4u32).max(BigInt::one());
-    (BigInt::one() << 126u32) / quarter
-}
-
-fn fits(v: &[BigInt], limit: &BigInt) -> bool {
-    v.iter().all(|x| x.magnitude() <= limit.magnitude())
-}
-
-fn to_i128(v: &[BigInt]) -> Vec<i128> {
-    v.iter().map(|x| x.to_i128().unwrap_or(0)).collect()
-}
-
-/// `Y_i = qdu·X_i + pdx·U_i` in `i128` when the factors fit `i64` and no
-/// product or sum overflows, with the largest `|Y_i|`.
-fn small_y(d: &IntegerData, qdu: &BigInt, pdx: &BigInt) -> Option<(Vec<i128>, Vec<i128>, u128)> {
-    let (xs, us) = d.small.as_ref()?;
-    let (a, b) = (i128::from(qdu.to_i64()?), i128::from(pdx.to_i64()?));
-    let mut y = Vec::with_capacity(xs.len());
-    let mut max = 0u128;
-    for (x, u) in xs.iter().zip(us) {
-        // |a|, |x|, |b|, |u| < 2^63: each product < 2^126, the sum < 2^127.
-        let v = a * i128::from(*x) + b * i128::from(*u);
-        max = max.max(v.unsigned_abs());
-        y.push(v);
-    }
-    let u = us.iter().map(|&v| i128::from(v)).collect();
-    Some((y, u, max))
+/// `bits(max(N, ⌊N²/4⌋))`: every block size `k ≤ N` and every product of
+/// two adjacent block sizes `k_a k_b ≤ N²/4` is below `2^b_K`.
+fn size_bits(n: usize) -> u64 {
+    let n = n as u128;
+    let m = n.max(n * n / 4);
+    u64::from(128 - m.leading_zeros())
 }
 
 /// Exact PAVA at time `t` on the integer data (see the module docs).
@@ -198,71 +323,51 @@ pub fn blocks_at(d: &IntegerData, t: &BigRational) -> Blocks {
     let qdu = q * &d.du;
     let pdx = p * &d.dx;
     let dy = &qdu * &d.dx;
-    let limit = i128_limit(d.n());
-    let limit_u = limit.to_u128().unwrap_or(u128::MAX);
-    let fast = small_y(d, &qdu, &pdx)
-        .filter(|(_, u, max)| *max <= limit_u && u.iter().all(|v| v.unsigned_abs() <= limit_u));
-    let (dy_small, du_small) = (dy.to_i128(), d.du.to_i128());
-    let mut out = Blocks {
-        clusters: Vec::new(),
-        mean_y: Vec::new(),
-        mean_u: Vec::new(),
-        width: Width::I128,
-    };
-    let mut push = |first: usize, size: usize, y: BigRational, u: BigRational| {
-        out.clusters.push(Cluster { first, size });
-        out.mean_y.push(y);
-        out.mean_u.push(u);
-    };
-    // The i128 words: directly when the factors fit (`small_y`), else from
-    // the BigInt values when those fit the no-overflow bound; otherwise the
-    // BigInt values themselves (computed once).
-    let words = match fast {
-        Some((y, u, _)) => Ok((y, u)),
-        None => {
-            let y: Vec<BigInt> =
-                d.x.iter()
-                    .zip(&d.u)
-                    .map(|(x, u)| &qdu * x + &pdx * u)
-                    .collect();
-            if fits(&y, &limit) && fits(&d.u, &limit) {
-                Ok((to_i128(&y), to_i128(&d.u)))
-            } else {
-                Err(y)
-            }
+    let b_k = size_bits(d.n());
+    let b_y = (qdu.bits() + d.x_bits).max(pdx.bits() + d.u_bits) + 1;
+    let fits = |w: u64| b_y + b_k < w && d.u_bits + b_k < w;
+    let n = d.n();
+    let sums = match (&d.x_col, &d.u_col, qdu.to_i64(), pdx.to_i64()) {
+        (Column::Small(xs), Column::Small(us), Some(a), Some(b)) if fits(128) => {
+            let (a, b) = (i128::from(a), i128::from(b));
+            // |a|, |X_i|, |b|, |U_i| < 2^63: each product < 2^126, and
+            // |Y_i| < 2^b_Y with b_Y + b_K < 128 (module docs).
+            Sums::I128(pava_words(n, |i| {
+                let (x, u) = (i128::from(xs[i]), i128::from(us[i]));
+                (a.wrapping_mul(x).wrapping_add(b.wrapping_mul(u)), u)
+            }))
         }
+        (Column::Small(_) | Column::Wide(_), Column::Small(_) | Column::Wide(_), _, _)
+            if fits(256) && qdu.bits() < 255 && pdx.bits() < 255 =>
+        {
+            // Both factors of each product and the products themselves are
+            // below 2^(b_Y − 1) < 2^255.
+            let (a, b) = (
+                I256::from_bigint(&qdu).unwrap_or_default(),
+                I256::from_bigint(&pdx).unwrap_or_default(),
+            );
+            Sums::I256(pava_words(n, |i| {
+                let (x, u) = (d.x_col.wide(i), d.u_col.wide(i));
+                (a.wrapping_mul(x).wrapping_add(b.wrapping_mul(u)), u)
+            }))
+        }
+        _ => Sums::Big(pava_words(n, |i| {
+            (&qdu * &d.x[i] + &pdx * &d.u[i], d.u[i].clone())
+        })),
     };
-    match words {
-        Ok((y, u)) => {
-            for (first, size, sy, su) in pava_words(&y, &u) {
-                push(
-                    first,
-                    size,
-                    reduce_small(sy, &dy, dy_small, size),
-                    reduce_small(su, &d.du, du_small, size),
-                );
-            }
-        }
-        Err(y) => {
-            for (first, size, sy, su) in pava_words(&y, &d.u) {
-                let k = BigInt::from(size);
-                push(
-                    first,
-                    size,
-                    BigRational::new(sy, &k * &dy),
-                    BigRational::new(su, &k * &d.du),
-                );
-            }
-            out.width = Width::Big;
-        }
+    Blocks {
+        sums,
+        dy_small: dy.to_i128(),
+        du_small: d.du.to_i128(),
+        dy,
+        du: d.du.clone(),
     }
-    out
 }
 
 /// `s / (k d)` in lowest terms for an `i128` sum `s`: `i128` arithmetic and
 /// a binary gcd when `k d` fits, `BigRational::new` otherwise.
-fn reduce_small(s: i128, d: &BigInt, d_small: Option<i128>, k: usize) -> BigRational {
-    if let Some(den) = d_small.and_then(|d| d.checked_mul(k as i128)) {
+fn reduce_small(s: i128, d: &BigInt, d_small: Option<i128>, k: u64) -> BigRational {
+    if let Some(den) = d_small.and_then(|d| d.checked_mul(i128::from(k))) {
         if den > 0 {
             // `g` divides both exactly and `den / g > 0`: lowest terms.
             let g = gcd_u128(s.unsigned_abs(), den.unsigned_abs()) as i128;
@@ -304,7 +409,8 @@ pub fn state_at(d: &IntegerData, t: &BigRational) -> Result<State<BigRational>, 
     let mut velocities = Vec::with_capacity(n);
     let mut multipliers = Vec::with_capacity(n.saturating_sub(1));
     let big_n = BigInt::from(n);
-    for (j, c) in b.clusters.iter().enumerate() {
+    for (j, c) in b.clusters().into_iter().enumerate() {
+        let (mean_y, mean_u) = (b.mean_y(j), b.mean_u(j));
         // λ_i = (1/N) Σ_{j ≤ i}(u⁰_j − u_j): zero at block ends, and inside a
         // block of size k with ΣU = S:
         // λ_i = (k Σ_{first..=i} U_j − (i − first + 1) S) / (k du N).
@@ -313,15 +419,15 @@ pub fn state_at(d: &IntegerData, t: &BigRational) -> Result<State<BigRational>, 
         let sum_u: BigInt = d.u[c.range()].iter().sum();
         let mut prefix = BigInt::zero();
         for (m, i) in c.range().enumerate() {
-            shifted.push(b.mean_y[j].clone());
+            shifted.push(mean_y.clone());
             // x_i = x̃ + 2r·i as one fraction (a single reduction).
-            let (yn, yd) = (b.mean_y[j].numer(), b.mean_y[j].denom());
+            let (yn, yd) = (mean_y.numer(), mean_y.denom());
             let (rn, rd) = (d.two_r.numer(), d.two_r.denom());
             positions.push(BigRational::new(
                 yn * rd + rn * yd * BigInt::from(i),
                 yd * rd,
             ));
-            velocities.push(b.mean_u[j].clone());
+            velocities.push(mean_u.clone());
             prefix += &d.u[i];
             if i + 1 < n {
                 let num = &k * &prefix - BigInt::from(m + 1) * &sum_u;
@@ -372,31 +478,100 @@ mod tests {
         }
     }
 
+    fn q(n: i64, d: i64) -> BigRational {
+        BigRational::new(BigInt::from(n), BigInt::from(d))
+    }
+
+    /// Four particles around `offset`, two pairs colliding at different
+    /// times, one contact at `t = 0` that separates.
+    fn around(offset: &BigRational, spread: &BigRational) -> InitialData<BigRational> {
+        let x = [0, 3, 4, 9].map(|v| offset + spread * q(v, 1)).to_vec();
+        let u = vec![q(1, 1), q(-1, 1), q(1, 3), q(-1, 7)];
+        InitialData::new(q(1, 2), x, u).unwrap()
+    }
+
+    fn pow2(e: u32) -> BigRational {
+        BigRational::from_integer(BigInt::one() << e)
+    }
+
+    /// Each width, on both sides of its bound, equals the generic path.
     #[test]
-    fn big_fallback_equals_i128() {
-        // Numbers far beyond 2^126 force the BigInt loop.
-        let huge = BigRational::from_integer(BigInt::one() << 140u32);
-        let q = |n: i64, d: i64| BigRational::new(BigInt::from(n), BigInt::from(d));
-        let data = InitialData::new(
-            q(1, 2),
-            vec![q(0, 1), q(3, 1), huge.clone(), huge.clone() + q(5, 1)],
-            vec![q(1, 1), q(-1, 1), q(1, 3), q(-1, 7)],
-        )
-        .unwrap();
-        let d = IntegerData::new(&data);
-        for t in [q(0, 1), q(1, 1), q(5, 2), huge.clone()] {
-            let b = blocks_at(&d, &t);
-            assert_eq!(b.width, Width::Big);
-            assert_eq!(
-                state_at(&d, &t).unwrap(),
-                projection::state_at(&data, &t).unwrap()
-            );
+    fn every_width_equals_the_generic_path() {
+        let cases = [
+            (pow2(0), pow2(0), Width::I128),
+            (pow2(60), pow2(0), Width::I128),
+            (pow2(62), pow2(3), Width::I128),
+            (pow2(70), pow2(0), Width::I256),
+            (pow2(140), pow2(0), Width::I256),
+            (pow2(240), pow2(2), Width::I256),
+            (pow2(300), pow2(1), Width::Big),
+            (pow2(140), pow2(130), Width::I256),
+        ];
+        for (offset, spread, width) in cases {
+            let data = around(&offset, &spread);
+            let d = IntegerData::new(&data);
+            for t in [
+                q(0, 1),
+                q(1, 1),
+                q(5, 2),
+                spread.clone() * q(3, 1),
+                offset.clone(),
+            ] {
+                let b = blocks_at(&d, &t);
+                if t == q(0, 1) {
+                    assert_eq!(b.width(), width, "offset 2^{}", offset.numer().bits());
+                }
+                assert_eq!(
+                    state_at(&d, &t).unwrap(),
+                    projection::state_at(&data, &t).unwrap(),
+                    "offset 2^{}, t = {t}",
+                    offset.numer().bits()
+                );
+            }
         }
-        let small =
-            InitialData::new(q(1, 2), vec![q(0, 1), q(3, 1)], vec![q(1, 1), q(-1, 1)]).unwrap();
-        assert_eq!(
-            blocks_at(&IntegerData::new(&small), &q(2, 1)).width,
-            Width::I128
-        );
+    }
+
+    /// Right at the `i128` and `I256` bounds: four particles `2^bits` apart
+    /// that all meet, so the loop's sums come within a factor 4 of `Y`'s
+    /// bound, at times whose denominator `q` pushes `b_Y + b_K` to the edge
+    /// of each width (`b_K = 3` for N = 4). The result equals the generic
+    /// path on both sides.
+    #[test]
+    fn sums_near_the_width_edge() {
+        let inv = |e: u32| BigRational::new(BigInt::one(), BigInt::one() << e);
+        // (spacing bits, t, expected width)
+        let cases = [
+            // X_i up to 3·2^59 (61 bits), q D_u = 2^61 (62 bits):
+            // b_Y = 62 + 61 + 1 = 124, b_Y + b_K = 127 < 128.
+            (60u32, inv(61), Width::I128),
+            // q D_u = 2^62 (63 bits, still an i64): 128, not < 128.
+            (60, inv(62), Width::I256),
+            // q D_u = 2^63 no longer fits i64.
+            (60, inv(63), Width::I256),
+            // X_i up to 3·2^189 (191 bits), q D_u = 2^60 (61 bits):
+            // b_Y + b_K = 61 + 191 + 1 + 3 = 256, not < 256.
+            (190, inv(60), Width::Big),
+            // One bit less: 255 < 256.
+            (190, inv(59), Width::I256),
+        ];
+        for (bits, t, width) in cases {
+            let big = pow2(bits);
+            let x = [0, 1, 2, 3].map(|v| big.clone() * q(2 * v - 3, 2)).to_vec();
+            let u = vec![q(3, 1), q(1, 1), q(-1, 1), q(-3, 1)];
+            let data = InitialData::new(q(1, 2), x, u).unwrap();
+            let d = IntegerData::new(&data);
+            let b = blocks_at(&d, &t);
+            assert_eq!(b.width(), width, "2^{bits}, t = {t}");
+            for s in [
+                t.clone(),
+                t.clone() * big.clone(),
+                t.clone() * big.clone() * q(3, 1),
+            ] {
+                assert_eq!(
+                    state_at(&d, &s).unwrap(),
+                    projection::state_at(&data, &s).unwrap()
+                );
+            }
+        }
     }
 }

@@ -43,6 +43,7 @@ pub mod scalar;
 pub mod scene;
 pub mod state;
 pub mod trajectory;
+pub mod wide;
 
 pub use error::Error;
 pub use initial::InitialData;
