@@ -5,18 +5,27 @@
 //! `scripts/peers.py` on identical data.
 //!
 //! Methods:
-//! * `f64` — [`crate::projection::isotonic`] on `f64` (the generic code);
-//! * `exact_int` — [`crate::kernel::blocks_at`] on data that fit `i128`
-//!   (exact block means in lowest terms);
+//! * `f64` — [`crate::projection::isotonic`] on `f64` (the generic code,
+//!   one value per particle);
+//! * `exact_int` — [`crate::kernel::blocks_at`] on data that fit `i128`: the
+//!   exact partition and integer block sums, means reduced on demand;
+//! * `exact_int_lowest` — the same, then every block mean reduced to a
+//!   `BigRational` in lowest terms (what a caller that wants all of them
+//!   pays);
 //! * `exact_bigint` — the same kernel on data with 30-digit decimals, which
-//!   forces the `BigInt` loop;
+//!   need the 256-bit loop; `exact_bigint_100` on 100-digit decimals (the
+//!   `BigInt` loop);
+//! * `adaptive`, `adaptive_bigdata` — [`crate::adaptive::adaptive_blocks_at`]
+//!   on the `exact_int` scene and on the 100-digit one (the path taken is in
+//!   the note);
 //! * `bigrational_naive` — the generic PAVA on `BigRational` (measured on
 //!   N/10 particles and reported per particle, saying so);
 //! * `events` — the full exact event-driven trajectory
 //!   ([`crate::trajectory::Trajectory::new`]).
 //!
 //! Timings are whole calls measured with `std::time::Instant` (median of the
-//! repetitions); they are reports, never test assertions.
+//! repetitions); they are reports, never test assertions. Memory is the
+//! growth of the resident set during the call (peak minus before).
 
 use std::path::Path;
 use std::process::Command;
@@ -25,9 +34,10 @@ use std::time::Instant;
 use num_bigint::BigInt;
 use num_rational::BigRational;
 
+use crate::adaptive::{adaptive_blocks_at, Path as Path_};
 use crate::generate::{initial_data, Limits, SplitMix64};
 use crate::initial::InitialData;
-use crate::kernel::{blocks_at, IntegerData, Width};
+use crate::kernel::{blocks_at, IntegerData};
 use crate::projection::{isotonic, pava_blocks};
 use crate::scalar::Scalar;
 use crate::trajectory::Trajectory;
@@ -43,6 +53,8 @@ pub struct BenchOptions {
     pub peers: bool,
     /// Time the full event-driven trajectory too.
     pub events: bool,
+    /// Measure peak memory (cold allocator, no warm-up: [`Memory::Cold`]).
+    pub memory: bool,
 }
 
 /// One measured method.
@@ -52,6 +64,9 @@ pub struct Measure {
     pub method: &'static str,
     /// Median ns per particle (`None` when not measured).
     pub ns_per_particle: Option<f64>,
+    /// Median growth of the resident set during the call, MiB (`None`
+    /// when not measured).
+    pub peak_mib: Option<f64>,
     /// A remark (e.g. measured on a smaller N, or why skipped).
     pub note: String,
 }
@@ -116,12 +131,16 @@ pub fn scene(n: usize, seed: u64) -> InitialData<BigRational> {
     .unwrap_or_else(|_| initial_data(&[], Limits::default()))
 }
 
-/// The same scene with every position shifted by a 30-digit decimal, so
-/// that the common denominators no longer fit `i128`.
-fn big_scene(d: &InitialData<BigRational>) -> InitialData<BigRational> {
+/// The same scene with every position shifted by a decimal of `digits`
+/// significant digits (`1.2345678901234…`), so that the common denominators
+/// no longer fit `i128` (30 digits: the 256-bit loop; 100 digits: `BigInt`).
+pub fn decimal_scene(d: &InitialData<BigRational>, digits: usize) -> InitialData<BigRational> {
+    let text: String = (0..digits)
+        .map(|i| char::from(b'0' + ((i + 1) % 10) as u8))
+        .collect();
     let offset = BigRational::new(
-        BigInt::parse_bytes(b"123456789012345678901234567891", 10).unwrap_or_default(),
-        BigInt::from(10u32).pow(29),
+        BigInt::parse_bytes(text.as_bytes(), 10).unwrap_or_default(),
+        BigInt::from(10u32).pow(digits.saturating_sub(1) as u32),
     );
     let positions = d.positions().iter().map(|x| x + &offset).collect();
     InitialData::new(d.radius().clone(), positions, d.velocities().to_vec())
@@ -143,31 +162,187 @@ fn time<R>(f: impl FnOnce() -> R) -> (f64, R) {
     (t0.elapsed().as_secs_f64() * 1e9, r)
 }
 
+/// How `sticky bench` sets up glibc's allocator before measuring (it
+/// re-runs itself with the setting in the environment, see
+/// [`reexec_with_malloc`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Memory {
+    /// Timing: `malloc` never maps fresh pages for a large buffer and never
+    /// returns freed memory (`MALLOC_MMAP_MAX_=0`, a huge
+    /// `MALLOC_TRIM_THRESHOLD_`), and one untimed warm-up repetition runs
+    /// first, so no method pays page faults: on this machine kind a page
+    /// fault costs ~1.5 µs and faulting a method's buffers in would
+    /// otherwise dominate (a cold f64 PAVA is 3–4× slower than a warm one),
+    /// and which buffers are resident would depend on what ran before.
+    Warm,
+    /// Peak memory: every allocation above 128 KiB is mapped afresh and
+    /// returned on free (`MALLOC_MMAP_THRESHOLD_`, `MALLOC_TRIM_THRESHOLD_`),
+    /// so the growth of the resident set during a call is the memory it
+    /// touched; no warm-up, and timings then include page faults.
+    Cold,
+}
+
+impl Memory {
+    fn env(self) -> [(&'static str, &'static str); 2] {
+        match self {
+            Memory::Warm => [
+                ("MALLOC_MMAP_MAX_", "0"),
+                ("MALLOC_TRIM_THRESHOLD_", "1099511627776"),
+            ],
+            Memory::Cold => [
+                ("MALLOC_MMAP_THRESHOLD_", "131072"),
+                ("MALLOC_TRIM_THRESHOLD_", "131072"),
+            ],
+        }
+    }
+}
+
+const MARKER: &str = "STICKY_BENCH_MALLOC";
+
+/// Re-runs the current command with glibc's allocator set up for `mode`
+/// ([`Memory`]) and returns the child's exit code; `None` when this process
+/// is already that child (or not on Linux, where nothing is changed).
+pub fn reexec_with_malloc(mode: Memory) -> Option<std::process::ExitCode> {
+    if !cfg!(target_os = "linux") || std::env::var_os(MARKER).is_some() {
+        return None;
+    }
+    let exe = std::env::current_exe().ok()?;
+    let status = Command::new(exe)
+        .args(std::env::args_os().skip(1))
+        .envs(mode.env())
+        .env(MARKER, format!("{mode:?}"))
+        .status()
+        .ok()?;
+    let code = status.code().map_or(1, |c| u8::try_from(c).unwrap_or(1));
+    Some(std::process::ExitCode::from(code))
+}
+
+/// The allocator setting this process runs under (`None`: not set up).
+pub fn current_memory_mode() -> Option<Memory> {
+    match std::env::var(MARKER).ok()?.as_str() {
+        "Warm" => Some(Memory::Warm),
+        "Cold" => Some(Memory::Cold),
+        _ => None,
+    }
+}
+
+/// A `/proc/self/status` field in kB.
+fn status_kib(field: &str) -> Option<f64> {
+    let text = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = text.lines().find(|l| l.starts_with(field))?;
+    line.split_whitespace().nth(1)?.parse().ok()
+}
+
+/// Times `f` and measures the growth of the resident set while it runs
+/// (peak minus resident before, in MiB; Linux only: the peak is reset
+/// through `/proc/self/clear_refs`, `None` elsewhere).
+fn measured<R>(f: impl FnOnce() -> R) -> (f64, Option<f64>, R) {
+    let reset = std::fs::write("/proc/self/clear_refs", "5").is_ok();
+    let before = status_kib("VmRSS:");
+    let (ns, r) = time(f);
+    let peak = status_kib("VmHWM:");
+    let mib = match (reset, before, peak) {
+        (true, Some(b), Some(p)) => Some((p - b).max(0.0) / 1024.0),
+        _ => None,
+    };
+    (ns, mib, r)
+}
+
+/// Timings of one method over the repetitions.
+#[derive(Debug, Default)]
+struct Acc {
+    ns: Vec<f64>,
+    mib: Vec<f64>,
+    note: String,
+}
+
+impl Acc {
+    fn push(&mut self, ns_per_particle: f64, mib: Option<f64>) {
+        self.ns.push(ns_per_particle);
+        // Resident-set growth means peak memory only with the cold
+        // allocator.
+        if current_memory_mode() == Some(Memory::Cold) {
+            self.mib.extend(mib);
+        }
+    }
+}
+
 /// Runs the benchmark at time `t` (`t` small: few clusters; `t` large: few
 /// large clusters).
 pub fn run(opts: &BenchOptions, t: &BigRational, scripts: &Path) -> BenchReport {
     let n = opts.n.max(1);
     let nf = n as f64;
-    let (mut f64s, mut ints, mut bigs, mut naive, mut events) =
-        (vec![], vec![], vec![], vec![], vec![]);
+    let names = [
+        "f64",
+        "exact_int",
+        "exact_int_lowest",
+        "exact_bigint",
+        "exact_bigint_100",
+        "bigrational_naive",
+        "adaptive",
+        "adaptive_bigdata",
+        "events",
+    ];
+    let mut acc: Vec<Acc> = names.iter().map(|_| Acc::default()).collect();
+    let at = |name: &str| names.iter().position(|m| *m == name).unwrap_or(0);
     let naive_n = (n / 10).max(1);
     let mut peer_inputs: Vec<Vec<f64>> = Vec::new();
-    let mut widths = Vec::new();
-    for rep in 0..opts.reps.max(1) {
+    // One untimed warm-up repetition (on its own scene) unless measuring
+    // memory: see [`Memory`].
+    let warmups = usize::from(!opts.memory);
+    for rep in 0..opts.reps.max(1) + warmups {
+        if rep == warmups && warmups > 0 {
+            acc.iter_mut().for_each(|a| {
+                a.ns.clear();
+                a.mib.clear();
+            });
+            peer_inputs.clear();
+        }
         let data = scene(n, 1000 + rep as u64);
         let y = free_f64(&data, t);
-        let (ns, out) = time(|| isotonic::<f64>(&y));
+        let (ns, mib, out) = measured(|| isotonic::<f64>(&y));
         std::hint::black_box(out);
-        f64s.push(ns / nf);
-        let ints_data = IntegerData::new(&data);
-        let (ns, b) = time(|| blocks_at(&ints_data, t));
-        widths.push(b.width());
-        ints.push(ns / nf);
-        let big = IntegerData::new(&big_scene(&data));
-        let (ns, b) = time(|| blocks_at(&big, t));
-        if b.width() != Width::I128 {
-            bigs.push(ns / nf);
-        }
+        acc[at("f64")].push(ns / nf, mib);
+
+        let ints = IntegerData::new(&data);
+        let (ns, mib, b) = measured(|| blocks_at(&ints, t));
+        acc[at("exact_int")].note = format!(
+            "integer kernel, width {:?}; exact block sums, means reduced on demand",
+            b.width()
+        );
+        acc[at("exact_int")].push(ns / nf, mib);
+        let (ns, mib, means) = measured(|| {
+            let b = blocks_at(&ints, t);
+            (0..b.len())
+                .map(|j| (b.mean_y(j), b.mean_u(j)))
+                .collect::<Vec<_>>()
+        });
+        std::hint::black_box(means);
+        acc[at("exact_int_lowest")].note =
+            "integer kernel, and every block mean reduced to a BigRational in lowest terms".into();
+        acc[at("exact_int_lowest")].push(ns / nf, mib);
+
+        let (ns, mib, a) = measured(|| adaptive_blocks_at(&ints, t));
+        acc[at("adaptive")].note = format!("adaptive on the same scene: {:?}", a.path);
+        acc[at("adaptive")].push(ns / nf, mib);
+
+        let big = IntegerData::new(&decimal_scene(&data, 30));
+        let (ns, mib, b) = measured(|| blocks_at(&big, t));
+        acc[at("exact_bigint")].note =
+            format!("integer kernel on 30-digit decimals, width {:?}", b.width());
+        acc[at("exact_bigint")].push(ns / nf, mib);
+        let huge = IntegerData::new(&decimal_scene(&data, 100));
+        let (ns, mib, b) = measured(|| blocks_at(&huge, t));
+        acc[at("exact_bigint_100")].note = format!(
+            "integer kernel on 100-digit decimals, width {:?}",
+            b.width()
+        );
+        acc[at("exact_bigint_100")].push(ns / nf, mib);
+        let (ns, mib, a) = measured(|| adaptive_blocks_at(&huge, t));
+        acc[at("adaptive_bigdata")].note =
+            format!("adaptive on the 100-digit scene: {}", path_note(&a.path));
+        acc[at("adaptive_bigdata")].push(ns / nf, mib);
+
         let small = scene(naive_n, 5000 + rep as u64);
         let ys: Vec<BigRational> = small
             .shifted_positions()
@@ -175,60 +350,49 @@ pub fn run(opts: &BenchOptions, t: &BigRational, scripts: &Path) -> BenchReport 
             .zip(small.velocities())
             .map(|(x, u)| x + t * u)
             .collect();
-        let (ns, out) = time(|| pava_blocks(&ys, Some(small.velocities())));
+        let (ns, mib, out) = measured(|| pava_blocks(&ys, Some(small.velocities())));
         std::hint::black_box(out);
-        naive.push(ns / naive_n as f64);
+        acc[at("bigrational_naive")].note = format!(
+            "generic PAVA on BigRational, measured on N = {naive_n} and reported per particle"
+        );
+        acc[at("bigrational_naive")].push(ns / naive_n as f64, mib);
         if opts.events {
-            let (ns, traj) = time(|| Trajectory::new(data.clone()));
+            let (ns, mib, traj) = measured(|| Trajectory::new(data.clone()));
             std::hint::black_box(traj.impulses().len());
-            events.push(ns / nf);
+            acc[at("events")].note = "full exact event-driven trajectory".into();
+            acc[at("events")].push(ns / nf, mib);
+        } else {
+            acc[at("events")].note = "skipped (--quick)".into();
         }
         peer_inputs.push(y);
     }
-    let m = |method, v: Vec<f64>, note: String| Measure {
-        method,
-        ns_per_particle: median(v),
-        note,
-    };
-    let ours = vec![
-        m("f64", f64s, "generic PAVA on f64".into()),
-        m(
-            "exact_int",
-            ints,
-            format!(
-                "integer kernel, width {:?}",
-                widths.first().copied().unwrap_or(Width::I128)
-            ),
-        ),
-        m(
-            "exact_bigint",
-            bigs,
-            "integer kernel on 30-digit decimals (BigInt loop)".into(),
-        ),
-        m(
-            "bigrational_naive",
-            naive,
-            format!(
-                "generic PAVA on BigRational, measured on N = {naive_n} and reported per particle"
-            ),
-        ),
-        m("adaptive", vec![], "not implemented yet".into()),
-        m(
-            "events",
-            events,
-            if opts.events {
-                "full exact event-driven trajectory".into()
-            } else {
-                "skipped".into()
-            },
-        ),
-    ];
+    acc[at("f64")].note = "generic PAVA on f64 (per-particle output)".into();
+    let ours = names
+        .iter()
+        .zip(acc)
+        .map(|(method, a)| Measure {
+            method,
+            ns_per_particle: median(a.ns),
+            peak_mib: median(a.mib),
+            note: a.note,
+        })
+        .collect();
     let peers = if opts.peers {
         run_peers(&peer_inputs, scripts)
     } else {
         vec![]
     };
     BenchReport { n, ours, peers }
+}
+
+fn path_note(p: &Path_) -> String {
+    match p {
+        Path_::Certified { decisions, exact } => format!(
+            "{decisions} decisions, {exact} decided exactly ({:.2}%)",
+            100.0 * *exact as f64 / (*decisions).max(1) as f64
+        ),
+        other => format!("{other:?}"),
+    }
 }
 
 /// Writes the inputs as raw little-endian f64 and runs `scripts/peers.py`,
@@ -239,11 +403,13 @@ fn run_peers(inputs: &[Vec<f64>], scripts: &Path) -> Vec<Measure> {
             Measure {
                 method: "scipy",
                 ns_per_particle: None,
+                peak_mib: None,
                 note: why.clone(),
             },
             Measure {
                 method: "sklearn",
                 ns_per_particle: None,
+                peak_mib: None,
                 note: why,
             },
         ]
@@ -291,6 +457,7 @@ fn run_peers(inputs: &[Vec<f64>], scripts: &Path) -> Vec<Measure> {
             Measure {
                 method: name,
                 ns_per_particle: parsed,
+                peak_mib: None,
                 note: match (parsed, v) {
                     (Some(_), _) => "same data, same run".into(),
                     (None, Some(s)) => s.to_string(),
@@ -329,8 +496,8 @@ pub fn table(r: &BenchReport) -> String {
         .find(|m| m.method == "f64")
         .and_then(|m| m.ns_per_particle);
     let mut out = format!(
-        "N = {}\n  {:<18} {:>12} {:>10}  note\n",
-        r.n, "method", "ns/particle", "× f64"
+        "N = {}\n  {:<18} {:>12} {:>10} {:>9}  note\n",
+        r.n, "method", "ns/particle", "× f64", "peak MiB"
     );
     for m in r.ours.iter().chain(&r.peers) {
         let ratio = match (m.ns_per_particle, base) {
@@ -338,10 +505,11 @@ pub fn table(r: &BenchReport) -> String {
             _ => "—".into(),
         };
         out.push_str(&format!(
-            "  {:<18} {:>12} {:>10}  {}\n",
+            "  {:<18} {:>12} {:>10} {:>9}  {}\n",
             m.method,
             m.ns_per_particle.map_or("—".into(), |v| format!("{v:.1}")),
             ratio,
+            m.peak_mib.map_or("—".into(), |v| format!("{v:.0}")),
             m.note
         ));
     }

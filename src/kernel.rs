@@ -63,9 +63,12 @@ pub enum Width {
 
 /// The scaled values in the narrowest representation that holds all of them.
 #[derive(Debug, Clone)]
-enum Column {
+pub(crate) enum Column {
+    /// Every value fits `i64`.
     Small(Vec<i64>),
+    /// Every value fits 255 bits.
     Wide(Vec<I256>),
+    /// Only the `BigInt` values.
     Big,
 }
 
@@ -83,7 +86,7 @@ impl Column {
             .collect::<Option<Vec<_>>>()
             .map_or(Column::Big, Column::Wide)
     }
-    fn wide(&self, i: usize) -> I256 {
+    pub(crate) fn wide(&self, i: usize) -> I256 {
         match self {
             Column::Small(v) => I256::from_i64(v[i]),
             Column::Wide(v) => v[i],
@@ -96,15 +99,19 @@ impl Column {
 /// `u⁰_i = u[i] / du` (`df:translat-x`).
 #[derive(Debug, Clone)]
 pub struct IntegerData {
-    x: Vec<BigInt>,
-    u: Vec<BigInt>,
-    x_col: Column,
-    u_col: Column,
+    pub(crate) x: Vec<BigInt>,
+    pub(crate) u: Vec<BigInt>,
+    pub(crate) x_col: Column,
+    pub(crate) u_col: Column,
     /// `bits(max|X|)`, `bits(max|U|)`.
-    x_bits: u64,
-    u_bits: u64,
-    dx: BigInt,
-    du: BigInt,
+    pub(crate) x_bits: u64,
+    pub(crate) u_bits: u64,
+    pub(crate) dx: BigInt,
+    pub(crate) du: BigInt,
+    /// `X_i`, `U_i` rounded to `f64` (relative error at most `2^−52`; ±∞
+    /// beyond the range), for the adaptive solver's filter.
+    pub(crate) xf: Vec<f64>,
+    pub(crate) uf: Vec<f64>,
     two_r: BigRational,
 }
 
@@ -125,7 +132,14 @@ impl IntegerData {
         let x = scale(&shifted, &dx);
         let u = scale(data.velocities(), &du);
         let max_bits = |v: &[BigInt]| v.iter().map(BigInt::bits).max().unwrap_or(0);
+        let approx = |v: &[BigInt]| -> Vec<f64> {
+            v.iter()
+                .map(|x| x.to_f64().unwrap_or(f64::INFINITY))
+                .collect()
+        };
         IntegerData {
+            xf: approx(&x),
+            uf: approx(&u),
             x_col: Column::of(&x),
             u_col: Column::of(&u),
             x_bits: max_bits(&x),
@@ -145,15 +159,15 @@ impl IntegerData {
 
 /// One block of the loop: `k` entries with the sums `sy = ΣY`, `su = ΣU`.
 #[derive(Debug, Clone, PartialEq)]
-struct Run<W> {
-    k: u64,
-    sy: W,
-    su: W,
+pub(crate) struct Run<W> {
+    pub(crate) k: u64,
+    pub(crate) sy: W,
+    pub(crate) su: W,
 }
 
 /// The block sums in the width the loop ran on.
-#[derive(Debug, Clone, PartialEq)]
-enum Sums {
+#[derive(Debug, Clone)]
+pub(crate) enum Sums {
     I128(Vec<Run<i128>>),
     I256(Vec<Run<I256>>),
     Big(Vec<Run<BigInt>>),
@@ -162,8 +176,9 @@ enum Sums {
 /// The PAVA blocks at `t + ε`, exact: the partition and the integer sums of
 /// every block (see the module documentation). Block `j`'s translated
 /// position `x̃(t)` is [`Blocks::mean_y`]`(j)`, its velocity (the right
-/// derivative) [`Blocks::mean_u`]`(j)`.
-#[derive(Debug, Clone, PartialEq)]
+/// derivative) [`Blocks::mean_u`]`(j)`. Two `Blocks` are equal when they
+/// have the same clusters and the same means, whatever the width.
+#[derive(Debug, Clone)]
 pub struct Blocks {
     sums: Sums,
     /// `D_y = q D_x D_u` and `D_u`.
@@ -174,8 +189,26 @@ pub struct Blocks {
     du_small: Option<i128>,
 }
 
+impl PartialEq for Blocks {
+    fn eq(&self, o: &Self) -> bool {
+        self.clusters() == o.clusters()
+            && (0..self.len())
+                .all(|j| self.mean_y(j) == o.mean_y(j) && self.mean_u(j) == o.mean_u(j))
+    }
+}
+
 impl Blocks {
-    /// The integer width the loop ran on.
+    /// Blocks from their sums and the denominators `D_y`, `D_u`.
+    pub(crate) fn new(sums: Sums, dy: BigInt, du: BigInt) -> Blocks {
+        Blocks {
+            sums,
+            dy_small: dy.to_i128(),
+            du_small: du.to_i128(),
+            dy,
+            du,
+        }
+    }
+    /// The integer width the block sums are held in.
     pub fn width(&self) -> Width {
         match self.sums {
             Sums::I128(_) => Width::I128,
@@ -317,19 +350,54 @@ fn size_bits(n: usize) -> u64 {
     u64::from(128 - m.leading_zeros())
 }
 
+/// The scaling at one time `t = p/q`: `Y_i = a X_i + b U_i` with
+/// `a = q D_u`, `b = p D_x`, over `D_y = q D_x D_u`, and the width the data
+/// need at that time (module documentation).
+#[derive(Debug, Clone)]
+pub(crate) struct AtTime {
+    pub(crate) a: BigInt,
+    pub(crate) b: BigInt,
+    pub(crate) dy: BigInt,
+    pub(crate) width: Width,
+}
+
+impl AtTime {
+    pub(crate) fn new(d: &IntegerData, t: &BigRational) -> AtTime {
+        let (p, q) = (t.numer(), t.denom());
+        let a = q * &d.du;
+        let b = p * &d.dx;
+        let dy = &a * &d.dx;
+        let b_k = size_bits(d.n());
+        let b_y = (a.bits() + d.x_bits).max(b.bits() + d.u_bits) + 1;
+        let fits = |w: u64| b_y + b_k < w && d.u_bits + b_k < w;
+        let small = |c: &Column| matches!(c, Column::Small(_));
+        let wide = |c: &Column| !matches!(c, Column::Big);
+        let width = if small(&d.x_col)
+            && small(&d.u_col)
+            && a.to_i64().is_some()
+            && b.to_i64().is_some()
+            && fits(128)
+        {
+            Width::I128
+        } else if wide(&d.x_col) && wide(&d.u_col) && fits(256) {
+            Width::I256
+        } else {
+            Width::Big
+        };
+        AtTime { a, b, dy, width }
+    }
+}
+
 /// Exact PAVA at time `t` on the integer data (see the module docs).
 pub fn blocks_at(d: &IntegerData, t: &BigRational) -> Blocks {
-    let (p, q) = (t.numer(), t.denom());
-    let qdu = q * &d.du;
-    let pdx = p * &d.dx;
-    let dy = &qdu * &d.dx;
-    let b_k = size_bits(d.n());
-    let b_y = (qdu.bits() + d.x_bits).max(pdx.bits() + d.u_bits) + 1;
-    let fits = |w: u64| b_y + b_k < w && d.u_bits + b_k < w;
+    let at = AtTime::new(d, t);
     let n = d.n();
-    let sums = match (&d.x_col, &d.u_col, qdu.to_i64(), pdx.to_i64()) {
-        (Column::Small(xs), Column::Small(us), Some(a), Some(b)) if fits(128) => {
-            let (a, b) = (i128::from(a), i128::from(b));
+    let sums = match (&d.x_col, &d.u_col, at.width) {
+        (Column::Small(xs), Column::Small(us), Width::I128) => {
+            let (a, b) = (
+                i128::from(at.a.to_i64().unwrap_or(0)),
+                i128::from(at.b.to_i64().unwrap_or(0)),
+            );
             // |a|, |X_i|, |b|, |U_i| < 2^63: each product < 2^126, and
             // |Y_i| < 2^b_Y with b_Y + b_K < 128 (module docs).
             Sums::I128(pava_words(n, |i| {
@@ -337,31 +405,23 @@ pub fn blocks_at(d: &IntegerData, t: &BigRational) -> Blocks {
                 (a.wrapping_mul(x).wrapping_add(b.wrapping_mul(u)), u)
             }))
         }
-        (Column::Small(_) | Column::Wide(_), Column::Small(_) | Column::Wide(_), _, _)
-            if fits(256) && qdu.bits() < 255 && pdx.bits() < 255 =>
-        {
+        (_, _, Width::I128 | Width::I256) => {
             // Both factors of each product and the products themselves are
-            // below 2^(b_Y − 1) < 2^255.
+            // below 2^(b_Y − 1) < 2^254.
             let (a, b) = (
-                I256::from_bigint(&qdu).unwrap_or_default(),
-                I256::from_bigint(&pdx).unwrap_or_default(),
+                I256::from_bigint(&at.a).unwrap_or_default(),
+                I256::from_bigint(&at.b).unwrap_or_default(),
             );
             Sums::I256(pava_words(n, |i| {
                 let (x, u) = (d.x_col.wide(i), d.u_col.wide(i));
                 (a.wrapping_mul(x).wrapping_add(b.wrapping_mul(u)), u)
             }))
         }
-        _ => Sums::Big(pava_words(n, |i| {
-            (&qdu * &d.x[i] + &pdx * &d.u[i], d.u[i].clone())
+        (_, _, Width::Big) => Sums::Big(pava_words(n, |i| {
+            (&at.a * &d.x[i] + &at.b * &d.u[i], d.u[i].clone())
         })),
     };
-    Blocks {
-        sums,
-        dy_small: dy.to_i128(),
-        du_small: d.du.to_i128(),
-        dy,
-        du: d.du.clone(),
-    }
+    Blocks::new(sums, at.dy, d.du.clone())
 }
 
 /// `s / (k d)` in lowest terms for an `i128` sum `s`: `i128` arithmetic and

@@ -43,13 +43,13 @@ impl I256 {
             *l = d;
         }
         let m = I256(limbs);
-        Some(if v.is_negative() { m.neg() } else { m })
+        Some(if v.is_negative() { m.wrapping_neg() } else { m })
     }
 
     /// The value as a `BigInt`.
     pub fn to_bigint(self) -> BigInt {
         let (sign, mag) = if self.is_negative() {
-            (Sign::Minus, self.neg())
+            (Sign::Minus, self.wrapping_neg())
         } else {
             (Sign::Plus, self)
         };
@@ -67,7 +67,7 @@ impl I256 {
     }
 
     /// `−v` (wrapping).
-    pub fn neg(self) -> Self {
+    pub fn wrapping_neg(self) -> Self {
         let mut out = [0u64; 4];
         let mut carry = true;
         for (o, &l) in out.iter_mut().zip(&self.0) {
@@ -83,10 +83,10 @@ impl I256 {
     pub fn wrapping_add(self, o: Self) -> Self {
         let mut out = [0u64; 4];
         let mut carry = 0u64;
-        for i in 0..4 {
-            let (s1, c1) = self.0[i].overflowing_add(o.0[i]);
+        for ((r, &a), &b) in out.iter_mut().zip(&self.0).zip(&o.0) {
+            let (s1, c1) = a.overflowing_add(b);
             let (s2, c2) = s1.overflowing_add(carry);
-            out[i] = s2;
+            *r = s2;
             carry = u64::from(c1) + u64::from(c2);
         }
         I256(out)
@@ -97,9 +97,9 @@ impl I256 {
     pub fn wrapping_mul_u64(self, k: u64) -> Self {
         let mut out = [0u64; 4];
         let mut carry = 0u128;
-        for i in 0..4 {
-            let p = u128::from(self.0[i]) * u128::from(k) + carry;
-            out[i] = p as u64;
+        for (r, &a) in out.iter_mut().zip(&self.0) {
+            let p = u128::from(a) * u128::from(k) + carry;
+            *r = p as u64;
             carry = p >> 64;
         }
         I256(out)
@@ -196,7 +196,7 @@ mod tests {
             );
             assert_eq!(wc.wrapping_add(wd).to_bigint(), &c + &d);
             assert_eq!(wc.cmp(&wd), c.cmp(&d));
-            assert_eq!(wc.neg().to_bigint(), -&c);
+            assert_eq!(wc.wrapping_neg().to_bigint(), -&c);
             let small = random_big(&mut rng, 60);
             let ws = I256::from_bigint(&small).unwrap();
             if c.bits() + small.bits() <= 254 {

@@ -11,6 +11,7 @@ fn bench_reports_every_method() {
         reps: 1,
         peers: false,
         events: true,
+        memory: false,
     };
     let t = BigRational::new(1.into(), 100.into());
     let scripts = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scripts");
@@ -31,8 +32,12 @@ fn bench_reports_every_method() {
     for key in [
         "f64",
         "exact_int",
+        "exact_int_lowest",
         "exact_bigint",
+        "exact_bigint_100",
         "bigrational_naive",
+        "adaptive",
+        "adaptive_bigdata",
         "events",
     ] {
         assert!(

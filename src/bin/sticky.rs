@@ -101,6 +101,10 @@ enum Command {
         /// large clusters).
         #[arg(long, default_value = "1/100", value_parser = parse_time)]
         at: BigRational,
+        /// Measure peak memory (cold allocator, no warm-up: timings then
+        /// include page faults).
+        #[arg(long)]
+        memory: bool,
     },
     /// The hydrodynamic limit: distances between the particles and the
     /// continuum solution for N = 8 … 2^16, with fitted rates; CSV and charts.
@@ -206,6 +210,16 @@ fn main() -> ExitCode {
             return ExitCode::from(2);
         }
     };
+    if let Some(Command::Bench { memory, .. }) = &cli.command {
+        let mode = if *memory {
+            sticky::bench::Memory::Cold
+        } else {
+            sticky::bench::Memory::Warm
+        };
+        if let Some(code) = sticky::bench::reexec_with_malloc(mode) {
+            return code;
+        }
+    }
     let stdout = io::stdout();
     let mut out = BufWriter::new(stdout.lock());
     let result = match cli.command {
@@ -245,12 +259,14 @@ fn main() -> ExitCode {
             no_peers,
             json,
             at,
+            memory,
         }) => {
             let opts = sticky::bench::BenchOptions {
                 n,
                 reps,
                 peers: !no_peers,
                 events: !quick,
+                memory,
             };
             let scripts = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scripts");
             let report = sticky::bench::run(&opts, &at, &scripts);

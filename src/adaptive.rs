@@ -1,0 +1,362 @@
+//! Adaptive precision: PAVA whose pooling decisions are taken in `f64` when
+//! a certified error bound proves them right, and in exact integers only for
+//! the decisions the bound cannot settle — "a scene gets no more precision
+//! than it needs", and the answer is still exact.
+//!
+//! **Which path.** When the data fit the fixed-width kernels
+//! ([`crate::kernel::Width::I128`] or [`crate::kernel::Width::I256`]) the
+//! exact kernel is as cheap as a float PAVA or within a small factor of it
+//! (measured by `sticky bench`: 0.7× and 2× our f64 PAVA), so it answers
+//! ([`Path::Integer`]). Only data that need `BigInt` take the filter: the
+//! decisions run in `f64` ([`Path::Certified`]) and the exact block sums are
+//! accumulated once over the final partition; if the uncertain decisions
+//! would cost more exact work than `4N` summed entries, the whole scene goes
+//! to the exact kernel instead ([`Path::Exact`]). The result is a [`Blocks`], equal to
+//! [`crate::kernel::blocks_at`]'s on every scene (the tests check it).
+//!
+//! **The certificate** (`u = 2^−53`, `Y_i = a X_i + b U_i` as in
+//! [`crate::kernel`]). The inputs `X_i, U_i, a, b` are rounded to `f64` with
+//! relative error `≤ 2u` each (`BigInt::to_f64` keeps the top 64 bits, then
+//! rounds). Then `ŷ_i = fl(fl(â x̂_i) + fl(b̂ û_i))` satisfies
+//! `|ŷ_i − Y_i| ≤ ((1+2u)²(1+u)² − 1)(|aX_i| + |bU_i|) ≤ 6.1u A`, with
+//! `A = |a| max|X| + |b| max|U|`; we use `E = 8u Â` (`Â` the `f64` value of
+//! `A`, itself within a factor `1 + 8u` of `A`). A block sum `s` formed by
+//! `f64` additions carries a bound `e` with `e = E` for one entry and
+//! `e = e_a + e_b + u|s_a + s_b|` on a merge (one rounding per addition).
+//! Pooling asks for the sign of `D = S_a k_b − S_b k_a` (exact sums `S`);
+//! `d̂ = fl(fl(s_a k_b) − fl(s_b k_a))` satisfies
+//! `|d̂ − D| ≤ B = e_a k_b + e_b k_a + 3u(|s_a| k_b + |s_b| k_a)` (block sizes
+//! are exact in `f64` below `2^53`). The decision is taken in `f64` when
+//! `|d̂| > 2B`: the factor 2 absorbs the rounding of the bound's own
+//! evaluation (`O(N)` operations of relative error `u`, `N u ≪ 1`). Ties
+//! (`D = 0`, and the lexicographic tie-break on `U`) are never certified in
+//! `f64`: they go to the exact comparison.
+
+use num_bigint::BigInt;
+use num_rational::BigRational;
+use num_traits::ToPrimitive;
+
+use crate::kernel::{blocks_at, AtTime, Blocks, IntegerData, Run, Sums, Width};
+
+/// `u = 2^−53`, the unit roundoff of `f64`.
+const U: f64 = f64::EPSILON / 2.0;
+
+/// How the adaptive solver answered.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Path {
+    /// The data fit a fixed-width kernel, which answered.
+    Integer(Width),
+    /// Decisions in `f64`, certified; `exact` of the `decisions` needed the
+    /// exact comparison.
+    Certified {
+        /// Pooling decisions taken.
+        decisions: usize,
+        /// Decisions the `f64` bound could not settle (decided exactly).
+        exact: usize,
+    },
+    /// The filter gave up (non-finite values, or too many uncertain
+    /// decisions): the exact kernel answered.
+    Exact(Width),
+}
+
+/// The adaptive solver's answer: the exact blocks and the path taken.
+#[derive(Debug, Clone)]
+pub struct Adaptive {
+    /// The PAVA blocks at `t + ε`, exact.
+    pub blocks: Blocks,
+    /// Which path answered.
+    pub path: Path,
+}
+
+/// A block of the `f64` loop: sum `s` with error bound `e`, size `k` (as an
+/// exact `f64`), first index.
+#[derive(Debug, Clone, Copy)]
+struct Approx {
+    s: f64,
+    e: f64,
+    k: f64,
+    first: usize,
+}
+
+/// Exact comparison of two adjacent blocks `[f, m)` and `[m, end)` in
+/// `BigInt` (the filter only runs on data that need it): `true` when the
+/// left one pools with the right (its mean is `≥` in the lexicographic order
+/// on `(Y, U)`).
+struct Exact<'a> {
+    d: &'a IntegerData,
+    at: &'a AtTime,
+    /// Entries summed so far (the budget).
+    work: usize,
+    /// Exact comparisons made.
+    calls: usize,
+}
+
+impl Exact<'_> {
+    fn pools(&mut self, f: usize, m: usize, end: usize) -> bool {
+        self.work += end - f;
+        self.calls += 1;
+        let (ka, kb) = ((m - f) as u64, (end - m) as u64);
+        let sum = |v: &[BigInt], r: std::ops::Range<usize>| -> BigInt { v[r].iter().sum() };
+        let (xa, ua) = (sum(&self.d.x, f..m), sum(&self.d.u, f..m));
+        let (xb, ub) = (sum(&self.d.x, m..end), sum(&self.d.u, m..end));
+        let ya = &self.at.a * xa + &self.at.b * &ua;
+        let yb = &self.at.a * xb + &self.at.b * &ub;
+        let (ka, kb) = (BigInt::from(ka), BigInt::from(kb));
+        match (ya * &kb).cmp(&(yb * &ka)) {
+            std::cmp::Ordering::Greater => true,
+            std::cmp::Ordering::Less => false,
+            std::cmp::Ordering::Equal => ua * kb >= ub * ka,
+        }
+    }
+}
+
+/// The `f64` loop; `None` when the exact work exceeds its budget.
+fn certified_partition(
+    d: &IntegerData,
+    at: &AtTime,
+    exact: &mut Exact<'_>,
+) -> Option<(Vec<Approx>, usize)> {
+    let n = d.n();
+    let (a, b) = (at.a.to_f64()?, at.b.to_f64()?);
+    let max = |v: &[f64]| v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let big_a = a.abs() * max(&d.xf) + b.abs() * max(&d.uf);
+    let e0 = 8.0 * U * big_a;
+    // Every |ŷ_i| ≤ A(1 + 7u) and every |s| ≤ N A(1 + …): finite when
+    // N A is well inside the f64 range; block sizes exact below 2^53.
+    if !(big_a * (n as f64) * 4.0).is_finite() || n as f64 > 2f64.powi(52) {
+        return None;
+    }
+    let budget = 4 * n + 64;
+    let mut decisions = 0usize;
+    let mut stack: Vec<Approx> = Vec::with_capacity(n);
+    for i in 0..n {
+        let mut cur = Approx {
+            s: a * d.xf[i] + b * d.uf[i],
+            e: e0,
+            k: 1.0,
+            first: i,
+        };
+        while let Some(top) = stack.last() {
+            decisions += 1;
+            let diff = top.s * cur.k - cur.s * top.k;
+            let bound = top.e * cur.k
+                + cur.e * top.k
+                + 3.0 * U * (top.s.abs() * cur.k + cur.s.abs() * top.k);
+            let pool = if diff > 2.0 * bound {
+                true
+            } else if diff < -2.0 * bound {
+                false
+            } else {
+                if exact.work > budget {
+                    return None;
+                }
+                exact.pools(top.first, cur.first, i + 1)
+            };
+            if !pool {
+                break;
+            }
+            let s = top.s + cur.s;
+            cur = Approx {
+                s,
+                e: top.e + cur.e + U * s.abs(),
+                k: top.k + cur.k,
+                first: top.first,
+            };
+            stack.pop();
+        }
+        stack.push(cur);
+    }
+    Some((stack, decisions))
+}
+
+/// Exact PAVA at time `t`, deciding in `f64` where a certified bound allows
+/// (module documentation). The blocks equal [`blocks_at`]'s.
+pub fn adaptive_blocks_at(d: &IntegerData, t: &BigRational) -> Adaptive {
+    let at = AtTime::new(d, t);
+    if at.width != Width::Big {
+        return Adaptive {
+            blocks: blocks_at(d, t),
+            path: Path::Integer(at.width),
+        };
+    }
+    let mut exact = Exact {
+        d,
+        at: &at,
+        work: 0,
+        calls: 0,
+    };
+    let Some((stack, decisions)) = certified_partition(d, &at, &mut exact) else {
+        let blocks = blocks_at(d, t);
+        let width = blocks.width();
+        return Adaptive {
+            blocks,
+            path: Path::Exact(width),
+        };
+    };
+    // The exact sums over the certified partition: ΣY = a ΣX + b ΣU per
+    // block.
+    let ends = stack.iter().skip(1).map(|b| b.first).chain([d.n()]);
+    let sums = Sums::Big(
+        stack
+            .iter()
+            .zip(ends)
+            .map(|(blk, end)| {
+                let r = blk.first..end;
+                let sx: BigInt = d.x[r.clone()].iter().sum();
+                let su: BigInt = d.u[r].iter().sum();
+                Run {
+                    k: (end - blk.first) as u64,
+                    sy: &at.a * sx + &at.b * &su,
+                    su,
+                }
+            })
+            .collect(),
+    );
+    Adaptive {
+        blocks: Blocks::new(sums, at.dy.clone(), d.du.clone()),
+        path: Path::Certified {
+            decisions,
+            exact: exact.calls,
+        },
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::generate::{initial_data, Limits, SplitMix64};
+    use crate::initial::InitialData;
+    use crate::trajectory::Trajectory;
+    use num_traits::One;
+
+    fn q(n: i64, d: i64) -> BigRational {
+        BigRational::new(BigInt::from(n), BigInt::from(d))
+    }
+
+    fn offset_by(
+        data: &InitialData<BigRational>,
+        offset: &BigRational,
+    ) -> InitialData<BigRational> {
+        let x = data.positions().iter().map(|x| x + offset).collect();
+        InitialData::new(data.radius().clone(), x, data.velocities().to_vec()).unwrap()
+    }
+
+    /// `1.234…` with 30 significant digits.
+    fn decimal30() -> BigRational {
+        BigRational::new(
+            BigInt::parse_bytes(b"123456789012345678901234567891", 10).unwrap(),
+            BigInt::from(10u32).pow(29),
+        )
+    }
+
+    /// A position that needs `BigInt` (beyond the 256-bit kernel).
+    fn beyond_256() -> BigRational {
+        BigRational::from_integer(BigInt::one() << 300u32) + decimal30()
+    }
+
+    /// The oracle battery: random scenes at every collision instant (exact
+    /// ties) and between, shifted into each width, against the exact
+    /// kernel.
+    #[test]
+    fn equals_the_exact_kernel() {
+        let mut rng = SplitMix64::new(23);
+        let offsets = [
+            q(0, 1),
+            decimal30(),
+            BigRational::from_integer(BigInt::one() << 200u32) + decimal30(),
+            BigRational::from_integer(BigInt::one() << 400u32) + q(1, 3),
+            BigRational::from_integer(BigInt::one() << 1100u32),
+        ];
+        let mut seen = [0usize; 3];
+        for k in 0..240 {
+            let data = initial_data(
+                &rng.bytes(300),
+                Limits {
+                    max_n: 1 + k % 60,
+                    ..Limits::default()
+                },
+            );
+            let traj = Trajectory::new(data.clone());
+            let times = crate::claims::micro::probe_times(&traj, Some(8));
+            let data = offset_by(&data, &offsets[k % offsets.len()]);
+            let d = IntegerData::new(&data);
+            for t in &times {
+                let got = adaptive_blocks_at(&d, t);
+                seen[match got.path {
+                    Path::Integer(_) => 0,
+                    Path::Certified { .. } => 1,
+                    Path::Exact(_) => 2,
+                }] += 1;
+                assert_eq!(
+                    got.blocks,
+                    blocks_at(&d, t),
+                    "case {k}, t = {t}, {:?}",
+                    got.path
+                );
+            }
+        }
+        // Every path was exercised.
+        assert!(seen.iter().all(|&c| c > 0), "{seen:?}");
+    }
+
+    /// Two particles whose free-flight positions differ by one part in
+    /// 10^40: far below f64 resolution, so the decision is exact, and right
+    /// on both sides of the tie.
+    #[test]
+    fn differences_below_f64_resolution() {
+        let tiny = BigRational::new(BigInt::one(), BigInt::from(10u32).pow(40));
+        for (gap, pooled) in [
+            (tiny.clone(), false),
+            (-tiny.clone(), true),
+            (q(0, 1), true),
+        ] {
+            // x̃ = (c, c + gap): pooled exactly when gap ≤ 0 (equal
+            // velocities, so the tie-break pools).
+            let c = beyond_256();
+            let x = vec![c.clone(), c + q(1, 1) + gap];
+            let data = InitialData::new(q(1, 2), x, vec![q(0, 1), q(0, 1)]);
+            let Ok(data) = data else {
+                // An overlapping pair (gap < 0) is not admissible data;
+                // probe the same decision through the velocities instead.
+                let c = beyond_256();
+                let x = vec![c.clone(), c + q(2, 1)];
+                let u = vec![q(1, 1) + tiny.clone(), q(0, 1)];
+                let data = InitialData::new(q(1, 2), x, u).unwrap();
+                let d = IntegerData::new(&data);
+                // Meet at t = 1/(1 + 10^−40) < 1: pooled at t = 1.
+                let got = adaptive_blocks_at(&d, &q(1, 1));
+                assert_eq!(got.blocks.len(), 1);
+                assert_eq!(got.blocks, blocks_at(&d, &q(1, 1)));
+                assert!(
+                    matches!(got.path, Path::Certified { exact: 1.., .. }),
+                    "{:?}",
+                    got.path
+                );
+                continue;
+            };
+            let d = IntegerData::new(&data);
+            let got = adaptive_blocks_at(&d, &q(0, 1));
+            assert_eq!(got.blocks.len() == 1, pooled);
+            assert_eq!(got.blocks, blocks_at(&d, &q(0, 1)));
+            assert!(
+                matches!(got.path, Path::Certified { exact: 1.., .. }),
+                "{:?}",
+                got.path
+            );
+        }
+    }
+
+    /// A long resting cluster (every decision a tie) exhausts the exact
+    /// budget: the exact kernel answers, and the answer is the same.
+    #[test]
+    fn too_many_ties_fall_back_to_the_exact_kernel() {
+        let n = 400;
+        let x = (0..n).map(|i| beyond_256() + q(i, 1)).collect();
+        let data = InitialData::new(q(1, 2), x, vec![q(1, 3); n as usize]).unwrap();
+        let d = IntegerData::new(&data);
+        let got = adaptive_blocks_at(&d, &q(5, 7));
+        assert_eq!(got.path, Path::Exact(Width::Big));
+        assert_eq!(got.blocks.len(), 1);
+        assert_eq!(got.blocks, blocks_at(&d, &q(5, 7)));
+    }
+}
