@@ -167,13 +167,15 @@ fn time<R>(f: impl FnOnce() -> R) -> (f64, R) {
 /// [`reexec_with_malloc`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Memory {
-    /// Timing: `malloc` never maps fresh pages for a large buffer and never
-    /// returns freed memory (`MALLOC_MMAP_MAX_=0`, a huge
-    /// `MALLOC_TRIM_THRESHOLD_`), and one untimed warm-up repetition runs
-    /// first, so no method pays page faults: on this machine kind a page
-    /// fault costs ~1.5 µs and faulting a method's buffers in would
-    /// otherwise dominate (a cold f64 PAVA is 3–4× slower than a warm one),
-    /// and which buffers are resident would depend on what ran before.
+    /// Timing: `malloc` serves large buffers from its heap instead of
+    /// mapping fresh pages for each (`MALLOC_MMAP_MAX_=0`), and one untimed
+    /// warm-up repetition runs first, so that methods reuse resident memory
+    /// rather than pay page faults: on this machine kind a page fault costs
+    /// ~1.5 µs, faulting a method's buffers in would otherwise dominate (a
+    /// cold f64 PAVA is 3–4× slower than a warm one), and with glibc's
+    /// default, adaptive mmap threshold whether a buffer is resident depends
+    /// on what ran before it. (A huge `MALLOC_TRIM_THRESHOLD_` as well made
+    /// the `BigInt` loop 3× slower here; it is left at its default.)
     Warm,
     /// Peak memory: every allocation above 128 KiB is mapped afresh and
     /// returned on free (`MALLOC_MMAP_THRESHOLD_`, `MALLOC_TRIM_THRESHOLD_`),
@@ -183,15 +185,13 @@ pub enum Memory {
 }
 
 impl Memory {
-    fn env(self) -> [(&'static str, &'static str); 2] {
+    fn env(self) -> Vec<(&'static str, &'static str)> {
         match self {
-            Memory::Warm => [
-                ("MALLOC_MMAP_MAX_", "0"),
-                ("MALLOC_TRIM_THRESHOLD_", "1099511627776"),
-            ],
-            Memory::Cold => [
+            Memory::Warm => vec![("MALLOC_MMAP_MAX_", "0"), (MARKER, "Warm")],
+            Memory::Cold => vec![
                 ("MALLOC_MMAP_THRESHOLD_", "131072"),
                 ("MALLOC_TRIM_THRESHOLD_", "131072"),
+                (MARKER, "Cold"),
             ],
         }
     }
@@ -210,7 +210,6 @@ pub fn reexec_with_malloc(mode: Memory) -> Option<std::process::ExitCode> {
     let status = Command::new(exe)
         .args(std::env::args_os().skip(1))
         .envs(mode.env())
-        .env(MARKER, format!("{mode:?}"))
         .status()
         .ok()?;
     let code = status.code().map_or(1, |c| u8::try_from(c).unwrap_or(1));
@@ -514,4 +513,181 @@ pub fn table(r: &BenchReport) -> String {
         ));
     }
     out
+}
+
+/// The two regimes of the scaling study: the bench scene at a small time
+/// (almost every particle its own block) and at a large one (few large
+/// clusters).
+pub const REGIMES: [(&str, i64, i64); 2] = [("few-clusters", 1, 100), ("large-clusters", 20, 1)];
+
+/// What `sticky bench --scaling` measures.
+#[derive(Debug, Clone)]
+pub struct ScalingOptions {
+    /// The particle numbers (each a full [`run`]).
+    pub ns: Vec<usize>,
+    /// Repetitions per N (fresh scenes).
+    pub reps: usize,
+    /// Run the Python peers.
+    pub peers: bool,
+    /// Measure peak memory ([`Memory::Cold`]) instead of warm timings.
+    pub memory: bool,
+    /// Output folder.
+    pub out: std::path::PathBuf,
+}
+
+/// One row of the scaling study.
+#[derive(Debug, Clone)]
+pub struct ScalingRow {
+    /// The regime ([`REGIMES`]).
+    pub regime: &'static str,
+    /// N.
+    pub n: usize,
+    /// Method name.
+    pub method: &'static str,
+    /// Median ns per particle.
+    pub ns_per_particle: Option<f64>,
+    /// Median peak memory, MiB (memory mode only).
+    pub peak_mib: Option<f64>,
+}
+
+/// Runs [`run`] for every N and regime, writes `scaling.csv` (or
+/// `scaling-memory.csv`), one chart per regime (ns per particle against N,
+/// log-log, every method and peer; or MiB against N) and returns the rows
+/// with the paths written.
+pub fn scaling(
+    opts: &ScalingOptions,
+    scripts: &Path,
+    mut progress: impl FnMut(&str),
+) -> Result<(Vec<ScalingRow>, Vec<std::path::PathBuf>), crate::plot::PlotError> {
+    let mut rows = Vec::new();
+    for &(regime, p, q) in &REGIMES {
+        let t = BigRational::new(BigInt::from(p), BigInt::from(q));
+        for &n in &opts.ns {
+            progress(&format!("{regime}: N = {n}"));
+            // Small N: more repetitions (fresh scenes), up to 30.
+            let reps = opts.reps.max((1_000_000 / n.max(1)).min(30));
+            let r = run(
+                &BenchOptions {
+                    n,
+                    reps,
+                    peers: opts.peers,
+                    events: true,
+                    memory: opts.memory,
+                },
+                &t,
+                scripts,
+            );
+            for m in r.ours.iter().chain(&r.peers) {
+                rows.push(ScalingRow {
+                    regime,
+                    n,
+                    method: m.method,
+                    ns_per_particle: m.ns_per_particle,
+                    peak_mib: m.peak_mib,
+                });
+            }
+        }
+    }
+    let stem = if opts.memory {
+        "scaling-memory"
+    } else {
+        "scaling"
+    };
+    let mut csv = String::from("regime,n,method,ns_per_particle,peak_mib\n");
+    let cell = |v: Option<f64>| v.map_or(String::new(), |x| format!("{x:.4}"));
+    for r in &rows {
+        csv.push_str(&format!(
+            "{},{},{},{},{}\n",
+            r.regime,
+            r.n,
+            r.method,
+            cell(r.ns_per_particle),
+            cell(r.peak_mib)
+        ));
+    }
+    std::fs::create_dir_all(&opts.out).map_err(|e| crate::plot::PlotError::Io {
+        path: opts.out.clone(),
+        message: e.to_string(),
+    })?;
+    let csv_path = opts.out.join(format!("{stem}.csv"));
+    crate::plot::write_whole(&csv_path, csv.as_bytes())?;
+    let mut written = vec![csv_path];
+    for &(regime, p, q) in &REGIMES {
+        let chart = scaling_chart(&rows, regime, &format!("{p}/{q}"), opts.memory);
+        written.extend(
+            crate::plot::write_chart(&chart, &opts.out, &format!("{stem}-{regime}"))?.paths(),
+        );
+    }
+    Ok((rows, written))
+}
+
+/// Per method: the least-squares slope of the total time (or memory)
+/// against N on log-log axes (1 = linear).
+pub fn slopes(rows: &[ScalingRow], regime: &str, memory: bool) -> Vec<(&'static str, f64)> {
+    let mut methods: Vec<&'static str> = Vec::new();
+    for r in rows.iter().filter(|r| r.regime == regime) {
+        if !methods.contains(&r.method) {
+            methods.push(r.method);
+        }
+    }
+    methods
+        .into_iter()
+        .filter_map(|m| {
+            let pts: Vec<(usize, f64)> = rows
+                .iter()
+                .filter(|r| r.regime == regime && r.method == m)
+                .filter_map(|r| {
+                    let v = if memory {
+                        r.peak_mib
+                    } else {
+                        r.ns_per_particle.map(|v| v * r.n as f64)
+                    };
+                    v.filter(|v| *v > 0.0).map(|v| (r.n, v))
+                })
+                .collect();
+            (pts.len() >= 2).then(|| (m, crate::limit::converge::fit(&pts)))
+        })
+        .collect()
+}
+
+fn scaling_chart(rows: &[ScalingRow], regime: &str, t: &str, memory: bool) -> crate::plot::Chart {
+    use crate::plot::{palette, Axis, Chart, Marker, Series};
+    let slopes = slopes(rows, regime, memory);
+    let title = if memory {
+        format!("Peak memory against N — {regime} (t = {t})")
+    } else {
+        format!("Cost per particle against N — {regime} (t = {t}), warm, median of the repetitions")
+    };
+    let y = if memory {
+        "peak resident-set growth (MiB)"
+    } else {
+        "ns per particle"
+    };
+    let mut chart = Chart::new(title, Axis::log("N (particles)"), Axis::log(y));
+    for (k, (method, slope)) in slopes.iter().enumerate() {
+        let pts: Vec<(f64, f64)> = rows
+            .iter()
+            .filter(|r| r.regime == regime && r.method == *method)
+            .filter_map(|r| {
+                let v = if memory {
+                    r.peak_mib
+                } else {
+                    r.ns_per_particle
+                };
+                v.filter(|v| *v > 0.0).map(|v| (r.n as f64, v))
+            })
+            .collect();
+        let label = format!("{method} (slope {slope:.2})");
+        let marker = [
+            Marker::Circle,
+            Marker::Square,
+            Marker::Triangle,
+            Marker::Cross,
+            Marker::Ring,
+        ][k % 5];
+        chart
+            .series
+            .push(Series::line(label, palette(k), pts).with_marker(marker));
+    }
+    chart
 }

@@ -105,6 +105,17 @@ enum Command {
         /// include page faults).
         #[arg(long)]
         memory: bool,
+        /// The scaling study: N = 10^3, 10^4, … up to --max-n, both regimes
+        /// (t = 1/100: almost no clusters; t = 20: few large clusters);
+        /// CSV, log-log charts and fitted slopes in --out.
+        #[arg(long)]
+        scaling: bool,
+        /// Largest N of the scaling study.
+        #[arg(long, default_value_t = 10_000_000)]
+        max_n: usize,
+        /// Output folder of the scaling study (default ./out/bench/).
+        #[arg(long)]
+        out: Option<PathBuf>,
     },
     /// The hydrodynamic limit: distances between the particles and the
     /// continuum solution for N = 8 … 2^16, with fitted rates; CSV and charts.
@@ -253,6 +264,48 @@ fn main() -> ExitCode {
             markdown,
         ),
         Some(Command::Bench {
+            reps,
+            no_peers,
+            memory,
+            scaling: true,
+            max_n,
+            out: dir,
+            ..
+        }) => {
+            let mut ns = Vec::new();
+            let mut n = 1000usize;
+            while n <= max_n {
+                ns.push(n);
+                n = n.saturating_mul(10);
+            }
+            let opts = sticky::bench::ScalingOptions {
+                ns,
+                reps,
+                peers: !no_peers,
+                memory,
+                out: dir.unwrap_or_else(|| PathBuf::from("out/bench")),
+            };
+            let scripts = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scripts");
+            sticky::bench::scaling(&opts, &scripts, |msg| eprintln!("bench: {msg}"))
+                .map_err(|e| Failure(e.to_string()))
+                .and_then(|(rows, paths)| {
+                    for &(regime, _, _) in &sticky::bench::REGIMES {
+                        let line = sticky::bench::slopes(&rows, regime, memory)
+                            .iter()
+                            .map(|(m, s)| format!("{m} {s:.2}"))
+                            .collect::<Vec<_>>()
+                            .join(", ");
+                        writeln!(
+                            out,
+                            "{regime}: log-log slope of the total {} against N: {line}",
+                            if memory { "memory" } else { "time" }
+                        )
+                        .map_err(io_err)?;
+                    }
+                    print_paths(&mut out, &paths)
+                })
+        }
+        Some(Command::Bench {
             n,
             reps,
             quick,
@@ -260,6 +313,8 @@ fn main() -> ExitCode {
             json,
             at,
             memory,
+            scaling: false,
+            ..
         }) => {
             let opts = sticky::bench::BenchOptions {
                 n,

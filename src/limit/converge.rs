@@ -851,8 +851,9 @@ fn run_n(ctx: &Context, n: usize, engine: Engine) -> Result<(Row, Vec<f64>), Err
     }
 }
 
-/// Least-squares slope of `ln v` against `ln n`.
-fn fit(points: &[(usize, f64)]) -> f64 {
+/// Least-squares slope of `ln v` against `ln n` (also used for the cost
+/// scaling of `sticky bench --scaling`).
+pub(crate) fn fit(points: &[(usize, f64)]) -> f64 {
     if points.len() < 2 {
         return f64::NAN;
     }
