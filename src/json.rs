@@ -94,6 +94,57 @@ pub fn events<S: Scalar>(impulses: &[Impulse<S>]) -> String {
     format!("{{\"events\": [{}]}}", items.join(", "))
 }
 
+/// `sticky run --model continuum --json`: the continuum solution of a
+/// `[macro]` scene at one time (an extension of the contract, marked by its
+/// `"model"` key):
+/// `{"model": "continuum", "t": "...", "segments": [{"w0", "w1", "block",
+/// "plateau", "x": [c0, c1], "u": [c0, c1], "lambda": [c0, c1, c2]}, ...],
+/// "plateaus": [{"w0", "w1", "level", "velocity"}, ...]}` — `X(t, w) = c0 +
+/// c1 w` on `[w0, w1]` in the mass variable `w`, and so on. Every number is
+/// a string: a rational in lowest terms, or a quadratic surd `"a + b·√d"`
+/// where the plateau ends are irrational (see `limit::surd`).
+pub fn continuum_profile(p: &crate::limit::continuum::Profile<crate::limit::surd::Surd>) -> String {
+    let s = |v: &crate::limit::surd::Surd| string(&v.to_string());
+    let arr = |v: &[crate::limit::surd::Surd]| {
+        format!("[{}]", v.iter().map(s).collect::<Vec<_>>().join(", "))
+    };
+    let segments: Vec<String> = p
+        .segments
+        .iter()
+        .map(|g| {
+            format!(
+                "{{\"w0\": {}, \"w1\": {}, \"block\": {}, \"plateau\": {}, \"x\": {}, \"u\": {}, \"lambda\": {}}}",
+                s(&g.w0),
+                s(&g.w1),
+                g.block,
+                g.plateau.map_or("null".into(), |k| k.to_string()),
+                arr(&g.x),
+                arr(&g.u),
+                arr(&g.lambda)
+            )
+        })
+        .collect();
+    let plateaus: Vec<String> = p
+        .plateaus
+        .iter()
+        .map(|q| {
+            format!(
+                "{{\"w0\": {}, \"w1\": {}, \"level\": {}, \"velocity\": {}}}",
+                s(&q.w0),
+                s(&q.w1),
+                s(&q.level),
+                s(&q.velocity)
+            )
+        })
+        .collect();
+    format!(
+        "{{\"model\": \"continuum\", \"t\": {}, \"segments\": [{}], \"plateaus\": [{}]}}",
+        string(&crate::rational::render_exact(&p.t)),
+        segments.join(", "),
+        plateaus.join(", ")
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -635,3 +635,36 @@ fn particles_toml_round_trips_through_the_binary() {
         assert_eq!(xs, data.positions());
     }
 }
+
+/// `run --model continuum`: the block-level continuum solution of a
+/// `[macro]` scene, marked as such, and equal to the continuum module's
+/// profile; a `[particles]` scene is refused with one clean line.
+#[test]
+fn run_model_continuum() {
+    let path = scene_path("riemann-compression.toml");
+    let text = stdout_ok(&["run", &path, "--at", "1", "--model", "continuum", "--json"]);
+    let v: Value = serde_json::from_str(text.trim()).expect("one JSON object");
+    assert_eq!(v["model"], "continuum");
+    assert_eq!(v["t"], "1");
+    // Two blocks of mass 1/2 meeting head on at speeds ±1 are fully
+    // congested at t = 1: one plateau [0, 1] at rest, X = w + 1/2.
+    let plateaus = v["plateaus"].as_array().expect("plateaus");
+    assert_eq!(plateaus.len(), 1);
+    assert_eq!(plateaus[0]["w0"], "0");
+    assert_eq!(plateaus[0]["w1"], "1");
+    assert_eq!(plateaus[0]["level"], "1/2");
+    assert_eq!(plateaus[0]["velocity"], "0");
+    let table = stdout_ok(&["run", &path, "--at", "1/4", "--model", "continuum"]);
+    assert!(table.starts_with("model: continuum"), "{table}");
+    expect_error(
+        &[
+            "run",
+            &scene_path("random-1000.toml"),
+            "--at",
+            "1",
+            "--model",
+            "continuum",
+        ],
+        &["needs a [macro] scene"],
+    );
+}

@@ -54,6 +54,11 @@ enum Command {
         /// (O(N log N) once).
         #[arg(long, value_enum, default_value_t = Engine::Projection)]
         engine: Engine,
+        /// Which model answers: the N particles of the scene, or (for a
+        /// `[macro]` scene) the continuum solution of its macroscopic datum,
+        /// block by block, whose cost does not grow with N.
+        #[arg(long, value_enum, default_value_t = Model::Particles)]
+        model: Model,
     },
     /// Every collision: time, cluster formed, sizes of the clusters that merged.
     Events {
@@ -175,6 +180,15 @@ enum Command {
     },
 }
 
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum Model {
+    /// The N particles (exact).
+    Particles,
+    /// The continuum solution X(t) = P_K(X⁰ + tU⁰) of a `[macro]` datum
+    /// (exact: rationals and quadratic surds).
+    Continuum,
+}
+
 #[derive(Clone, Copy, ValueEnum)]
 enum Engine {
     /// x(t) = P_K(x⁰ + t u⁰) by pool-adjacent-violators.
@@ -242,7 +256,15 @@ fn main() -> ExitCode {
             at,
             json,
             engine,
+            model: Model::Particles,
         }) => load(&scene).and_then(|s| run(&mut out, &s, &at, json, engine)),
+        Some(Command::Run {
+            scene: path,
+            at,
+            json,
+            model: Model::Continuum,
+            ..
+        }) => load(&path).and_then(|s| run_continuum(&mut out, &s, &path, &at, json)),
         Some(Command::Events { scene, json }) => {
             load(&scene).and_then(|s| events(&mut out, &s, json))
         }
@@ -428,6 +450,83 @@ fn run(
         } else {
             write_state_table(out, &state, data.radius()).map_err(io_err)?;
         }
+    }
+    Ok(())
+}
+
+/// `sticky run --model continuum`: the block-level continuum solution.
+fn run_continuum(
+    out: &mut impl Write,
+    scene: &Scene,
+    path: &std::path::Path,
+    times: &[BigRational],
+    as_json: bool,
+) -> Result<(), Failure> {
+    let SceneKind::Macro { datum, particles } = &scene.kind else {
+        return Err(Failure(format!(
+            "{}: --model continuum needs a [macro] scene (a [particles] scene has no macroscopic datum)",
+            path.display()
+        )));
+    };
+    let c = sticky::limit::continuum::Continuum::new(datum);
+    for t in times {
+        let p = c.profile(t).map_err(|e| Failure(e.to_string()))?;
+        if as_json {
+            writeln!(out, "{}", json::continuum_profile(&p)).map_err(io_err)?;
+            continue;
+        }
+        writeln!(
+            out,
+            "model: continuum — X(t) = P_K(X⁰ + tU⁰) on the macroscopic datum ({} blocks), exact; the scene's N = {particles} is not used",
+            datum.blocks().len()
+        )
+        .map_err(io_err)?;
+        writeln!(out, "t = {}", sticky::rational::render_exact(t)).map_err(io_err)?;
+        let poly = |c: &[sticky::limit::surd::Surd]| -> String {
+            let mut terms = Vec::new();
+            for (k, v) in c.iter().enumerate() {
+                if v.to_string() == "0" {
+                    continue;
+                }
+                terms.push(match k {
+                    0 => format!("{v}"),
+                    1 => format!("({v})·w"),
+                    _ => format!("({v})·w²"),
+                });
+            }
+            if terms.is_empty() {
+                "0".into()
+            } else {
+                terms.join(" + ")
+            }
+        };
+        let rows: Vec<Vec<String>> = p
+            .segments
+            .iter()
+            .map(|g| {
+                vec![
+                    format!("[{}, {}]", g.w0, g.w1),
+                    (g.block + 1).to_string(),
+                    g.plateau.map_or("—".into(), |k| (k + 1).to_string()),
+                    poly(&g.x),
+                    poly(&g.u),
+                    poly(&g.lambda),
+                ]
+            })
+            .collect();
+        write_table(
+            out,
+            &[
+                "w (mass)",
+                "block",
+                "congested",
+                "X(t, w)",
+                "U(t, w)",
+                "Λ(t, w)",
+            ],
+            &rows,
+        )
+        .map_err(io_err)?;
     }
     Ok(())
 }
