@@ -20,8 +20,11 @@
 //!   the note);
 //! * `bigrational_naive` — the generic PAVA on `BigRational` (measured on
 //!   N/10 particles and reported per particle, saying so);
-//! * `events` — the full exact event-driven trajectory
-//!   ([`crate::trajectory::Trajectory::new`]).
+//! * `events` — the full exact event-driven trajectory on the integer engine
+//!   ([`crate::merge::IntegerTrajectory::new`]); `events_lowest` the
+//!   conversion of that history to a `Trajectory<BigRational>`;
+//!   `events_generic` the generic engine on `BigRational`
+//!   ([`crate::trajectory::Trajectory::new`], on N/10 particles).
 //!
 //! Timings are whole calls measured with `std::time::Instant` (median of the
 //! repetitions); they are reports, never test assertions. Memory is the
@@ -38,6 +41,7 @@ use crate::adaptive::{adaptive_blocks_at, Path as Path_};
 use crate::generate::{initial_data, Limits, SplitMix64};
 use crate::initial::InitialData;
 use crate::kernel::{blocks_at, IntegerData};
+use crate::merge::IntegerTrajectory;
 use crate::projection::{isotonic, pava_blocks};
 use crate::scalar::Scalar;
 use crate::trajectory::Trajectory;
@@ -281,6 +285,8 @@ pub fn run(opts: &BenchOptions, t: &BigRational, scripts: &Path) -> BenchReport 
         "adaptive",
         "adaptive_bigdata",
         "events",
+        "events_lowest",
+        "events_generic",
     ];
     let mut acc: Vec<Acc> = names.iter().map(|_| Acc::default()).collect();
     let at = |name: &str| names.iter().position(|m| *m == name).unwrap_or(0);
@@ -356,12 +362,29 @@ pub fn run(opts: &BenchOptions, t: &BigRational, scripts: &Path) -> BenchReport 
         );
         acc[at("bigrational_naive")].push(ns / naive_n as f64, mib);
         if opts.events {
-            let (ns, mib, traj) = measured(|| Trajectory::new(data.clone()));
-            std::hint::black_box(traj.impulses().len());
-            acc[at("events")].note = "full exact event-driven trajectory".into();
+            let (ns, mib, traj) = measured(|| IntegerTrajectory::new(&data));
+            acc[at("events")].note = format!(
+                "full exact event-driven trajectory, integer engine ({:?}): {} clusters formed at {} instants, times kept as exact unreduced fractions",
+                traj.engine(),
+                traj.events(),
+                traj.instants()
+            );
             acc[at("events")].push(ns / nf, mib);
+            let (ns, mib, t) = measured(|| traj.into_trajectory());
+            std::hint::black_box(t.impulses().len());
+            acc[at("events_lowest")].note =
+                "converting that history to a Trajectory<BigRational> (every time and velocity in lowest terms)".into();
+            acc[at("events_lowest")].push(ns / nf, mib);
+            let (ns, mib, traj) = measured(|| Trajectory::new(small.clone()));
+            std::hint::black_box(traj.impulses().len());
+            acc[at("events_generic")].note = format!(
+                "the generic event engine on BigRational, measured on N = {naive_n} and reported per particle"
+            );
+            acc[at("events_generic")].push(ns / naive_n as f64, mib);
         } else {
-            acc[at("events")].note = "skipped (--quick)".into();
+            for name in ["events", "events_lowest", "events_generic"] {
+                acc[at(name)].note = "skipped (--quick)".into();
+            }
         }
         peer_inputs.push(y);
     }

@@ -10,6 +10,11 @@
 //!   (`prop:proj-micro`, `eq:proj-micro-x`), with the right derivative
 //!   `u(t) = P_{H_{x(t)}}(u⁰)` (`eq:proj-u-micro`);
 //! * [`trajectory`] — the event-driven cluster merge, every collision exact;
+//! * [`merge`] — the same merge on fixed-width integers (`i128` sums, 256-bit
+//!   time comparisons), converted to a [`trajectory::Trajectory`] on demand;
+//! * [`kernel`], [`adaptive`] — exact PAVA on integers over common
+//!   denominators (`i128`, 256-bit, `BigInt`), and with `f64` decisions
+//!   certified by an error bound;
 //! * [`contact`] — the multipliers `λ` (`eq:dyn-micro`), Appendix A's KKT
 //!   multipliers, and the pressure `p = dλ/dt` as Dirac masses
 //!   (`prop:micro-pressure`);
@@ -35,6 +40,7 @@ pub mod initial;
 pub mod json;
 pub mod kernel;
 pub mod limit;
+pub mod merge;
 pub mod plot;
 pub mod projection;
 pub mod quantile;

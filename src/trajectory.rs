@@ -117,6 +117,13 @@ fn meeting_time<S: Scalar>(l: &Node<S>, r: &Node<S>) -> Option<S> {
     Some(gap / closing)
 }
 
+/// The prefix sums of the translated positions `x̃⁰` and of the velocities
+/// `u⁰` (`Σ_{j<i}`, N + 1 entries each): cluster sums are differences of
+/// them.
+fn prefix_sums<S: Scalar>(shifted: &[S], u0: &[S]) -> (Vec<S>, Vec<S>) {
+    (prefix(shifted), prefix(u0))
+}
+
 fn prefix<S: Scalar>(v: &[S]) -> Vec<S> {
     let mut out = Vec::with_capacity(v.len() + 1);
     let mut acc = S::zero();
@@ -134,8 +141,7 @@ impl<S: Scalar> Trajectory<S> {
         let n = data.n();
         let shifted = data.shifted_positions();
         let u0 = data.velocities();
-        let prefix_x = prefix(&shifted);
-        let prefix_u = prefix(u0);
+        let (prefix_x, prefix_u) = prefix_sums(&shifted, u0);
         let mut join_time: Vec<Option<S>> = vec![None; n.saturating_sub(1)];
 
         // Initial clusters: contacts with equal velocities.
@@ -244,6 +250,35 @@ impl<S: Scalar> Trajectory<S> {
                 });
             }
         }
+        Self::assemble(data, prefix_x, prefix_u, join_time, impulses)
+    }
+
+    /// A trajectory from a history computed elsewhere (the integer engine
+    /// [`crate::merge`]): `join_time` and `impulses` exactly as
+    /// [`Trajectory::new`] records them. The prefix sums that
+    /// [`Trajectory::at`] reads are computed by the same [`prefix_sums`] as
+    /// in `new` (which keeps its own, already needed for the initial
+    /// clusters, rather than computing them twice), and both constructors
+    /// end in [`Trajectory::assemble`].
+    pub(crate) fn from_parts(
+        data: InitialData<S>,
+        join_time: Vec<Option<S>>,
+        impulses: Vec<Impulse<S>>,
+    ) -> Self {
+        let (prefix_x, prefix_u) = prefix_sums(&data.shifted_positions(), data.velocities());
+        Self::assemble(data, prefix_x, prefix_u, join_time, impulses)
+    }
+
+    /// The one place a trajectory is put together.
+    fn assemble(
+        data: InitialData<S>,
+        prefix_x: Vec<S>,
+        prefix_u: Vec<S>,
+        join_time: Vec<Option<S>>,
+        impulses: Vec<Impulse<S>>,
+    ) -> Self {
+        debug_assert_eq!(prefix_x.len(), data.n() + 1);
+        debug_assert_eq!(join_time.len(), data.n().saturating_sub(1));
         Trajectory {
             data,
             prefix_x,

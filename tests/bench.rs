@@ -39,6 +39,8 @@ fn bench_reports_every_method() {
         "adaptive",
         "adaptive_bigdata",
         "events",
+        "events_lowest",
+        "events_generic",
     ] {
         assert!(
             v["ns_per_particle"][key].as_f64().is_some_and(|x| x > 0.0),

@@ -432,7 +432,7 @@ fn run(
 ) -> Result<(), Failure> {
     let data = &scene.data;
     let traj = match engine {
-        Engine::Events => Some(Trajectory::new(data.clone())),
+        Engine::Events => Some(sticky::merge::trajectory(data)),
         Engine::Projection => None,
     };
     // The projection runs on the integer kernel (common denominators, i128
@@ -595,7 +595,7 @@ fn write_state_table(
 }
 
 fn events(out: &mut impl Write, scene: &Scene, as_json: bool) -> Result<(), Failure> {
-    let traj = Trajectory::new(scene.data.clone());
+    let traj = sticky::merge::trajectory(&scene.data);
     if as_json {
         writeln!(out, "{}", json::events(traj.impulses())).map_err(io_err)?;
         return Ok(());
@@ -644,7 +644,7 @@ fn summary(out: &mut impl Write, scene: &Scene, origin: &str) -> Result<(), Fail
             if datum.blocks().len() == 1 { "" } else { "s" }
         ),
     };
-    let traj = Trajectory::new(data.clone());
+    let traj = sticky::merge::trajectory(data);
     let w = |out: &mut dyn Write, s: String| writeln!(out, "{s}").map_err(io_err);
     w(out, format!("sticky — scene \"{name}\" ({origin})"))?;
     if let Some(d) = &scene.description {
@@ -805,7 +805,7 @@ fn plot(
     use sticky::limit::eulerian::{
         continuum_density_grid, particle_density_grid, particle_pressure_atoms,
     };
-    let traj = Trajectory::new(scene.data.clone());
+    let traj = sticky::merge::trajectory(&scene.data);
     let t_end = t_end.or_else(|| scene.t_end.clone()).unwrap_or_else(|| {
         traj.last_collision()
             .cloned()
