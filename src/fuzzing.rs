@@ -42,3 +42,66 @@ pub fn scene_parser(bytes: &[u8]) {
         }
     }
 }
+
+/// Fuzz target `kernels`: one oracle battery against every exact
+/// implementation. The first two bytes pick a scale `2^s` and an offset
+/// `2^o + 1/3` (so that the data land in every integer width of
+/// [`crate::kernel`]: `i128`, 256-bit, `BigInt`), the rest decode into
+/// admissible data (N ≤ 40); then, at the collision instants (exact ties)
+/// and between them, the integer kernel and the adaptive solver must equal
+/// the generic `BigRational` projection, and the integer event engine
+/// ([`crate::merge`]) must equal the generic event-driven merge. Panics on
+/// any difference.
+pub fn kernels(bytes: &[u8]) {
+    use num_bigint::BigInt;
+    use num_traits::One;
+    let (scale, offset) = match bytes {
+        [a, b, ..] => (u32::from(*a) % 200, u32::from(*b) % 330),
+        _ => (0, 0),
+    };
+    let data = initial_data(
+        bytes.get(2..).unwrap_or(&[]),
+        Limits {
+            max_n: 40,
+            max_den: 8,
+            max_speed: 16,
+        },
+    );
+    let s = BigRational::from_integer(BigInt::one() << scale);
+    let o = BigRational::from_integer(BigInt::one() << offset)
+        + BigRational::new(BigInt::one(), BigInt::from(3));
+    let x = data.positions().iter().map(|x| x * &s + &o).collect();
+    let u = data.velocities().iter().map(|u| u * &s).collect();
+    let Ok(data) = crate::InitialData::new(data.radius() * &s, x, u) else {
+        panic!("scaling and shifting admissible data must keep it admissible");
+    };
+    let generic = crate::trajectory::Trajectory::new(data.clone());
+    let merged = crate::merge::trajectory(&data);
+    assert_eq!(
+        merged.impulses(),
+        generic.impulses(),
+        "integer events ≠ generic events"
+    );
+    assert_eq!(
+        merged.join_times(),
+        generic.join_times(),
+        "integer join times ≠ generic"
+    );
+    let ints = crate::kernel::IntegerData::new(&data);
+    for t in crate::claims::micro::probe_times(&generic, Some(6)) {
+        let want = crate::projection::state_at(&data, &t).expect("t ≥ 0");
+        let got = crate::kernel::state_at(&ints, &t).expect("t ≥ 0");
+        assert_eq!(got, want, "integer kernel ≠ generic projection at t = {t}");
+        let adaptive = crate::adaptive::adaptive_blocks_at(&ints, &t).blocks;
+        assert_eq!(
+            adaptive,
+            crate::kernel::blocks_at(&ints, &t),
+            "adaptive ≠ kernel at t = {t}"
+        );
+        assert_eq!(
+            merged.at(&t).expect("t ≥ 0"),
+            want,
+            "integer events ≠ projection at t = {t}"
+        );
+    }
+}

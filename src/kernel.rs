@@ -40,9 +40,8 @@
 //! tests use as the oracle, on both sides of each width's bound.
 
 use num_bigint::{BigInt, Sign};
-use num_integer::Integer;
 use num_rational::BigRational;
-use num_traits::{One, Signed, ToPrimitive, Zero};
+use num_traits::{Signed, ToPrimitive, Zero};
 
 use crate::cluster::{runs, Cluster};
 use crate::error::Error;
@@ -115,22 +114,18 @@ pub struct IntegerData {
     two_r: BigRational,
 }
 
-fn lcm_of<'a>(it: impl Iterator<Item = &'a BigRational>) -> BigInt {
-    it.fold(BigInt::one(), |acc, q| acc.lcm(q.denom()))
-}
-
-fn scale(v: &[BigRational], d: &BigInt) -> Vec<BigInt> {
-    v.iter().map(|q| q.numer() * (d / q.denom())).collect()
-}
-
 impl IntegerData {
     /// Scales the data once.
     pub fn new(data: &InitialData<BigRational>) -> Self {
-        let shifted = data.shifted_positions();
-        let dx = lcm_of(shifted.iter());
-        let du = lcm_of(data.velocities().iter());
-        let x = scale(&shifted, &dx);
-        let u = scale(data.velocities(), &du);
+        // Machine words when every scaled value fits `i128` (the common
+        // case, ~30× cheaper), `BigInt` otherwise: the same integers.
+        let (x, u, dx, du) = match crate::scaling::scale_words(data) {
+            Some(s) => {
+                let big = |v: &[i128]| v.iter().map(|&a| BigInt::from(a)).collect::<Vec<_>>();
+                (big(&s.x), big(&s.u), s.dx, s.du)
+            }
+            None => crate::scaling::scale_big(data),
+        };
         let max_bits = |v: &[BigInt]| v.iter().map(BigInt::bits).max().unwrap_or(0);
         let approx = |v: &[BigInt]| -> Vec<f64> {
             v.iter()
@@ -514,6 +509,7 @@ mod tests {
     use super::*;
     use crate::generate::{initial_data, Limits, SplitMix64};
     use crate::projection;
+    use num_traits::One;
 
     #[test]
     fn equals_the_generic_path() {

@@ -47,6 +47,7 @@ pub mod quantile;
 pub mod rational;
 pub mod reference;
 pub mod scalar;
+pub(crate) mod scaling;
 pub mod scene;
 pub mod state;
 pub mod trajectory;

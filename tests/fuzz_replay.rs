@@ -32,3 +32,9 @@ fn replay_scene_parser_inputs() {
     let n = replay("scene_parser", sticky::fuzzing::scene_parser);
     eprintln!("replayed {n} scene_parser inputs");
 }
+
+#[test]
+fn replay_kernels_inputs() {
+    let n = replay("kernels", sticky::fuzzing::kernels);
+    eprintln!("replayed {n} kernels inputs");
+}

@@ -1,0 +1,272 @@
+//! The initial data on common denominators: `x̃⁰_i = X_i / D_x`,
+//! `u⁰_i = U_i / D_u` with integers `X_i`, `U_i` and `D_x`, `D_u` the least
+//! common denominators of the translated positions (`df:translat-x`) and of
+//! the velocities. Both fast exact engines start here: the integer PAVA
+//! ([`crate::kernel`]) and the integer event merge ([`crate::merge`]).
+//!
+//! [`scale_words`] does it on machine words (a running lcm with a memo of
+//! `lcm / d`, divisibility tests and exact divisions without a division
+//! instruction): ~45 ns per particle at N = 10⁶, against ~1.3 µs through
+//! `BigInt`. [`scale_big`] is the `BigInt` path, for data whose scaled
+//! values do not fit `i128`.
+
+use num_bigint::BigInt;
+use num_integer::Integer;
+use num_rational::BigRational;
+use num_traits::ToPrimitive;
+
+use crate::initial::InitialData;
+
+/// The scaled data `x̃⁰_i = x[i] / dx`, `u⁰_i = u[i] / du`.
+#[derive(Debug, Clone)]
+pub(crate) struct Scaled {
+    pub(crate) x: Vec<i128>,
+    pub(crate) u: Vec<i128>,
+    pub(crate) dx: BigInt,
+    pub(crate) du: BigInt,
+}
+
+/// Numerator and denominator of a rational, when they fit.
+fn small(q: &BigRational) -> Option<(i128, u128)> {
+    Some((q.numer().to_i128()?, q.denom().to_u128()?))
+}
+
+/// `a / b` and `a % b`, on 64-bit words when both fit (`b > 0`).
+#[inline]
+fn div_rem(a: u128, b: u128) -> (u128, u128) {
+    match (u64::try_from(a), u64::try_from(b)) {
+        (Ok(a), Ok(b)) => (u128::from(a / b), u128::from(a % b)),
+        _ => (a / b, a % b),
+    }
+}
+
+/// `gcd(a, b)`, on 64-bit words when both fit.
+fn gcd_fast(a: u128, b: u128) -> u128 {
+    match (u64::try_from(a), u64::try_from(b)) {
+        (Ok(a), Ok(b)) => u128::from(a.gcd(&b)),
+        _ => a.gcd(&b),
+    }
+}
+
+/// Common denominators on machine words: the running `lcm` of the
+/// denominators seen, with a small direct-mapped memo of `lcm / d` (random
+/// data have few distinct denominators, and a division per particle would
+/// cost more than the rest of the scaling).
+struct Denominators {
+    lcm: u128,
+    memo: [(u128, u128); 64],
+}
+
+impl Denominators {
+    fn new() -> Self {
+        Denominators {
+            lcm: 1,
+            memo: [(0, 0); 64],
+        }
+    }
+    fn slot(d: u128) -> usize {
+        ((d ^ (d >> 6) ^ (d >> 12)) & 63) as usize
+    }
+    /// Takes `d > 0` into the lcm; `None` on overflow.
+    fn add(&mut self, d: u128) -> Option<()> {
+        let h = Self::slot(d);
+        if self.memo[h].0 == d {
+            return Some(());
+        }
+        if div_rem(self.lcm, d).1 != 0 {
+            self.lcm = (self.lcm / gcd_fast(self.lcm, d)).checked_mul(d)?;
+        }
+        // A multiple of the lcm stays a multiple as it grows; the quotient
+        // is filled in by `factor` once the lcm is final.
+        self.memo[h] = (d, 0);
+        Some(())
+    }
+    /// Freezes the lcm: forgets the memo (its quotients are recomputed).
+    fn finish(&mut self) {
+        self.memo = [(0, 0); 64];
+    }
+    /// `lcm / d` for a denominator taken in.
+    fn factor(&mut self, d: u128) -> u128 {
+        let h = Self::slot(d);
+        if self.memo[h].0 != d {
+            self.memo[h] = (d, div_rem(self.lcm, d).0);
+        }
+        self.memo[h].1
+    }
+}
+
+/// `a · b` checked, with a fast path for factors that fit `i64`.
+pub(crate) trait MulSmall: Sized {
+    fn mul_small(self, b: Self) -> Option<Self>;
+}
+
+impl MulSmall for i128 {
+    #[inline]
+    fn mul_small(self, b: i128) -> Option<i128> {
+        match (i64::try_from(self), i64::try_from(b)) {
+            // |a|, |b| ≤ 2^63: the product is at most 2^126, the wrapping
+            // product is the exact one.
+            (Ok(a), Ok(b)) => Some(i128::from(a).wrapping_mul(i128::from(b))),
+            _ => self.checked_mul(b),
+        }
+    }
+}
+
+/// "Does `g` divide `v`?" for a fixed `g > 0` without a division when `g`
+/// and `v` fit 64 bits (Granlund and Montgomery): with `g = 2^z g_odd`,
+/// `g | v` iff `2^z | v` and `(v / 2^z) · g_odd⁻¹ mod 2^64 ≤ ⌊(2^64 − 1) / g_odd⌋`
+/// (multiplication by `g_odd⁻¹` maps the multiples of `g_odd` below `2^64`
+/// one-to-one onto `0 ..= ⌊(2^64 − 1)/g_odd⌋`).
+pub(crate) struct Divisibility {
+    g: u128,
+    small: Option<(u32, u64, u64)>,
+}
+
+impl Divisibility {
+    pub(crate) fn new(g: u128) -> Self {
+        let small = u64::try_from(g).ok().map(|g| {
+            let shift = g.trailing_zeros();
+            let odd = g >> shift;
+            // Newton's iteration: 3 → 6 → … → 96 ≥ 64 correct low bits.
+            let mut inverse = odd;
+            for _ in 0..5 {
+                inverse = inverse.wrapping_mul(2u64.wrapping_sub(odd.wrapping_mul(inverse)));
+            }
+            (shift, inverse, u64::MAX / odd)
+        });
+        Divisibility { g, small }
+    }
+    #[inline]
+    pub(crate) fn divides(&self, v: u128) -> bool {
+        match (self.small, u64::try_from(v)) {
+            (Some((shift, inverse, limit)), Ok(v)) => {
+                v.trailing_zeros() >= shift && (v >> shift).wrapping_mul(inverse) <= limit
+            }
+            _ => div_rem(v, self.g).1 == 0,
+        }
+    }
+}
+
+/// Division by a fixed `g > 0` of multiples of `g`, without a division
+/// instruction: `v / g = (v / 2^z) · g_odd⁻¹ mod 2^128` for `g = 2^z g_odd`
+/// (exact because `g_odd` divides `v / 2^z`, and `g_odd` is invertible
+/// modulo `2^128`).
+pub(crate) struct ExactDiv {
+    shift: u32,
+    inverse: u128,
+}
+
+impl ExactDiv {
+    pub(crate) fn new(g: u128) -> Self {
+        let shift = g.trailing_zeros();
+        let odd = g >> shift;
+        // Newton's iteration doubles the number of correct low bits; `odd`
+        // is its own inverse modulo 8 (3 bits): 3 → 6 → … → 192 ≥ 128.
+        let mut inverse = odd;
+        for _ in 0..6 {
+            inverse = inverse.wrapping_mul(2u128.wrapping_sub(odd.wrapping_mul(inverse)));
+        }
+        ExactDiv { shift, inverse }
+    }
+    /// `v / g` for a multiple `v` of `g`.
+    #[inline]
+    pub(crate) fn apply(&self, v: i128) -> i128 {
+        let q = ((v.unsigned_abs() >> self.shift).wrapping_mul(self.inverse)) as i128;
+        if v < 0 {
+            -q
+        } else {
+            q
+        }
+    }
+}
+
+/// Scales on machine words: `None` when an intermediate value overflows.
+pub(crate) fn scale_words(data: &InitialData<BigRational>) -> Option<Scaled> {
+    let (rn, rd) = small(&data.two_r())?;
+    let read = |v: &[BigRational], den: &mut Denominators| {
+        let mut out = Vec::with_capacity(v.len());
+        for q in v {
+            let (p, d) = small(q)?;
+            den.add(d)?;
+            out.push((p, d));
+        }
+        Some(out)
+    };
+    // D = lcm(denominators of x⁰, denominator of 2r).
+    let mut den = Denominators::new();
+    den.add(rd)?;
+    let raw = read(data.positions(), &mut den)?;
+    den.finish();
+    // X'_i = x⁰_i D − i (2r) D, then divided by the gcd g of D and every X'_i:
+    // D / g is the least common denominator of the x̃⁰_i.
+    let step = rn.checked_mul(i128::try_from(den.factor(rd)).ok()?)?;
+    let mut x = Vec::with_capacity(raw.len());
+    let mut offset = 0i128;
+    let mut g = den.lcm;
+    let mut test = Divisibility::new(g);
+    for &(p, d) in &raw {
+        let v = p
+            .mul_small(i128::try_from(den.factor(d)).ok()?)?
+            .checked_sub(offset)?;
+        offset = offset.checked_add(step)?;
+        if g != 1 && !test.divides(v.unsigned_abs()) {
+            g = gcd_fast(g, div_rem(v.unsigned_abs(), g).1);
+            test = Divisibility::new(g);
+        }
+        x.push(v);
+    }
+    drop(raw);
+    if g > 1 {
+        let div = ExactDiv::new(g);
+        for v in &mut x {
+            *v = div.apply(*v);
+        }
+    }
+    let dx = den.lcm / g;
+    let mut den = Denominators::new();
+    let raw = read(data.velocities(), &mut den)?;
+    den.finish();
+    let mut u = Vec::with_capacity(raw.len());
+    for &(p, d) in &raw {
+        u.push(p.mul_small(i128::try_from(den.factor(d)).ok()?)?);
+    }
+    Some(Scaled {
+        x,
+        u,
+        dx: BigInt::from(dx),
+        du: BigInt::from(den.lcm),
+    })
+}
+
+/// The same scaling on `BigInt`, for any data.
+pub(crate) fn scale_big(
+    data: &InitialData<BigRational>,
+) -> (Vec<BigInt>, Vec<BigInt>, BigInt, BigInt) {
+    let lcm = |v: &[BigRational]| v.iter().fold(BigInt::from(1), |acc, q| acc.lcm(q.denom()));
+    let scale = |v: &[BigRational], d: &BigInt| -> Vec<BigInt> {
+        v.iter().map(|q| q.numer() * (d / q.denom())).collect()
+    };
+    let shifted = data.shifted_positions();
+    let dx = lcm(&shifted);
+    let du = lcm(data.velocities());
+    (scale(&shifted, &dx), scale(data.velocities(), &du), dx, du)
+}
+
+/// The scaling in `i128` by whichever path applies; `None` when a scaled
+/// value does not fit `i128`.
+pub(crate) fn scale_i128(data: &InitialData<BigRational>) -> Option<Scaled> {
+    scale_words(data).or_else(|| {
+        let (x, u, dx, du) = scale_big(data);
+        let narrow = |v: &[BigInt]| {
+            v.iter()
+                .map(ToPrimitive::to_i128)
+                .collect::<Option<Vec<_>>>()
+        };
+        Some(Scaled {
+            x: narrow(&x)?,
+            u: narrow(&u)?,
+            dx,
+            du,
+        })
+    })
+}
