@@ -290,7 +290,9 @@ pub fn run(opts: &BenchOptions, t: &BigRational, scripts: &Path) -> BenchReport 
     ];
     let mut acc: Vec<Acc> = names.iter().map(|_| Acc::default()).collect();
     let at = |name: &str| names.iter().position(|m| *m == name).unwrap_or(0);
-    let naive_n = (n / 10).max(1);
+    // The naive and generic engines on N/10 particles, at most 10^5 (they
+    // are linear-time per particle; reported per particle, saying so).
+    let naive_n = (n / 10).clamp(1, 100_000);
     let mut peer_inputs: Vec<Vec<f64>> = Vec::new();
     // One untimed warm-up repetition (on its own scene) unless measuring
     // memory: see [`Memory`].
