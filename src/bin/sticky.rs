@@ -90,10 +90,11 @@ enum Command {
         /// Number of particles.
         #[arg(long, default_value_t = 1_000_000)]
         n: usize,
-        /// Repetitions, each on a fresh scene.
-        #[arg(long, default_value_t = 3)]
-        reps: usize,
-        /// Quick run: no event-driven trajectory.
+        /// Repetitions, each on a fresh scene (default 3; 2 with --quick).
+        #[arg(long)]
+        reps: Option<usize>,
+        /// Quick run (under two minutes at N = 10^6): no event-driven
+        /// trajectory, 2 repetitions.
         #[arg(long)]
         quick: bool,
         /// Skip the Python peers.
@@ -302,7 +303,7 @@ fn main() -> ExitCode {
             }
             let opts = sticky::bench::ScalingOptions {
                 ns,
-                reps,
+                reps: reps.unwrap_or(3),
                 peers: !no_peers,
                 memory,
                 out: dir.unwrap_or_else(|| PathBuf::from("out/bench")),
@@ -340,7 +341,7 @@ fn main() -> ExitCode {
         }) => {
             let opts = sticky::bench::BenchOptions {
                 n,
-                reps,
+                reps: reps.unwrap_or(if quick { 2 } else { 3 }),
                 peers: !no_peers,
                 events: !quick,
                 memory,
