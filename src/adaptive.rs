@@ -36,7 +36,7 @@ use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::ToPrimitive;
 
-use crate::kernel::{blocks_at, AtTime, Blocks, IntegerData, Run, Sums, Width};
+use crate::kernel::{blocks_at, pools, AtTime, Blocks, IntegerData, Run, Sums, Width};
 
 /// `u = 2^−53`, the unit roundoff of `f64`.
 const U: f64 = f64::EPSILON / 2.0;
@@ -99,14 +99,12 @@ impl Exact<'_> {
         let sum = |v: &[BigInt], r: std::ops::Range<usize>| -> BigInt { v[r].iter().sum() };
         let (xa, ua) = (sum(&self.d.x, f..m), sum(&self.d.u, f..m));
         let (xb, ub) = (sum(&self.d.x, m..end), sum(&self.d.u, m..end));
-        let ya = &self.at.a * xa + &self.at.b * &ua;
-        let yb = &self.at.a * xb + &self.at.b * &ub;
-        let (ka, kb) = (BigInt::from(ka), BigInt::from(kb));
-        match (ya * &kb).cmp(&(yb * &ka)) {
-            std::cmp::Ordering::Greater => true,
-            std::cmp::Ordering::Less => false,
-            std::cmp::Ordering::Equal => ua * kb >= ub * ka,
-        }
+        let run = |k: u64, x: BigInt, u: BigInt| Run {
+            k,
+            sy: &self.at.a * x + &self.at.b * &u,
+            su: u,
+        };
+        pools(&run(ka, xa, ua), &run(kb, xb, ub))
     }
 }
 
@@ -119,7 +117,8 @@ fn certified_partition(
     let n = d.n();
     let (a, b) = (at.a.to_f64()?, at.b.to_f64()?);
     let max = |v: &[f64]| v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-    let big_a = a.abs() * max(&d.xf) + b.abs() * max(&d.uf);
+    let (xf, uf) = d.approx();
+    let big_a = a.abs() * max(xf) + b.abs() * max(uf);
     let e0 = 8.0 * U * big_a;
     // Every |ŷ_i| ≤ A(1 + 7u) and every |s| ≤ N A(1 + …): finite when
     // N A is well inside the f64 range; block sizes exact below 2^53.
@@ -131,7 +130,7 @@ fn certified_partition(
     let mut stack: Vec<Approx> = Vec::with_capacity(n);
     for i in 0..n {
         let mut cur = Approx {
-            s: a * d.xf[i] + b * d.uf[i],
+            s: a * xf[i] + b * uf[i],
             e: e0,
             k: 1.0,
             first: i,
