@@ -4,7 +4,7 @@
 //! the median of the samples, in ns per particle (or per operation), with
 //! the ratio to f64 PAVA measured in the same run. Reports, never
 //! assertions; `sticky bench` is the whole-call comparison with the peers.
-//! `sticky bench` runs under `MALLOC_MMAP_MAX_=0` (see `sticky::bench::Memory`);
+//! `sticky bench` runs under `MALLOC_MMAP_MAX_=0` (see `sticky::report::bench::Memory`);
 //! `MALLOC_MMAP_MAX_=0 cargo bench` gives the same allocator setting here.
 
 use std::hint::black_box;
@@ -13,12 +13,12 @@ use std::time::Instant;
 use num_bigint::BigInt;
 use num_rational::BigRational;
 
-use sticky::adaptive::adaptive_blocks_at;
-use sticky::bench::{decimal_scene, scene};
-use sticky::kernel::{blocks_at, IntegerData};
+use sticky::fast::adaptive::adaptive_blocks_at;
+use sticky::fast::kernel::{blocks_at, IntegerData};
+use sticky::fast::wide::I256;
 use sticky::projection::isotonic;
+use sticky::report::bench::{decimal_scene, scene};
 use sticky::scalar::Scalar;
-use sticky::wide::I256;
 
 const SAMPLES: usize = 9;
 

@@ -6,52 +6,54 @@
 //! equations* (the paper; its `\label`s are cited next to the code that
 //! implements or checks them).
 //!
-//! * [`projection`] — `x(t) = P_K(x⁰ + t u⁰)` by pool-adjacent-violators
-//!   (`prop:proj-micro`, `eq:proj-micro-x`), with the right derivative
-//!   `u(t) = P_{H_{x(t)}}(u⁰)` (`eq:proj-u-micro`);
-//! * [`trajectory`] — the event-driven cluster merge, every collision exact;
-//! * [`merge`] — the same merge on fixed-width integers (`i128` sums, 256-bit
-//!   time comparisons), converted to a [`trajectory::Trajectory`] on demand;
-//! * [`kernel`], [`adaptive`] — exact PAVA on integers over common
-//!   denominators (`i128`, 256-bit, `BigInt`), and with `f64` decisions
-//!   certified by an error bound;
-//! * [`contact`] — the multipliers `λ` (`eq:dyn-micro`), Appendix A's KKT
-//!   multipliers, and the pressure `p = dλ/dt` as Dirac masses
-//!   (`prop:micro-pressure`);
-//! * [`cluster`] — contact sets `Ω_x` (`df:Omega-micro`), clusters, `H_x`
-//!   (`df:H-micro`);
-//! * [`scene`] and [`quantile`] — the TOML scene format and quantile sampling
-//!   of macroscopic data;
-//! * [`scalar`] — the numeric trait all of it is written over.
+//! ## Layers
+//!
+//! The folders are layers; a layer imports only the layers above it in this
+//! list (checked by `tests/layers.rs`).
+//!
+//! 1. **The model core**, at the top of `src/`, in the paper's vocabulary:
+//!    [`scalar`] (the numeric trait everything is written over), [`rational`],
+//!    [`initial`] data, [`state`], [`cluster`] (`df:Omega-micro`,
+//!    `df:H-micro`), [`projection`] (`x(t) = P_K(x⁰ + t u⁰)` by
+//!    pool-adjacent-violators, `prop:proj-micro`), [`trajectory`] (the
+//!    event-driven cluster merge), [`contact`] (the multipliers `λ` of
+//!    `eq:dyn-micro`, Appendix A's KKT multipliers, the pressure of
+//!    `prop:micro-pressure`), [`scene`] and [`quantile`] (scene files and
+//!    quantile sampling), [`generate`], [`violation`], [`text`], [`error`].
+//! 2. [`fast`] — the exact integer engines (kernel, adaptive, integer merge).
+//! 3. [`reference`] — the `f64` solvers, and [`reference::measure`], the one
+//!    owner of every error metric.
+//! 4. [`limit`] — the hydrodynamic limit (section 3, Appendix C).
+//! 5. [`claims`] — one checker per claim of the paper, the ledger.
+//! 6. [`report`] — JSON output, and (feature `report`) charts, atlas, bench.
+//!
+//! The `sticky` command line (feature `cli`, on by default) sits above all
+//! of them, in `src/bin/sticky/`, one module per command.
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
-pub mod adaptive;
-pub mod atlas;
-pub mod bench;
-pub mod claims;
+// 1. The model core.
 pub mod cluster;
 pub mod contact;
 pub mod error;
-pub mod figures;
-pub mod fuzzing;
 pub mod generate;
 pub mod initial;
-pub mod json;
-pub mod kernel;
-pub mod limit;
-pub mod merge;
-pub mod plot;
 pub mod projection;
 pub mod quantile;
 pub mod rational;
-pub mod reference;
 pub mod scalar;
-pub(crate) mod scaling;
 pub mod scene;
 pub mod state;
+pub mod text;
 pub mod trajectory;
-pub mod wide;
+pub mod violation;
+
+// 2–6. The layers above it.
+pub mod claims;
+pub mod fast;
+pub mod limit;
+pub mod reference;
+pub mod report;
 
 pub use error::Error;
 pub use initial::InitialData;

@@ -242,7 +242,7 @@ pub fn particles_toml(data: &InitialData<BigRational>, name: Option<&str>) -> St
     if let Some(name) = name {
         out.push_str("name = ");
         // A JSON string literal (with DEL escaped) is a valid TOML basic string.
-        out.push_str(&crate::json::string(name));
+        out.push_str(&crate::text::string(name));
         out.push('\n');
     }
     out.push_str("\n[particles]\n");

@@ -254,7 +254,7 @@ impl<S: Scalar> Trajectory<S> {
     }
 
     /// A trajectory from a history computed elsewhere (the integer engine
-    /// [`crate::merge`]): `join_time` and `impulses` exactly as
+    /// [`crate::fast::merge`]): `join_time` and `impulses` exactly as
     /// [`Trajectory::new`] records them. The prefix sums that
     /// [`Trajectory::at`] reads are computed by the same [`prefix_sums`] as
     /// in `new` (which keeps its own, already needed for the initial
@@ -392,6 +392,42 @@ fn merge<S: Scalar>(
     nodes[r].alive = false;
     nodes.push(node);
     id
+}
+
+/// The times at which a trajectory is worth checking: 0, the distinct
+/// collision times, the midpoint of every pair of consecutive collision
+/// times, and a time after the last collision. With `limit = Some(k)`, only
+/// `k` collision instants spread evenly over the history (always including
+/// the first and the last) and their midpoints are kept.
+pub fn probe_times<S: Scalar>(traj: &Trajectory<S>, limit: Option<usize>) -> Vec<S> {
+    let mut instants: Vec<&S> = Vec::new();
+    for imp in traj.impulses() {
+        if instants.last() != Some(&&imp.t) {
+            instants.push(&imp.t);
+        }
+    }
+    let keep: Vec<usize> = match limit {
+        Some(k) if instants.len() > k && k >= 2 => {
+            let m = instants.len() - 1;
+            let mut idx: Vec<usize> = (0..k).map(|j| j * m / (k - 1)).collect();
+            idx.dedup();
+            idx
+        }
+        _ => (0..instants.len()).collect(),
+    };
+    let mut times = vec![S::zero()];
+    for &j in &keep {
+        let before = if j == 0 {
+            S::zero()
+        } else {
+            instants[j - 1].clone()
+        };
+        times.push((before + instants[j]) / S::from_i64(2));
+        times.push(instants[j].clone());
+    }
+    let last = instants.last().map_or_else(S::zero, |t| (*t).clone());
+    times.push(last + &S::one());
+    times
 }
 
 #[cfg(test)]

@@ -16,8 +16,8 @@ use std::fs;
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
-use sticky::atlas::{run, AtlasError, AtlasOptions, CSV_COLUMNS, EXACT_METHODS, METHODS};
-use sticky::plot::{png_support, PngSupport};
+use sticky::report::atlas::{run, AtlasError, AtlasOptions, CSV_COLUMNS, EXACT_METHODS, METHODS};
+use sticky::report::plot::{png_support, PngSupport};
 
 /// The quick atlas, run once for all tests of this file.
 fn atlas() -> &'static (PathBuf, Vec<PathBuf>) {

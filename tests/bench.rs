@@ -2,7 +2,7 @@
 //! as documented (timings are reports, never asserted).
 
 use num_rational::BigRational;
-use sticky::bench::{json, run, scene, BenchOptions};
+use sticky::report::bench::{json, run, scene, BenchOptions};
 
 #[test]
 fn bench_reports_every_method() {

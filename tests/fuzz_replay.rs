@@ -1,5 +1,5 @@
 //! Replays every committed fuzz input (`tests/fuzz_inputs/<target>/*`)
-//! through the same code the fuzz targets run (`sticky::fuzzing`). A crash
+//! through the same code the fuzz targets run (`sticky::claims::fuzz`). A crash
 //! found by `cargo fuzz` is copied here once fixed, so it stays fixed.
 
 use std::fs;
@@ -23,18 +23,18 @@ fn replay(target: &str, f: fn(&[u8])) -> usize {
 
 #[test]
 fn replay_claims_inputs() {
-    let n = replay("claims", sticky::fuzzing::claims);
+    let n = replay("claims", sticky::claims::fuzz::claims);
     eprintln!("replayed {n} claims inputs");
 }
 
 #[test]
 fn replay_scene_parser_inputs() {
-    let n = replay("scene_parser", sticky::fuzzing::scene_parser);
+    let n = replay("scene_parser", sticky::claims::fuzz::scene_parser);
     eprintln!("replayed {n} scene_parser inputs");
 }
 
 #[test]
 fn replay_kernels_inputs() {
-    let n = replay("kernels", sticky::fuzzing::kernels);
+    let n = replay("kernels", sticky::claims::fuzz::kernels);
     eprintln!("replayed {n} kernels inputs");
 }

@@ -8,9 +8,9 @@ use num_rational::BigRational;
 use num_traits::One;
 use proptest::prelude::*;
 
-use sticky::adaptive::adaptive_blocks_at;
+use sticky::fast::adaptive::adaptive_blocks_at;
+use sticky::fast::kernel::{self, blocks_at, IntegerData, Width};
 use sticky::generate::{initial_data, Limits};
-use sticky::kernel::{self, blocks_at, IntegerData, Width};
 use sticky::projection;
 use sticky::InitialData;
 

@@ -1,4 +1,4 @@
-//! The integer event engine [`sticky::merge::IntegerTrajectory`] against the
+//! The integer event engine [`sticky::fast::merge::IntegerTrajectory`] against the
 //! generic exact engine `Trajectory::<BigRational>::new` (an independent
 //! implementation of the same merge on `BigRational`, itself checked against
 //! the projection formula `prop:proj-micro` elsewhere): equal impulses, join
@@ -9,10 +9,10 @@ use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{One, Zero};
 use proptest::prelude::*;
-use sticky::claims::micro::probe_times;
+use sticky::fast::merge::{Engine, IntegerTrajectory};
 use sticky::generate::{initial_data, Limits, SplitMix64};
 use sticky::initial::unshift;
-use sticky::merge::{Engine, IntegerTrajectory};
+use sticky::trajectory::probe_times;
 use sticky::trajectory::Trajectory;
 use sticky::InitialData;
 
@@ -311,7 +311,7 @@ fn chain_reaction_ahead_of_the_queue() {
 #[test]
 fn bench_scenes_agree() {
     for (n, seed) in [(1, 1), (2, 2), (50, 3), (300, 4), (2000, 5)] {
-        let data = sticky::bench::scene(n, seed);
+        let data = sticky::report::bench::scene(n, seed);
         let (engine, _) = agree_with(&data, Some(12));
         assert_eq!(engine, Engine::Int64);
     }

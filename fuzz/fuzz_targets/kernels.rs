@@ -4,4 +4,4 @@
 #![no_main]
 use libfuzzer_sys::fuzz_target;
 
-fuzz_target!(|data: &[u8]| sticky::fuzzing::kernels(data));
+fuzz_target!(|data: &[u8]| sticky::claims::fuzz::kernels(data));

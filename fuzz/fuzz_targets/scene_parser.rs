@@ -2,4 +2,4 @@
 #![no_main]
 use libfuzzer_sys::fuzz_target;
 
-fuzz_target!(|data: &[u8]| sticky::fuzzing::scene_parser(data));
+fuzz_target!(|data: &[u8]| sticky::claims::fuzz::scene_parser(data));

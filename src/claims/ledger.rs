@@ -408,7 +408,7 @@ pub fn table(entries: &[Entry]) -> String {
 }
 
 fn json_outcome(o: &Outcome) -> String {
-    let s = crate::json::string;
+    let s = crate::text::string;
     format!(
         "\"status\": {}, \"cases\": {}, \"witness\": {}, \"note\": {}",
         s(o.status.label()),
@@ -428,7 +428,7 @@ fn json_outcome(o: &Outcome) -> String {
 /// The ledger as JSON: `[{"id", "statement", "status", "cases", "engines",
 /// "witness", …}, …]`.
 pub fn json(entries: &[Entry]) -> String {
-    let s = crate::json::string;
+    let s = crate::text::string;
     let items: Vec<String> = entries
         .iter()
         .map(|e| {

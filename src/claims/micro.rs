@@ -1090,41 +1090,7 @@ fn uniqueness<S: Scalar>(case: &Case<S>, id: &'static str, corrected: bool) -> R
     Ok(())
 }
 
-/// The times at which a trajectory is worth checking: 0, the distinct
-/// collision times, the midpoint of every pair of consecutive collision
-/// times, and a time after the last collision. With `limit = Some(k)`, only
-/// `k` collision instants spread evenly over the history (always including
-/// the first and the last) and their midpoints are kept.
-pub fn probe_times<S: Scalar>(traj: &Trajectory<S>, limit: Option<usize>) -> Vec<S> {
-    let mut instants: Vec<&S> = Vec::new();
-    for imp in traj.impulses() {
-        if instants.last() != Some(&&imp.t) {
-            instants.push(&imp.t);
-        }
-    }
-    let keep: Vec<usize> = match limit {
-        Some(k) if instants.len() > k && k >= 2 => {
-            let m = instants.len() - 1;
-            let mut idx: Vec<usize> = (0..k).map(|j| j * m / (k - 1)).collect();
-            idx.dedup();
-            idx
-        }
-        _ => (0..instants.len()).collect(),
-    };
-    let mut times = vec![S::zero()];
-    for &j in &keep {
-        let before = if j == 0 {
-            S::zero()
-        } else {
-            instants[j - 1].clone()
-        };
-        times.push((before + instants[j]) / S::from_i64(2));
-        times.push(instants[j].clone());
-    }
-    let last = instants.last().map_or_else(S::zero, |t| (*t).clone());
-    times.push(last + &S::one());
-    times
-}
+pub use crate::trajectory::probe_times;
 
 /// Runs the core section-2 checkers (`prop:proj-micro`, `eq:dyn-micro`,
 /// `prop:micro-pressure`) on one trajectory at the probe times (all of them,

@@ -17,14 +17,13 @@
 // pairs `(i, i+1)`), which reads closer to the statements than iterators.
 #![allow(clippy::needless_range_loop)]
 
-use std::fmt;
-
 use crate::initial::InitialData;
 use crate::scalar::Scalar;
 use crate::trajectory::Trajectory;
 
 pub mod appendix_c;
 pub mod discrete;
+pub mod fuzz;
 pub mod ledger;
 pub mod micro;
 pub mod registry;
@@ -33,32 +32,7 @@ pub mod scaling;
 
 pub use registry::registry;
 
-/// A claim found false on a concrete input, with the exact witness.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Violation {
-    /// The claim id: the paper's `\label`, plus `#step` for a proof step.
-    pub claim: &'static str,
-    /// What failed, with the exact values on both sides.
-    pub witness: String,
-}
-
-impl Violation {
-    /// A violation of `claim` described by `witness`.
-    pub fn new(claim: &'static str, witness: impl Into<String>) -> Self {
-        Violation {
-            claim,
-            witness: witness.into(),
-        }
-    }
-}
-
-impl fmt::Display for Violation {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{} violated: {}", self.claim, self.witness)
-    }
-}
-
-impl std::error::Error for Violation {}
+pub use crate::violation::Violation;
 
 /// One initial datum with its whole sticky history and the times at which
 /// claims are evaluated (0, collision instants, midpoints, after the last).

@@ -40,11 +40,11 @@ use num_traits::Signed;
 
 use super::continuum::{Continuum, Profile, Segment};
 use super::converge::x_l2_squared;
-use crate::claims::Violation;
 use crate::error::Error;
 use crate::quantile::{Block, BlockVelocity, MacroDatum};
 use crate::scalar::Scalar;
 use crate::trajectory::Trajectory;
+use crate::violation::Violation;
 
 type Q = BigRational;
 

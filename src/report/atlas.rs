@@ -78,14 +78,14 @@ use num_traits::{Signed, Zero};
 
 use crate::generate::{initial_data, Limits, SplitMix64};
 use crate::initial::{unshift, InitialData};
-use crate::plot::{
-    palette, png_support, write_chart, write_grid, write_whole, Axis, Cell, Chart, Grid, Marker,
-    PlotError, PngSupport, Rgb, Series, BLACK_RGB,
-};
 use crate::projection::state_at;
 use crate::reference::{
     measure, round_to_f64, velocity_scale, CatchingUp, Errors, ErrorsF64, EventsF64,
     IterativeProjection, MoreauJean, Output, PavaF64, Solver, Work,
+};
+use crate::report::plot::{
+    palette, png_support, write_chart, write_grid, write_whole, Axis, Cell, Chart, Grid, Marker,
+    PlotError, PngSupport, Rgb, Series, BLACK_RGB,
 };
 use crate::scalar::Scalar;
 use crate::scene;
@@ -481,15 +481,15 @@ fn suite(quick: bool) -> Result<Vec<Case>, AtlasError> {
     }
     out.push(shipped_case(
         "appendix-c-two-blocks",
-        include_str!("../scenes/appendix-c-two-blocks.toml"),
+        include_str!("../../scenes/appendix-c-two-blocks.toml"),
     )?);
     out.push(shipped_case(
         "three-cluster-simultaneous",
-        include_str!("../scenes/three-cluster-simultaneous.toml"),
+        include_str!("../../scenes/three-cluster-simultaneous.toml"),
     )?);
     out.push(shipped_case(
         "riemann-compression",
-        include_str!("../scenes/riemann-compression.toml"),
+        include_str!("../../scenes/riemann-compression.toml"),
     )?);
     Ok(out)
 }
@@ -1708,7 +1708,7 @@ fn file_stem(scene: &str) -> String {
 /// a progress bar is drawn on standard error when it is a terminal.
 ///
 /// The PNG files are skipped (SVG only) when no TrueType font is found on
-/// the machine ([`crate::plot::png_support`]).
+/// the machine ([`crate::report::plot::png_support`]).
 pub fn run(opts: &AtlasOptions, progress: bool) -> Result<Vec<PathBuf>, AtlasError> {
     let out_dir = &opts.out;
     fs::create_dir_all(out_dir).map_err(|e| AtlasError::Io {

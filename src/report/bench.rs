@@ -7,7 +7,7 @@
 //! Methods:
 //! * `f64` — [`crate::projection::isotonic`] on `f64` (the generic code,
 //!   one value per particle);
-//! * `exact_int` — [`crate::kernel::blocks_at`] on data that fit `i128`: the
+//! * `exact_int` — [`crate::fast::kernel::blocks_at`] on data that fit `i128`: the
 //!   exact partition and integer block sums, means reduced on demand;
 //! * `exact_int_lowest` — the same, then every block mean reduced to a
 //!   `BigRational` in lowest terms (what a caller that wants all of them
@@ -15,13 +15,13 @@
 //! * `exact_bigint` — the same kernel on data with 30-digit decimals, which
 //!   need the 256-bit loop; `exact_bigint_100` on 100-digit decimals (the
 //!   `BigInt` loop);
-//! * `adaptive`, `adaptive_bigdata` — [`crate::adaptive::adaptive_blocks_at`]
+//! * `adaptive`, `adaptive_bigdata` — [`crate::fast::adaptive::adaptive_blocks_at`]
 //!   on the `exact_int` scene and on the 100-digit one (the path taken is in
 //!   the note);
 //! * `bigrational_naive` — the generic PAVA on `BigRational` (measured on
 //!   N/10 particles and reported per particle, saying so);
 //! * `events` — the full exact event-driven trajectory on the integer engine
-//!   ([`crate::merge::IntegerTrajectory::new`]); `events_lowest` the
+//!   ([`crate::fast::merge::IntegerTrajectory::new`]); `events_lowest` the
 //!   conversion of that history to a `Trajectory<BigRational>`;
 //!   `events_generic` the generic engine on `BigRational`
 //!   ([`crate::trajectory::Trajectory::new`], on N/10 particles).
@@ -37,11 +37,11 @@ use std::time::Instant;
 use num_bigint::BigInt;
 use num_rational::BigRational;
 
-use crate::adaptive::{adaptive_blocks_at, Path as Path_};
+use crate::fast::adaptive::{adaptive_blocks_at, Path as Path_};
+use crate::fast::kernel::{blocks_at, IntegerData};
+use crate::fast::merge::IntegerTrajectory;
 use crate::generate::{initial_data, Limits, SplitMix64};
 use crate::initial::InitialData;
-use crate::kernel::{blocks_at, IntegerData};
-use crate::merge::IntegerTrajectory;
 use crate::projection::{isotonic, pava_blocks};
 use crate::scalar::Scalar;
 use crate::trajectory::Trajectory;
@@ -173,8 +173,8 @@ fn time<R>(f: impl FnOnce() -> R) -> (f64, R) {
 }
 
 /// How `sticky bench` sets up glibc's allocator before measuring (it
-/// re-runs itself with the setting in the environment, see
-/// [`reexec_with_malloc`]).
+/// binary re-runs itself with the setting in the environment and names it
+/// in [`MEMORY_MODE_VAR`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Memory {
     /// Timing: `malloc` serves large buffers from its heap instead of
@@ -194,41 +194,14 @@ pub enum Memory {
     Cold,
 }
 
-impl Memory {
-    fn env(self) -> Vec<(&'static str, &'static str)> {
-        match self {
-            Memory::Warm => vec![("MALLOC_MMAP_MAX_", "0"), (MARKER, "Warm")],
-            Memory::Cold => vec![
-                ("MALLOC_MMAP_THRESHOLD_", "131072"),
-                ("MALLOC_TRIM_THRESHOLD_", "131072"),
-                (MARKER, "Cold"),
-            ],
-        }
-    }
-}
-
-const MARKER: &str = "STICKY_BENCH_MALLOC";
-
-/// Re-runs the current command with glibc's allocator set up for `mode`
-/// ([`Memory`]) and returns the child's exit code; `None` when this process
-/// is already that child (or not on Linux, where nothing is changed).
-pub fn reexec_with_malloc(mode: Memory) -> Option<std::process::ExitCode> {
-    if !cfg!(target_os = "linux") || std::env::var_os(MARKER).is_some() {
-        return None;
-    }
-    let exe = std::env::current_exe().ok()?;
-    let status = Command::new(exe)
-        .args(std::env::args_os().skip(1))
-        .envs(mode.env())
-        .status()
-        .ok()?;
-    let code = status.code().map_or(1, |c| u8::try_from(c).unwrap_or(1));
-    Some(std::process::ExitCode::from(code))
-}
+/// The environment variable through which the `sticky` binary tells the
+/// benchmark which allocator setting ([`Memory`]) it re-executed itself
+/// under (`Warm` or `Cold`); the setting itself belongs to the binary.
+pub const MEMORY_MODE_VAR: &str = "STICKY_BENCH_MALLOC";
 
 /// The allocator setting this process runs under (`None`: not set up).
 pub fn current_memory_mode() -> Option<Memory> {
-    match std::env::var(MARKER).ok()?.as_str() {
+    match std::env::var(MEMORY_MODE_VAR).ok()?.as_str() {
         "Warm" => Some(Memory::Warm),
         "Cold" => Some(Memory::Cold),
         _ => None,
@@ -592,7 +565,7 @@ pub fn scaling(
     opts: &ScalingOptions,
     scripts: &Path,
     mut progress: impl FnMut(&str),
-) -> Result<(Vec<ScalingRow>, Vec<std::path::PathBuf>), crate::plot::PlotError> {
+) -> Result<(Vec<ScalingRow>, Vec<std::path::PathBuf>), crate::report::plot::PlotError> {
     let mut rows = Vec::new();
     for &(regime, p, q) in &REGIMES {
         let t = BigRational::new(BigInt::from(p), BigInt::from(q));
@@ -639,17 +612,18 @@ pub fn scaling(
             cell(r.peak_mib)
         ));
     }
-    std::fs::create_dir_all(&opts.out).map_err(|e| crate::plot::PlotError::Io {
+    std::fs::create_dir_all(&opts.out).map_err(|e| crate::report::plot::PlotError::Io {
         path: opts.out.clone(),
         message: e.to_string(),
     })?;
     let csv_path = opts.out.join(format!("{stem}.csv"));
-    crate::plot::write_whole(&csv_path, csv.as_bytes())?;
+    crate::report::plot::write_whole(&csv_path, csv.as_bytes())?;
     let mut written = vec![csv_path];
     for &(regime, p, q) in &REGIMES {
         let chart = scaling_chart(&rows, regime, &format!("{p}/{q}"), opts.memory);
         written.extend(
-            crate::plot::write_chart(&chart, &opts.out, &format!("{stem}-{regime}"))?.paths(),
+            crate::report::plot::write_chart(&chart, &opts.out, &format!("{stem}-{regime}"))?
+                .paths(),
         );
     }
     Ok((rows, written))
@@ -684,8 +658,13 @@ pub fn slopes(rows: &[ScalingRow], regime: &str, memory: bool) -> Vec<(&'static 
         .collect()
 }
 
-fn scaling_chart(rows: &[ScalingRow], regime: &str, t: &str, memory: bool) -> crate::plot::Chart {
-    use crate::plot::{palette, Axis, Chart, Marker, Series};
+fn scaling_chart(
+    rows: &[ScalingRow],
+    regime: &str,
+    t: &str,
+    memory: bool,
+) -> crate::report::plot::Chart {
+    use crate::report::plot::{palette, Axis, Chart, Marker, Series};
     let slopes = slopes(rows, regime, memory);
     let title = if memory {
         format!("Peak memory against N — {regime} (t = {t})")

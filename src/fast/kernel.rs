@@ -45,9 +45,9 @@ use num_traits::{Signed, ToPrimitive, Zero};
 
 use crate::cluster::{runs, Cluster};
 use crate::error::Error;
+use crate::fast::wide::I256;
 use crate::initial::InitialData;
 use crate::state::State;
-use crate::wide::I256;
 
 /// The integer type the PAVA loop ran on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -119,12 +119,12 @@ impl IntegerData {
     pub fn new(data: &InitialData<BigRational>) -> Self {
         // Machine words when every scaled value fits `i128` (the common
         // case, ~30× cheaper), `BigInt` otherwise: the same integers.
-        let (x, u, dx, du) = match crate::scaling::scale_words(data) {
+        let (x, u, dx, du) = match crate::fast::scaling::scale_words(data) {
             Some(s) => {
                 let big = |v: &[i128]| v.iter().map(|&a| BigInt::from(a)).collect::<Vec<_>>();
                 (big(&s.x), big(&s.u), s.dx, s.du)
             }
-            None => crate::scaling::scale_big(data),
+            None => crate::fast::scaling::scale_big(data),
         };
         let max_bits = |v: &[BigInt]| v.iter().map(BigInt::bits).max().unwrap_or(0);
         IntegerData {
@@ -543,7 +543,7 @@ mod tests {
             );
             let d = IntegerData::new(&data);
             let traj = crate::trajectory::Trajectory::new(data.clone());
-            for t in crate::claims::micro::probe_times(&traj, Some(6)) {
+            for t in crate::trajectory::probe_times(&traj, Some(6)) {
                 assert_eq!(
                     state_at(&d, &t).unwrap(),
                     projection::state_at(&data, &t).unwrap(),

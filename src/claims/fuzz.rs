@@ -46,11 +46,11 @@ pub fn scene_parser(bytes: &[u8]) {
 /// Fuzz target `kernels`: one oracle battery against every exact
 /// implementation. The first two bytes pick a scale `2^s` and an offset
 /// `2^o + 1/3` (so that the data land in every integer width of
-/// [`crate::kernel`]: `i128`, 256-bit, `BigInt`), the rest decode into
+/// [`crate::fast::kernel`]: `i128`, 256-bit, `BigInt`), the rest decode into
 /// admissible data (N ≤ 40); then, at the collision instants (exact ties)
 /// and between them, the integer kernel and the adaptive solver must equal
 /// the generic `BigRational` projection, and the integer event engine
-/// ([`crate::merge`]) must equal the generic event-driven merge. Panics on
+/// ([`crate::fast::merge`]) must equal the generic event-driven merge. Panics on
 /// any difference.
 pub fn kernels(bytes: &[u8]) {
     use num_bigint::BigInt;
@@ -76,7 +76,7 @@ pub fn kernels(bytes: &[u8]) {
         panic!("scaling and shifting admissible data must keep it admissible");
     };
     let generic = crate::trajectory::Trajectory::new(data.clone());
-    let merged = crate::merge::trajectory(&data);
+    let merged = crate::fast::merge::trajectory(&data);
     assert_eq!(
         merged.impulses(),
         generic.impulses(),
@@ -87,15 +87,15 @@ pub fn kernels(bytes: &[u8]) {
         generic.join_times(),
         "integer join times ≠ generic"
     );
-    let ints = crate::kernel::IntegerData::new(&data);
-    for t in crate::claims::micro::probe_times(&generic, Some(6)) {
+    let ints = crate::fast::kernel::IntegerData::new(&data);
+    for t in crate::trajectory::probe_times(&generic, Some(6)) {
         let want = crate::projection::state_at(&data, &t).expect("t ≥ 0");
-        let got = crate::kernel::state_at(&ints, &t).expect("t ≥ 0");
+        let got = crate::fast::kernel::state_at(&ints, &t).expect("t ≥ 0");
         assert_eq!(got, want, "integer kernel ≠ generic projection at t = {t}");
-        let adaptive = crate::adaptive::adaptive_blocks_at(&ints, &t).blocks;
+        let adaptive = crate::fast::adaptive::adaptive_blocks_at(&ints, &t).blocks;
         assert_eq!(
             adaptive,
-            crate::kernel::blocks_at(&ints, &t),
+            crate::fast::kernel::blocks_at(&ints, &t),
             "adaptive ≠ kernel at t = {t}"
         );
         assert_eq!(

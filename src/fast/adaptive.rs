@@ -4,7 +4,7 @@
 //! than it needs", and the answer is still exact.
 //!
 //! **Which path.** When the data fit the fixed-width kernels
-//! ([`crate::kernel::Width::I128`] or [`crate::kernel::Width::I256`]) the
+//! ([`crate::fast::kernel::Width::I128`] or [`crate::fast::kernel::Width::I256`]) the
 //! exact kernel is as cheap as a float PAVA or within a small factor of it
 //! (measured by `sticky bench`: 0.7× and 2× our f64 PAVA), so it answers
 //! ([`Path::Integer`]). Only data that need `BigInt` take the filter: the
@@ -12,10 +12,10 @@
 //! accumulated once over the final partition; if the uncertain decisions
 //! would cost more exact work than `4N` summed entries, the whole scene goes
 //! to the exact kernel instead ([`Path::Exact`]). The result is a [`Blocks`], equal to
-//! [`crate::kernel::blocks_at`]'s on every scene (the tests check it).
+//! [`crate::fast::kernel::blocks_at`]'s on every scene (the tests check it).
 //!
 //! **The certificate** (`u = 2^−53`, `Y_i = a X_i + b U_i` as in
-//! [`crate::kernel`]). The inputs `X_i, U_i, a, b` are rounded to `f64` with
+//! [`crate::fast::kernel`]). The inputs `X_i, U_i, a, b` are rounded to `f64` with
 //! relative error `≤ 2u` each (`BigInt::to_f64` keeps the top 64 bits, then
 //! rounds). Then `ŷ_i = fl(fl(â x̂_i) + fl(b̂ û_i))` satisfies
 //! `|ŷ_i − Y_i| ≤ ((1+2u)²(1+u)² − 1)(|aX_i| + |bU_i|) ≤ 6.1u A`, with
@@ -36,7 +36,7 @@ use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::ToPrimitive;
 
-use crate::kernel::{blocks_at, pools, AtTime, Blocks, IntegerData, Run, Sums, Width};
+use crate::fast::kernel::{blocks_at, pools, AtTime, Blocks, IntegerData, Run, Sums, Width};
 
 /// `u = 2^−53`, the unit roundoff of `f64`.
 const U: f64 = f64::EPSILON / 2.0;
@@ -276,7 +276,7 @@ mod tests {
                 },
             );
             let traj = Trajectory::new(data.clone());
-            let times = crate::claims::micro::probe_times(&traj, Some(8));
+            let times = crate::trajectory::probe_times(&traj, Some(8));
             let data = offset_by(&data, &offsets[k % offsets.len()]);
             let d = IntegerData::new(&data);
             for t in &times {

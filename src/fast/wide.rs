@@ -3,7 +3,7 @@
 //!
 //! Arithmetic is two's complement modulo `2^256` (wrapping), which is exact
 //! whenever the true result lies in `[−2^255, 2^255)`. The callers prove that
-//! before they use it: [`crate::kernel`] bounds every sum and cross product of
+//! before they use it: [`crate::fast::kernel`] bounds every sum and cross product of
 //! its loop by the bit lengths of the data and takes this
 //! width only when the bound is below `2^254`. Nothing here checks overflow:
 //! that is the callers' obligation, stated where they take this path.

@@ -1,5 +1,5 @@
 //! The hydrodynamic-limit figures (`sticky plot`, `sticky converge`), drawn
-//! with [`crate::plot`]: a space-time diagram of the particle worldlines
+//! with [`crate::report::plot`]: a space-time diagram of the particle worldlines
 //! coloured by cluster with the collisions marked, the density `ρ(t, x)` as
 //! a heat map, the pressure impulses, and the convergence charts (log-log,
 //! one series per quantity).
@@ -14,7 +14,9 @@ use num_rational::BigRational;
 use crate::error::Error;
 use crate::limit::converge::ConvergenceReport;
 use crate::limit::eulerian::DensityGrid;
-use crate::plot::{palette, ramp, write_chart, Axis, Chart, Marker, PlotError, Polylines, Series};
+use crate::report::plot::{
+    palette, ramp, write_chart, Axis, Chart, Marker, PlotError, Polylines, Series,
+};
 use crate::scalar::Scalar;
 use crate::trajectory::Trajectory;
 
@@ -102,7 +104,7 @@ pub fn spacetime(
     });
     chart.series.push(Series::scatter(
         "collision (cluster formed)",
-        crate::plot::BLACK_RGB,
+        crate::report::plot::BLACK_RGB,
         Marker::Circle,
         events,
     ));

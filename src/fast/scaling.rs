@@ -2,7 +2,7 @@
 //! `u⁰_i = U_i / D_u` with integers `X_i`, `U_i` and `D_x`, `D_u` the least
 //! common denominators of the translated positions (`df:translat-x`) and of
 //! the velocities. Both fast exact engines start here: the integer PAVA
-//! ([`crate::kernel`]) and the integer event merge ([`crate::merge`]).
+//! ([`crate::fast::kernel`]) and the integer event merge ([`crate::fast::merge`]).
 //!
 //! [`scale_words`] does it on machine words (a running lcm with a memo of
 //! `lcm / d`, divisibility tests and exact divisions without a division

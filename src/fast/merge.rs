@@ -92,8 +92,8 @@ use num_traits::{ToPrimitive, Zero};
 
 use crate::cluster::Cluster;
 use crate::contact::Impulse;
+use crate::fast::scaling::{scale_i128, MulSmall, Scaled};
 use crate::initial::InitialData;
-use crate::scaling::{scale_i128, MulSmall, Scaled};
 use crate::trajectory::Trajectory;
 
 /// Which engine computed an [`IntegerTrajectory`].
@@ -1097,8 +1097,8 @@ fn unreachable_data(e: crate::Error) -> InitialData<BigRational> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::claims::micro::probe_times;
     use crate::generate::{initial_data, Limits, SplitMix64};
+    use crate::trajectory::probe_times;
     use num_traits::{One, Signed};
 
     fn q(n: i64, d: i64) -> BigRational {
@@ -1156,7 +1156,7 @@ mod tests {
         }
     }
 
-    use crate::scaling::{Divisibility, ExactDiv};
+    use crate::fast::scaling::{Divisibility, ExactDiv};
 
     #[test]
     fn exact_division_and_conversion() {

@@ -1,0 +1,152 @@
+//! `sticky bench`: PAVA at one time on random scenes, every method timed in
+//! one run; `--scaling` for the study across N; `--memory` for peak memory.
+//!
+//! The allocator setting ([`Memory`]) is a property of the process, so it
+//! is made here, in the binary: the command re-executes itself with glibc's
+//! `malloc` tuned for the measurement before the library runs anything.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use num_rational::BigRational;
+
+use sticky::report::bench::{self, Memory, MEMORY_MODE_VAR};
+
+use crate::{io_err, parse_time, print_paths, Failure};
+
+/// PAVA at one time on random scenes: every method timed in one run on
+/// fresh inputs, with the ratio to our f64 PAVA and the Python peers.
+#[derive(clap::Args)]
+pub struct Args {
+    /// Number of particles.
+    #[arg(long, default_value_t = 1_000_000)]
+    n: usize,
+    /// Repetitions, each on a fresh scene (default 3; 2 with --quick).
+    #[arg(long)]
+    reps: Option<usize>,
+    /// Quick run (under two minutes at N = 10^6): no event-driven
+    /// trajectory, 2 repetitions.
+    #[arg(long)]
+    quick: bool,
+    /// Skip the Python peers.
+    #[arg(long)]
+    no_peers: bool,
+    /// Print JSON.
+    #[arg(long)]
+    json: bool,
+    /// The time t of the projection (small: few clusters; large: few
+    /// large clusters).
+    #[arg(long, default_value = "1/100", value_parser = parse_time)]
+    at: BigRational,
+    /// Measure peak memory (cold allocator, no warm-up: timings then
+    /// include page faults).
+    #[arg(long)]
+    memory: bool,
+    /// The scaling study: N = 10^3, 10^4, … up to --max-n, both regimes
+    /// (t = 1/100: almost no clusters; t = 20: few large clusters);
+    /// CSV, log-log charts and fitted slopes in --out.
+    #[arg(long)]
+    scaling: bool,
+    /// Largest N of the scaling study.
+    #[arg(long, default_value_t = 10_000_000)]
+    max_n: usize,
+    /// Output folder of the scaling study (default ./out/bench/).
+    #[arg(long)]
+    out: Option<PathBuf>,
+}
+
+/// glibc's allocator settings for a [`Memory`] mode.
+fn malloc_env(mode: Memory) -> Vec<(&'static str, &'static str)> {
+    match mode {
+        Memory::Warm => vec![("MALLOC_MMAP_MAX_", "0"), (MEMORY_MODE_VAR, "Warm")],
+        Memory::Cold => vec![
+            ("MALLOC_MMAP_THRESHOLD_", "131072"),
+            ("MALLOC_TRIM_THRESHOLD_", "131072"),
+            (MEMORY_MODE_VAR, "Cold"),
+        ],
+    }
+}
+
+/// Re-runs the current command with glibc's allocator set up for the mode
+/// `args` asks for and returns the child's exit code; `None` when this
+/// process is already that child (or not on Linux, where nothing is
+/// changed).
+pub fn reexec_with_malloc(args: &Args) -> Option<ExitCode> {
+    let mode = if args.memory {
+        Memory::Cold
+    } else {
+        Memory::Warm
+    };
+    if !cfg!(target_os = "linux") || std::env::var_os(MEMORY_MODE_VAR).is_some() {
+        return None;
+    }
+    let exe = std::env::current_exe().ok()?;
+    let status = std::process::Command::new(exe)
+        .args(std::env::args_os().skip(1))
+        .envs(malloc_env(mode))
+        .status()
+        .ok()?;
+    let code = status.code().map_or(1, |c| u8::try_from(c).unwrap_or(1));
+    Some(ExitCode::from(code))
+}
+
+/// The Python peers' scripts, shipped in the source tree.
+fn scripts() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("scripts")
+}
+
+/// Runs `sticky bench`.
+pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
+    if args.scaling {
+        return scaling(args, out);
+    }
+    let opts = bench::BenchOptions {
+        n: args.n,
+        reps: args.reps.unwrap_or(if args.quick { 2 } else { 3 }),
+        peers: !args.no_peers,
+        events: !args.quick,
+        memory: args.memory,
+    };
+    let report = bench::run(&opts, &args.at, &scripts());
+    let text = if args.json {
+        bench::json(&report)
+    } else {
+        bench::table(&report)
+    };
+    writeln!(out, "{}", text.trim_end()).map_err(io_err)
+}
+
+/// `sticky bench --scaling`.
+fn scaling(args: Args, out: &mut impl Write) -> Result<(), Failure> {
+    let mut ns = Vec::new();
+    let mut n = 1000usize;
+    while n <= args.max_n {
+        ns.push(n);
+        n = n.saturating_mul(10);
+    }
+    let memory = args.memory;
+    let opts = bench::ScalingOptions {
+        ns,
+        reps: args.reps.unwrap_or(3),
+        peers: !args.no_peers,
+        memory,
+        out: args.out.unwrap_or_else(|| PathBuf::from("out/bench")),
+    };
+    let (rows, paths) = bench::scaling(&opts, &scripts(), |msg| eprintln!("bench: {msg}"))
+        .map_err(|e| Failure(e.to_string()))?;
+    for &(regime, _, _) in &bench::REGIMES {
+        let line = bench::slopes(&rows, regime, memory)
+            .iter()
+            .map(|(m, s)| format!("{m} {s:.2}"))
+            .collect::<Vec<_>>()
+            .join(", ");
+        writeln!(
+            out,
+            "{regime}: log-log slope of the total {} against N: {line}",
+            if memory { "memory" } else { "time" }
+        )
+        .map_err(io_err)?;
+    }
+    print_paths(out, &paths)
+}

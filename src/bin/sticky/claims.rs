@@ -1,0 +1,64 @@
+//! `sticky claims [--json|--markdown]`: the claims ledger.
+
+use std::io::{self, Write};
+
+use sticky::claims::ledger::{self, Budget};
+
+use crate::{io_err, Failure};
+
+/// The claims ledger: runs every checker of the paper's claims and prints
+/// the computed statuses.
+#[derive(clap::Args)]
+pub struct Args {
+    /// Print the ledger as JSON.
+    #[arg(long, conflicts_with = "markdown")]
+    json: bool,
+    /// Print the ledger as a Markdown document (CLAIMS.md).
+    #[arg(long)]
+    markdown: bool,
+    /// Random cases per claim.
+    #[arg(long, default_value_t = Budget::default().cases)]
+    cases: usize,
+    /// Largest N of a random case.
+    #[arg(long, default_value_t = Budget::default().max_n)]
+    max_n: usize,
+    /// Largest N of the checks across N (a power of two).
+    #[arg(long, default_value_t = Budget::default().scaling_max_n)]
+    scaling_max_n: usize,
+}
+
+/// Runs `sticky claims`.
+pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
+    let budget = Budget {
+        cases: args.cases,
+        max_n: args.max_n.max(1),
+        scaling_max_n: args.scaling_max_n.max(8),
+        ..Budget::default()
+    };
+    claims(out, budget, args.json, args.markdown)
+}
+
+fn claims(
+    out: &mut impl Write,
+    budget: Budget,
+    as_json: bool,
+    as_markdown: bool,
+) -> Result<(), Failure> {
+    let tty = io::IsTerminal::is_terminal(&io::stderr());
+    let entries = ledger::run(budget, |id| {
+        if tty {
+            eprint!("\r\x1b[2Kchecking {id}");
+        }
+    });
+    if tty {
+        eprint!("\r\x1b[2K");
+    }
+    let text = if as_json {
+        ledger::json(&entries)
+    } else if as_markdown {
+        ledger::markdown(&entries, budget)
+    } else {
+        ledger::table(&entries)
+    };
+    writeln!(out, "{}", text.trim_end()).map_err(io_err)
+}

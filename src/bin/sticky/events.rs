@@ -1,0 +1,30 @@
+//! `sticky events SCENE [--json]`: every collision.
+
+use std::io::Write;
+use std::path::PathBuf;
+
+use sticky::report::json;
+
+use crate::table::write_events_table;
+use crate::{io_err, load, Failure};
+
+/// Every collision: time, cluster formed, sizes of the clusters that merged.
+#[derive(clap::Args)]
+pub struct Args {
+    /// Scene file (TOML).
+    scene: PathBuf,
+    /// `{"events": [...]}` (the interop contract, DESIGN.md §3).
+    #[arg(long)]
+    json: bool,
+}
+
+/// Runs `sticky events`.
+pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
+    let scene = load(&args.scene)?;
+    let traj = sticky::fast::merge::trajectory(&scene.data);
+    if args.json {
+        writeln!(out, "{}", json::events(traj.impulses())).map_err(io_err)?;
+        return Ok(());
+    }
+    write_events_table(out, &traj).map_err(io_err)
+}

@@ -1,0 +1,175 @@
+//! The `sticky` command line: a thin layer over the library, one module per
+//! command.
+//!
+//! * `sticky` — runs the embedded default scene (Appendix C's two blocks) and
+//!   prints a short summary: collisions, final clusters, checks passed.
+//! * `sticky run SCENE --at T [--at T2 …] [--json]` — the state at each time.
+//! * `sticky events SCENE [--json]` — every collision.
+//! * `sticky check SCENE` — the summary of the default run, for any scene.
+//! * `sticky generate`, `claims`, `bench`, `converge`, `plot`, `atlas` — see
+//!   `sticky help COMMAND`.
+//!
+//! Errors go to stderr as one line `error: SCENE: message`, exit code 1.
+
+mod atlas;
+mod bench;
+mod check;
+mod claims;
+mod converge;
+mod events;
+mod generate;
+mod plot;
+mod run;
+mod table;
+
+use std::io::{self, BufWriter, Write};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+use num_rational::BigRational;
+
+use sticky::rational::parse_exact;
+use sticky::scene::{self, Scene};
+use sticky::Scalar;
+
+#[derive(Parser)]
+#[command(
+    name = "sticky",
+    version,
+    about = "Exact sticky particles on a line (Signorini constraint), after C. Perrin's 'Microscopic derivation of the one-dimensional constrained Euler equations'.",
+    after_help = "Scene files, the JSON output and every command are described in the README (README.md in the source tree; `cargo doc --open` for the library).",
+    long_about = None
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Option<Command>,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// The state x(t), u(t), λ(t) and the contact clusters at each requested time.
+    Run(run::Args),
+    /// Every collision: time, cluster formed, sizes of the clusters that merged.
+    Events(events::Args),
+    /// Summary of a scene: collisions, final clusters, and the section-2
+    /// checks (event-driven = projection, signs of λ and of the pressure).
+    Check(check::Args),
+    /// Prints a random admissible `[particles]` scene (exact rationals, with
+    /// contacts, separating contacts and simultaneous collisions on purpose).
+    Generate(generate::Args),
+    /// PAVA at one time on random scenes: every method timed in one run on
+    /// fresh inputs, with the ratio to our f64 PAVA and the Python peers.
+    Bench(bench::Args),
+    /// The hydrodynamic limit: distances between the particles and the
+    /// continuum solution for N = 8 … 2^16, with fitted rates; CSV and charts.
+    Converge(converge::Args),
+    /// Pictures of a scene: space-time diagram of the worldlines, density
+    /// heat map, pressure impulses (SVG and PNG).
+    Plot(plot::Args),
+    /// The speed-vs-accuracy atlas of the floating-point reference solvers
+    /// against the exact engine: CSV, charts and the stability table.
+    Atlas(atlas::Args),
+    /// The claims ledger: runs every checker of the paper's claims and prints
+    /// the computed statuses.
+    Claims(claims::Args),
+}
+
+fn parse_time(s: &str) -> Result<BigRational, String> {
+    let t = parse_exact(s).map_err(|e| e.to_string())?;
+    if t < <BigRational as Scalar>::zero() {
+        return Err(format!("time {s} is negative"));
+    }
+    Ok(t)
+}
+
+/// What went wrong, already phrased for the user.
+struct Failure(String);
+
+fn load(path: &std::path::Path) -> Result<Scene, Failure> {
+    scene::load(path).map_err(|e| Failure(format!("{}: {e}", path.display())))
+}
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        // --help, --version: clap's own output on stdout.
+        Err(e) if !e.use_stderr() => {
+            let _ = e.print();
+            return ExitCode::SUCCESS;
+        }
+        // One line, as for every other error: clap's first paragraph (no
+        // usage or help hints), joined.
+        Err(e) => {
+            let text = e.render().to_string();
+            let lines: Vec<&str> = text
+                .lines()
+                .take_while(|l| !l.trim().is_empty())
+                .map(str::trim)
+                .collect();
+            let message = lines.join(" ");
+            let message = message.strip_prefix("error: ").unwrap_or(&message);
+            eprintln!("error: {message}");
+            return ExitCode::from(2);
+        }
+    };
+    if let Some(Command::Bench(args)) = &cli.command {
+        if let Some(code) = bench::reexec_with_malloc(args) {
+            return code;
+        }
+    }
+    let stdout = io::stdout();
+    let mut out = BufWriter::new(stdout.lock());
+    let result = match cli.command {
+        None => scene::default_scene()
+            .map_err(|e| Failure(format!("embedded default scene: {e}")))
+            .and_then(|s| check::summary(&mut out, &s, "embedded default scene")),
+        Some(Command::Run(args)) => run::exec(args, &mut out),
+        Some(Command::Events(args)) => events::exec(args, &mut out),
+        Some(Command::Check(args)) => check::exec(args, &mut out),
+        Some(Command::Generate(args)) => generate::exec(args, &mut out),
+        Some(Command::Bench(args)) => bench::exec(args, &mut out),
+        Some(Command::Converge(args)) => converge::exec(args, &mut out),
+        Some(Command::Plot(args)) => plot::exec(args, &mut out),
+        Some(Command::Atlas(args)) => atlas::exec(args, &mut out),
+        Some(Command::Claims(args)) => claims::exec(args, &mut out),
+    };
+    let flushed = out.flush();
+    match result {
+        Ok(()) if flushed.is_ok() || is_broken_pipe(&flushed) => ExitCode::SUCCESS,
+        Ok(()) => {
+            eprintln!("error: cannot write the output: {:?}", flushed.err());
+            ExitCode::FAILURE
+        }
+        Err(Failure(msg)) if msg.is_empty() => ExitCode::SUCCESS,
+        Err(Failure(msg)) => {
+            eprintln!("error: {msg}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn is_broken_pipe(r: &io::Result<()>) -> bool {
+    matches!(r, Err(e) if e.kind() == io::ErrorKind::BrokenPipe)
+}
+
+/// Maps a write error to a failure; a closed pipe ends the output quietly.
+/// Maps a write error to a failure; a closed pipe ends the output quietly.
+fn io_err(e: io::Error) -> Failure {
+    if e.kind() == io::ErrorKind::BrokenPipe {
+        Failure(String::new())
+    } else {
+        Failure(format!("cannot write the output: {e}"))
+    }
+}
+
+fn lib_err(e: sticky::Error) -> Failure {
+    Failure(e.to_string())
+}
+
+fn print_paths(out: &mut impl Write, paths: &[PathBuf]) -> Result<(), Failure> {
+    for p in paths {
+        writeln!(out, "wrote {}", p.display()).map_err(io_err)?;
+    }
+    Ok(())
+}

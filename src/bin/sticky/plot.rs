@@ -1,0 +1,99 @@
+//! `sticky plot SCENE`: space-time diagram, density maps, pressure.
+
+use std::io::Write;
+use std::path::PathBuf;
+
+use num_rational::BigRational;
+
+use sticky::scene::{Scene, SceneKind};
+use sticky::Scalar;
+
+use crate::{lib_err, load, parse_time, print_paths, Failure};
+
+/// Pictures of a scene: space-time diagram of the worldlines, density
+/// heat map, pressure impulses (SVG and PNG).
+#[derive(clap::Args)]
+pub struct Args {
+    /// Scene file (TOML).
+    scene: PathBuf,
+    /// Output folder (default ./out/plot/).
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Horizon (default: the scene's t_end, else 1 after the last collision).
+    #[arg(long, value_parser = parse_time)]
+    t_end: Option<BigRational>,
+}
+
+/// Runs `sticky plot`.
+pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
+    let scene = load(&args.scene)?;
+    let dir = args.out.unwrap_or_else(|| PathBuf::from("out/plot"));
+    plot(out, &scene, dir, args.t_end)
+}
+
+fn plot(
+    out: &mut impl Write,
+    scene: &Scene,
+    dir: PathBuf,
+    t_end: Option<BigRational>,
+) -> Result<(), Failure> {
+    use sticky::limit::eulerian::{
+        continuum_density_grid, particle_density_grid, particle_pressure_atoms,
+    };
+    let traj = sticky::fast::merge::trajectory(&scene.data);
+    let t_end = t_end.or_else(|| scene.t_end.clone()).unwrap_or_else(|| {
+        traj.last_collision()
+            .cloned()
+            .unwrap_or_else(<BigRational as Scalar>::zero)
+            + <BigRational as Scalar>::one()
+    });
+    std::fs::create_dir_all(&dir)
+        .map_err(|e| Failure(format!("cannot create {}: {e}", dir.display())))?;
+    let mut paths =
+        sticky::report::figures::spacetime(&traj, &t_end, &dir, "spacetime").map_err(lib_err)?;
+    // The x range: everything the particles visit on [0, t_end], with a margin.
+    let (mut lo, mut hi) = (None::<BigRational>, None::<BigRational>);
+    for t in [<BigRational as Scalar>::zero(), t_end.clone()] {
+        let s = traj.at(&t).map_err(lib_err)?;
+        for x in [s.positions.first(), s.positions.last()]
+            .into_iter()
+            .flatten()
+        {
+            lo = Some(lo.map_or(x.clone(), |l| if *x < l { x.clone() } else { l }));
+            hi = Some(hi.map_or(x.clone(), |h| if *x > h { x.clone() } else { h }));
+        }
+    }
+    let (lo, hi) = (lo.unwrap_or_default(), hi.unwrap_or_default());
+    let margin = (hi.clone() - &lo) / BigRational::from_i64(20) + scene.data.two_r();
+    let (lo, hi) = (lo - &margin, hi + &margin);
+    let delta = <BigRational as Scalar>::one();
+    let grid =
+        particle_density_grid(&traj, &delta, &t_end, 60, (&lo, &hi), 160).map_err(lib_err)?;
+    paths.extend(
+        sticky::report::figures::density(
+            &grid,
+            "particle density ρ_N = 1/∂_w X̃_N",
+            &dir,
+            "density-particles",
+        )
+        .map_err(lib_err)?,
+    );
+    if let SceneKind::Macro { datum, .. } = &scene.kind {
+        let c = sticky::limit::continuum::Continuum::new(datum);
+        let grid = continuum_density_grid(&c, &t_end, 60, (&lo, &hi), 160).map_err(lib_err)?;
+        paths.extend(
+            sticky::report::figures::density(
+                &grid,
+                "continuum density ρ = X(t)#Leb",
+                &dir,
+                "density-continuum",
+            )
+            .map_err(lib_err)?,
+        );
+    }
+    if scene.data.n() <= 5000 {
+        let atoms = particle_pressure_atoms(&traj, &t_end);
+        paths.extend(sticky::report::figures::pressure(&atoms, &dir, "pressure").map_err(lib_err)?);
+    }
+    print_paths(out, &paths)
+}

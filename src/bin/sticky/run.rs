@@ -1,0 +1,206 @@
+//! `sticky run SCENE --at T … [--json] [--engine E] [--model M]`: the state
+//! at each requested time.
+
+use std::io::{self, Write};
+use std::path::PathBuf;
+
+use clap::ValueEnum;
+use num_rational::BigRational;
+
+use sticky::fast::kernel::{self, IntegerData};
+use sticky::projection::state_at;
+use sticky::report::json;
+use sticky::scene::{Scene, SceneKind};
+use sticky::{Scalar, State};
+
+use crate::table::{range_1based, write_table};
+use crate::{io_err, load, parse_time, Failure};
+
+/// The state x(t), u(t), λ(t) and the contact clusters at each requested time.
+#[derive(clap::Args)]
+pub struct Args {
+    /// Scene file (TOML, see DESIGN.md §2).
+    scene: PathBuf,
+    /// A time t ≥ 0, exact: "3/2", "0.125", "1e-3" (repeat for several).
+    #[arg(long = "at", required = true, allow_hyphen_values = true, value_parser = parse_time)]
+    at: Vec<BigRational>,
+    /// One JSON object per time (the interop contract, DESIGN.md §3).
+    #[arg(long)]
+    json: bool,
+    /// Which exact algorithm answers: the one-shot projection P_K(x⁰+tu⁰)
+    /// (O(N) per time, on the integer kernel) or the event-driven merge
+    /// (O(N log N) once).
+    #[arg(long, value_enum, default_value_t = Engine::Projection)]
+    engine: Engine,
+    /// Which model answers: the N particles of the scene, or (for a
+    /// `[macro]` scene) the continuum solution of its macroscopic datum,
+    /// block by block, whose cost does not grow with N.
+    #[arg(long, value_enum, default_value_t = Model::Particles)]
+    model: Model,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum Model {
+    /// The N particles (exact).
+    Particles,
+    /// The continuum solution X(t) = P_K(X⁰ + tU⁰) of a `[macro]` datum
+    /// (exact: rationals and quadratic surds).
+    Continuum,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum Engine {
+    /// x(t) = P_K(x⁰ + t u⁰) by pool-adjacent-violators.
+    Projection,
+    /// The event-driven cluster merge.
+    Events,
+}
+
+/// Runs `sticky run`.
+pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
+    let scene = load(&args.scene)?;
+    match args.model {
+        Model::Particles => run(out, &scene, &args.at, args.json, args.engine),
+        Model::Continuum => run_continuum(out, &scene, &args.scene, &args.at, args.json),
+    }
+}
+
+fn run(
+    out: &mut impl Write,
+    scene: &Scene,
+    times: &[BigRational],
+    as_json: bool,
+    engine: Engine,
+) -> Result<(), Failure> {
+    let data = &scene.data;
+    let traj = match engine {
+        Engine::Events => Some(sticky::fast::merge::trajectory(data)),
+        Engine::Projection => None,
+    };
+    // The projection runs on the integer kernel (common denominators, i128
+    // when the data fit): the same exact result as the generic path.
+    let ints = traj.is_none().then(|| IntegerData::new(data));
+    for t in times {
+        let state = match (&traj, &ints) {
+            (Some(traj), _) => traj.at(t),
+            (None, Some(ints)) => kernel::state_at(ints, t),
+            (None, None) => state_at(data, t),
+        }
+        .map_err(|e| Failure(e.to_string()))?;
+        if as_json {
+            writeln!(out, "{}", json::state(&state, data.radius())).map_err(io_err)?;
+        } else {
+            write_state_table(out, &state, data.radius()).map_err(io_err)?;
+        }
+    }
+    Ok(())
+}
+
+/// `sticky run --model continuum`: the block-level continuum solution.
+fn run_continuum(
+    out: &mut impl Write,
+    scene: &Scene,
+    path: &std::path::Path,
+    times: &[BigRational],
+    as_json: bool,
+) -> Result<(), Failure> {
+    let SceneKind::Macro { datum, particles } = &scene.kind else {
+        return Err(Failure(format!(
+            "{}: --model continuum needs a [macro] scene (a [particles] scene has no macroscopic datum)",
+            path.display()
+        )));
+    };
+    let c = sticky::limit::continuum::Continuum::new(datum);
+    for t in times {
+        let p = c.profile(t).map_err(|e| Failure(e.to_string()))?;
+        if as_json {
+            writeln!(out, "{}", json::continuum_profile(&p)).map_err(io_err)?;
+            continue;
+        }
+        writeln!(
+            out,
+            "model: continuum — X(t) = P_K(X⁰ + tU⁰) on the macroscopic datum ({} blocks), exact; the scene's N = {particles} is not used",
+            datum.blocks().len()
+        )
+        .map_err(io_err)?;
+        writeln!(out, "t = {}", sticky::rational::render_exact(t)).map_err(io_err)?;
+        let poly = |c: &[sticky::limit::surd::Surd]| -> String {
+            let mut terms = Vec::new();
+            for (k, v) in c.iter().enumerate() {
+                if v.to_string() == "0" {
+                    continue;
+                }
+                terms.push(match k {
+                    0 => format!("{v}"),
+                    1 => format!("({v})·w"),
+                    _ => format!("({v})·w²"),
+                });
+            }
+            if terms.is_empty() {
+                "0".into()
+            } else {
+                terms.join(" + ")
+            }
+        };
+        let rows: Vec<Vec<String>> = p
+            .segments
+            .iter()
+            .map(|g| {
+                vec![
+                    format!("[{}, {}]", g.w0, g.w1),
+                    (g.block + 1).to_string(),
+                    g.plateau.map_or("—".into(), |k| (k + 1).to_string()),
+                    poly(&g.x),
+                    poly(&g.u),
+                    poly(&g.lambda),
+                ]
+            })
+            .collect();
+        write_table(
+            out,
+            &[
+                "w (mass)",
+                "block",
+                "congested",
+                "X(t, w)",
+                "U(t, w)",
+                "Λ(t, w)",
+            ],
+            &rows,
+        )
+        .map_err(io_err)?;
+    }
+    Ok(())
+}
+
+fn write_state_table(
+    out: &mut impl Write,
+    s: &State<BigRational>,
+    radius: &BigRational,
+) -> io::Result<()> {
+    writeln!(
+        out,
+        "t = {}   N = {}   r = {}   {} contact cluster{}",
+        s.t.render(),
+        s.positions.len(),
+        radius.render(),
+        s.clusters.len(),
+        if s.clusters.len() == 1 { "" } else { "s" }
+    )?;
+    let mut rows = Vec::with_capacity(s.positions.len());
+    for c in &s.clusters {
+        for i in c.range() {
+            rows.push(vec![
+                (i + 1).to_string(),
+                s.positions[i].render(),
+                s.velocities[i].render(),
+                s.multipliers
+                    .get(i)
+                    .map_or_else(|| "—".into(), |l| l.render()),
+                range_1based(c),
+            ]);
+        }
+    }
+    write_table(out, &["i", "x_i", "u_i", "λ_i", "cluster"], &rows)?;
+    writeln!(out)
+}

@@ -1,0 +1,118 @@
+//! The folders under `src/` are layers (see the crate documentation): a
+//! layer may import the layers below it, never one above it, and two modules
+//! of the same rank outside the core do not exist. This test reads every
+//! library source file and fails on an import of a higher layer — the
+//! check behind "no import cycle between top-level modules".
+//!
+//! Test modules (`#[cfg(test)]` to the end of a file) and comments are
+//! not imports and are skipped.
+
+use std::fs;
+use std::path::Path;
+
+/// Rank of a top-level module: the model core is 0, then the layers.
+fn rank(module: &str) -> Option<usize> {
+    const LAYERS: [&str; 5] = ["fast", "reference", "limit", "claims", "report"];
+    match LAYERS.iter().position(|l| *l == module) {
+        Some(i) => Some(i + 1),
+        None if module.chars().all(|c| c.is_ascii_lowercase() || c == '_') => Some(0),
+        None => None,
+    }
+}
+
+/// The top-level modules a piece of source code names through `crate::`.
+fn imports(code: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    for line in code.lines() {
+        let line = line.trim_start();
+        if line.starts_with("//") {
+            continue;
+        }
+        let mut rest = line;
+        while let Some(i) = rest.find("crate::") {
+            rest = &rest[i + "crate::".len()..];
+            let name: String = rest
+                .chars()
+                .take_while(|c| c.is_ascii_lowercase() || *c == '_')
+                .collect();
+            if !name.is_empty() {
+                out.push(name);
+            }
+        }
+        // `use crate::{a, b::c}` lists several modules at once.
+        if let Some(i) = line.find("crate::{") {
+            let list = &line[i + "crate::{".len()..];
+            for item in list.split(',') {
+                let name: String = item
+                    .trim()
+                    .chars()
+                    .take_while(|c| c.is_ascii_lowercase() || *c == '_')
+                    .collect();
+                if !name.is_empty() {
+                    out.push(name);
+                }
+            }
+        }
+    }
+    out
+}
+
+fn visit(dir: &Path, files: &mut Vec<std::path::PathBuf>) {
+    for entry in fs::read_dir(dir).expect("src is readable") {
+        let path = entry.expect("directory entry").path();
+        if path.is_dir() {
+            visit(&path, files);
+        } else if path.extension().is_some_and(|e| e == "rs") {
+            files.push(path);
+        }
+    }
+}
+
+#[test]
+fn no_layer_imports_a_layer_above_it() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    visit(&src, &mut files);
+    let mut violations = Vec::new();
+    let mut checked = 0;
+    for path in files {
+        let rel = path.strip_prefix(&src).expect("under src");
+        let first = rel.components().next().expect("non-empty path");
+        let first = first.as_os_str().to_string_lossy();
+        if first == "bin" || first == "lib.rs" {
+            continue; // the binary sits above every layer; lib.rs declares them
+        }
+        let module = first.trim_end_matches(".rs").to_string();
+        let own = rank(&module).expect("a known module name");
+        let text = fs::read_to_string(&path).expect("readable source");
+        let code = text.split("#[cfg(test)]").next().unwrap_or("");
+        for name in imports(code) {
+            let Some(r) = rank(&name) else { continue };
+            if name != module && r > own {
+                violations.push(format!(
+                    "{} (layer {own}) imports crate::{name} (layer {r})",
+                    rel.display()
+                ));
+            }
+            if name != module && r == own && own > 0 {
+                violations.push(format!(
+                    "{} imports crate::{name} of the same layer",
+                    rel.display()
+                ));
+            }
+        }
+        checked += 1;
+    }
+    assert!(checked > 20, "only {checked} files read: is src/ there?");
+    assert!(violations.is_empty(), "{}", violations.join("\n"));
+}
+
+#[test]
+fn the_check_sees_an_upward_import() {
+    // The check above must be able to fail: a core file naming the claims
+    // layer, and a braced import of the report layer, are both seen.
+    let found = imports("use crate::claims::Violation;\nuse crate::{report, scalar::Scalar};");
+    assert_eq!(found, ["claims", "report", "scalar"]);
+    assert!(rank("claims") > rank("projection"));
+    assert!(imports("// see crate::report").is_empty());
+}
