@@ -21,7 +21,8 @@
 //!    `prop:micro-pressure`), [`scene`] and [`quantile`] (scene files and
 //!    quantile sampling), [`generate`], [`violation`], [`text`], [`error`].
 //! 2. [`fast`] — the exact integer engines (kernel, adaptive, integer merge).
-//! 3. [`reference`] — the `f64` solvers, and [`reference::measure`], the one
+//! 3. [`reference`](mod@reference) — the `f64` solvers, and
+//!    [`reference::measure`](mod@reference::measure), the one
 //!    owner of every error metric.
 //! 4. [`limit`] — the hydrodynamic limit (section 3, Appendix C).
 //! 5. [`claims`] — one checker per claim of the paper, the ledger.
@@ -29,6 +30,36 @@
 //!
 //! The `sticky` command line (feature `cli`, on by default) sits above all
 //! of them, in `src/bin/sticky/`, one module per command.
+//!
+//! ## Features
+//!
+//! * `cli` (default) — the `sticky` binary (clap); implies `report`;
+//! * `report` — charts, the atlas and the benchmark (plotters, indicatif).
+//!
+//! `cargo build --lib --no-default-features` builds the library alone, with
+//! no command-line or chart dependency.
+//!
+//! ## A first program
+//!
+//! ```
+//! use num_rational::BigRational;
+//! use sticky::{InitialData, Trajectory};
+//!
+//! let q = |n: i64, d: i64| BigRational::new(n.into(), d.into());
+//! // Two particles of radius 1/4 running into each other.
+//! let data = InitialData::new(q(1, 4), vec![q(0, 1), q(2, 1)], vec![q(1, 1), q(-1, 1)])?;
+//! let traj = Trajectory::new(data.clone());
+//! // They meet when the gap 2 closes down to 2r = 1/2, at t = 3/4, and stick.
+//! assert_eq!(traj.impulses()[0].t, q(3, 4));
+//! let state = sticky::state_at(&data, &q(1, 1))?;
+//! assert_eq!(state.positions, vec![q(3, 4), q(5, 4)]);
+//! assert_eq!(state.velocities, vec![q(0, 1), q(0, 1)]);
+//! assert_eq!(state, traj.at(&q(1, 1))?);
+//! # Ok::<(), sticky::Error>(())
+//! ```
+//!
+//! More in `examples/` (`cargo run --example two_blocks`,
+//! `cargo run --example check_a_solver`).
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
@@ -55,7 +86,14 @@ pub mod limit;
 pub mod reference;
 pub mod report;
 
+// The few types a caller needs: scene → initial data → state at t,
+// trajectory, events.
+pub use cluster::Cluster;
+pub use contact::Impulse;
 pub use error::Error;
 pub use initial::InitialData;
+pub use projection::state_at;
 pub use scalar::Scalar;
+pub use scene::Scene;
 pub use state::State;
+pub use trajectory::Trajectory;

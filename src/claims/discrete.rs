@@ -426,8 +426,8 @@ pub fn pw_un_l1<S: Scalar>(case: &Case<S>) -> R {
     Ok(())
 }
 
-/// `eq:BV_XN` (proof): `∫|∂_w X̃_N(t)| = x_N(t) − x_0(t) ≤ (x_N(0) − x_0(0))
-/// + t (sup_{[0,t]}|u_N| + sup_{[0,t]}|u_1|)`.
+/// `eq:BV_XN` (proof):
+/// `∫|∂_w X̃_N(t)| = x_N(t) − x_0(t) ≤ (x_N(0) − x_0(0)) + t (sup_{[0,t]}|u_N| + sup_{[0,t]}|u_1|)`.
 pub fn bv_xn<S: Scalar>(case: &Case<S>) -> R {
     const ID: &str = "eq:BV_XN";
     let n = case.n();

@@ -1,4 +1,4 @@
-//! The ledger runner: runs every claim of the [`registry`](super::registry)
+//! The ledger runner: runs every claim of the [`registry`](fn@super::registry)
 //! and computes its status — never typed in.
 //!
 //! * [`Kind::Case`] claims run on the shipped scenes and on random admissible

@@ -5,7 +5,7 @@
 //! step inside a proof) and carries the exact witness. The ledger runner
 //! ([`ledger`]), the unit tests, proptest (`prop_*`), quickcheck (`qc_*`), the
 //! bounded-exhaustive proofs (`verify_*`) and the fuzz targets all iterate
-//! the same [`registry`], so every engine checks every claim with the same
+//! the same [`registry`](fn@registry), so every engine checks every claim with the same
 //! code (Firecracker reuses one `is_valid()`; memchr runs one oracle battery
 //! against every implementation).
 //!

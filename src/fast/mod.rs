@@ -8,7 +8,7 @@
 //!   bound, exact integers for the decisions the bound cannot settle;
 //! * [`merge`] — the event-driven cluster merge on fixed-width integers
 //!   (`i64`/`i128` sums, 256-bit time comparisons);
-//! * [`scaling`] — the one scaling to common denominators both use.
+//! * `scaling` — the one scaling to common denominators both use.
 
 pub mod adaptive;
 pub mod kernel;
