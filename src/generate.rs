@@ -20,6 +20,7 @@ use num_bigint::BigInt;
 use num_rational::BigRational;
 
 use crate::initial::{unshift, InitialData};
+use crate::quantile::{Block, BlockVelocity, MacroDatum};
 
 /// Reads small integers from a byte string; yields zeros once it is used up.
 #[derive(Debug, Clone)]
@@ -184,6 +185,69 @@ fn unreachable_data(e: crate::Error) -> InitialData<BigRational> {
     panic!("generate::initial_data produced invalid data: {e}")
 }
 
+/// Decodes `bytes` into an admissible macroscopic datum `(ρ⁰, u⁰)` under the
+/// hypotheses of `thm:main` (never fails): one to four blocks, total mass
+/// exactly 1, densities in `(0, 1]`, a constant velocity on every congested
+/// block (`hyp:u0`), and on dilute blocks a constant or an affine one.
+///
+/// It aims at what the hypotheses allow at their edges: congested blocks
+/// (density exactly 1) next to dilute ones with no gap between them, velocity
+/// jumps at block boundaries in both directions, and masses with small
+/// denominators, so that the quantiles `i/N` land on the mass breakpoints for
+/// many `N`. Two congested blocks that touch get the same velocity: a jump
+/// inside `{ρ⁰ = 1}` would violate `hyp:u0`.
+pub fn macro_datum(bytes: &[u8]) -> MacroDatum {
+    let mut src = ByteSource::new(bytes);
+    let count = 1 + src.below(4) as usize;
+    let weights: Vec<i64> = (0..count).map(|_| 1 + i64::from(src.below(4))).collect();
+    let total: i64 = weights.iter().sum();
+    let mut blocks: Vec<Block> = Vec::with_capacity(count);
+    let mut from = q(i64::from(src.below(5)) - 2, 2);
+    for (k, w) in weights.iter().enumerate() {
+        let mass = q(*w, total);
+        let congested = src.below(5) < 2;
+        let density = if congested {
+            q(1, 1)
+        } else {
+            let d = [2, 3, 4, 8][src.below(4) as usize];
+            q(1 + i64::from(src.below(d as u32 - 1)), d)
+        };
+        if k > 0 {
+            // No gap half of the time: the blocks touch.
+            let gap = if src.below(2) == 0 {
+                q(0, 1)
+            } else {
+                q(1 + i64::from(src.below(4)), 4)
+            };
+            from = from + gap;
+        }
+        let to = &from + &mass / &density;
+        let speed =
+            |src: &mut ByteSource| q(i64::from(src.below(9)) - 4, 1 + i64::from(src.below(2)));
+        let velocity = match blocks.last() {
+            Some(prev) if congested && prev.density == density && prev.to == from => {
+                prev.velocity.clone()
+            }
+            _ if congested || src.below(2) == 0 => BlockVelocity::Constant(speed(&mut src)),
+            _ => BlockVelocity::Affine(speed(&mut src), speed(&mut src)),
+        };
+        blocks.push(Block {
+            from: from.clone(),
+            to: to.clone(),
+            density,
+            velocity,
+        });
+        from = to;
+    }
+    MacroDatum::new(blocks).unwrap_or_else(unreachable_datum)
+}
+
+#[cold]
+fn unreachable_datum(e: crate::Error) -> MacroDatum {
+    // The construction above satisfies every check of `MacroDatum::new`.
+    panic!("generate::macro_datum produced an invalid datum: {e}")
+}
+
 /// SplitMix64: a tiny, well-mixed deterministic generator (for seeds and test
 /// data, not for cryptography).
 #[derive(Debug, Clone)]
@@ -221,6 +285,29 @@ mod tests {
             assert!(d.n() >= 1 && d.n() <= 200);
         }
         assert!(initial_data(&[], Limits::default()).n() >= 1);
+    }
+
+    #[test]
+    fn every_byte_string_decodes_to_a_macro_datum() {
+        let mut rng = SplitMix64::new(11);
+        let (mut congested_next_to_dilute, mut affine) = (0, 0);
+        for len in 0..400 {
+            let datum = macro_datum(&rng.bytes(len));
+            let b = datum.blocks();
+            assert!((1..=4).contains(&b.len()));
+            for pair in b.windows(2) {
+                let one = BigRational::from_integer(1.into());
+                if pair[0].to == pair[1].from
+                    && (pair[0].density == one) != (pair[1].density == one)
+                {
+                    congested_next_to_dilute += 1;
+                }
+            }
+            affine += b.iter().filter(|x| !x.velocity.is_constant()).count();
+        }
+        // The edges of hyp:u0 are reached, not just allowed.
+        assert!(congested_next_to_dilute > 20, "{congested_next_to_dilute}");
+        assert!(affine > 20, "{affine}");
     }
 
     #[test]

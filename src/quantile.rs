@@ -343,6 +343,33 @@ impl MacroDatum {
     /// velocities (an allocation failure is reported as
     /// [`Error::Unsupported`], not a panic).
     pub fn sample(&self, n: usize) -> Result<InitialData<BigRational>, Error> {
+        let (positions, velocities) = self.quantiles(n)?;
+        let big_n = BigRational::from_integer(n.into());
+        let radius = (big_n * BigRational::from_integer(2.into())).recip();
+        InitialData::new(radius, positions, velocities)
+    }
+
+    /// `U⁰(w+)`, the right limit of the Lagrangian velocity at the mass
+    /// coordinate `w` (at a mass breakpoint `m_b`, the value of the block
+    /// on the right; [`MacroDatum::u0`] is the left-continuous one). For
+    /// `w` at or beyond 1, the last block's value at its right end.
+    pub fn u0_right(&self, w: &BigRational) -> BigRational {
+        let ends = self.breakpoints.get(1..).unwrap_or(&[]);
+        let b = ends
+            .partition_point(|m| m <= w)
+            .min(self.blocks.len().saturating_sub(1));
+        let x = self.x0_in(b, w);
+        self.blocks
+            .get(b)
+            .map(|block| block.velocity_at(&x))
+            .unwrap_or_else(BigRational::zero)
+    }
+
+    /// The quantile sample itself, `(x⁰_i, u⁰_i) = (X⁰(i/N), U⁰(i/N))` for
+    /// `i = 1 … N`, without the admissibility check of [`MacroDatum::sample`]
+    /// (the claims of §2.1 are about exactly these numbers, admissible or
+    /// not). Errors as [`MacroDatum::sample`] for `n = 0` and allocation.
+    pub fn quantiles(&self, n: usize) -> Result<(Vec<BigRational>, Vec<BigRational>), Error> {
         if n == 0 {
             return Err(Error::NoParticles);
         }
@@ -401,8 +428,7 @@ impl MacroDatum {
                 i += 1;
             }
         }
-        let radius = (big_n * BigRational::from_integer(2.into())).recip();
-        InitialData::new(radius, positions, velocities)
+        Ok((positions, velocities))
     }
 }
 

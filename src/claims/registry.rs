@@ -56,8 +56,13 @@ pub fn registry<S: Scalar>() -> Vec<Claim<S>> {
         c
     };
     vec![
-        fixed("thm:main#sampling-mass", "§2.1 discretisation", "\"By construction, one has ∫_{x_i^0}^{x_{i+1}^0} ρ^0(x) dx = 1/N. Since ρ^0 ≤ 1, it follows that x_{i+1}^0 − x_i^0 ≥ 1/N\" (quantile sampling x⁰_i = X⁰(i/N); shipped macro scenes, N = 2 … 256).", sampling::mass_between),
-        fixed("thm:main#sampling-contacts", "§2.1 discretisation", "\"if two particles are in contact then they have the same velocity\" (u⁰_i = U⁰(i/N), under hyp:u0; shipped macro scenes, N = 2 … 256).", sampling::contacts_equal_velocities),
+        fixed("thm:main#sampling-mass", "§2.1 discretisation", "\"By construction, one has ∫_{x_i^0}^{x_{i+1}^0} ρ^0(x) dx = 1/N. Since ρ^0 ≤ 1, it follows that x_{i+1}^0 − x_i^0 ≥ 1/N\" (quantile sampling x⁰_i = X⁰(i/N); shipped macro scenes, N = 2 … 256, and 300 random macro data under hyp:u0, N = 2 … 16, 32, 64).", sampling::mass_between),
+        corrected(
+            fixed("thm:main#sampling-contacts", "§2.1 discretisation", "\"if two particles are in contact then they have the same velocity\": from ∂_w U⁰ = 0 a.e. in (i/N, (i+1)/N), \"u⁰_{i+1} = U⁰((i+1)/N) = U⁰(i/N) = u⁰_i\" (u⁰_i = U⁰(i/N), under hyp:u0; shipped macro scenes, N = 2 … 256, and 300 random macro data, N = 2 … 16, 32, 64).", sampling::contacts_equal_velocities),
+            "U⁰ is constant on (i/N, (i+1)/N) when particles i and i+1 touch, so the velocities sampled from inside that interval, U⁰(i/N+) and U⁰((i+1)/N−), are equal; U⁰ itself may jump at the end points i/N, (i+1)/N (a velocity jump on the boundary of a congested block is allowed by hyp:u0), and there the printed step \"∂_w U⁰ = 0 a.e. ⇒ U⁰((i+1)/N) = U⁰(i/N)\" does not follow.",
+            Kind::Formula(sampling::contacts_equal_velocities_inside),
+            "The theorem survives: U⁰ is an L² class, and sampling it with the representative that takes the congested side's value at the ends of a congested stretch (which changes u⁰_N only at particles sampled exactly on a block boundary, at most one per boundary, so U⁰_N → U⁰ is unaffected) gives admissible data u⁰_N ∈ C_{x⁰_N}; as printed, u⁰_i = U⁰(i/N) can put two touching particles on a collision course at t = 0 (u⁰_N ∉ C_{x⁰_N}, and sticky refuses such a [macro] scene).",
+        ),
         case("df:KN", S2, "K^N = {x ∈ R^N ; x_{i+1} − x_i ≥ 2r}: the trajectory stays admissible, x(t) ∈ K^N for all t ≥ 0.", micro::admissible),
         corrected(
             case("df:H-micro#contacts-grow", S2, "\"the set of active constraints is non-decreasing in time … N_{x(s)}K^N ⊂ N_{x(t)}K^N for all s ≤ t\" (for x⁰ ∈ K^N, u⁰ ∈ C^N_{x⁰}).", micro::contacts_grow_printed),

@@ -1,10 +1,12 @@
 //! §2.1, "Discretisation of the macroscopic initial datum", checked exactly
-//! on the shipped `[macro]` scenes for N = 2, 4, …, 256.
+//! on the shipped `[macro]` scenes for N = 2, 4, …, 256 and on random
+//! macroscopic data admissible under `hyp:u0` ([`crate::generate::macro_datum`]).
 
 use num_rational::BigRational;
 
 use super::Violation;
-use crate::quantile::MacroDatum;
+use crate::generate::{macro_datum, SplitMix64};
+use crate::quantile::{BlockVelocity, MacroDatum};
 use crate::scalar::Scalar;
 use crate::scene::{self, SceneKind};
 
@@ -25,22 +27,68 @@ const SCENES: [(&str, &str); 3] = [
     ),
 ];
 
-fn each_sample(
-    id: &'static str,
-    mut f: impl FnMut(&str, usize, &MacroDatum, &crate::InitialData<BigRational>) -> R,
-) -> R {
+/// Random macroscopic data ([`crate::generate::macro_datum`]) the §2.1
+/// claims are also checked on, fewest blocks first (so that the first
+/// witness found is a small one).
+const RANDOM_DATA: u64 = 300;
+
+/// A macroscopic datum as the `blocks` of a `[macro]` scene, for witnesses.
+fn render_blocks(datum: &MacroDatum) -> String {
+    let blocks: Vec<String> = datum
+        .blocks()
+        .iter()
+        .map(|b| {
+            let velocity = match &b.velocity {
+                BlockVelocity::Constant(c) => format!("\"{}\"", c.render()),
+                BlockVelocity::Affine(a, v) => format!("[\"{}\", \"{}\"]", a.render(), v.render()),
+            };
+            format!(
+                "{{ from = \"{}\", to = \"{}\", density = \"{}\", velocity = {velocity} }}",
+                b.from.render(),
+                b.to.render(),
+                b.density.render()
+            )
+        })
+        .collect();
+    format!("blocks = [{}]", blocks.join(", "))
+}
+
+/// Every datum with its name and the particle numbers it is sampled at: the
+/// shipped `[macro]` scenes at N = 2, 4, …, 256, then the random data at
+/// N = 2 … 16, 32, 64.
+fn data(id: &'static str) -> Result<Vec<(String, MacroDatum, Vec<usize>)>, Violation> {
+    let mut out = Vec::new();
     for (name, text) in SCENES {
         let s = scene::parse(text).map_err(|e| Violation::new(id, format!("{name}: {e}")))?;
         let SceneKind::Macro { datum, .. } = s.kind else {
             return Err(Violation::new(id, format!("{name} is not a macro scene")));
         };
-        let mut n = 2;
-        while n <= 256 {
-            let data = datum
-                .sample(n)
+        out.push((name.to_string(), datum, vec![2, 4, 8, 16, 32, 64, 128, 256]));
+    }
+    let mut rng = SplitMix64::new(0x5EED_2_1);
+    let mut random: Vec<MacroDatum> = (0..RANDOM_DATA)
+        .map(|_| macro_datum(&rng.bytes(40)))
+        .collect();
+    random.sort_by_key(|d| d.blocks().len());
+    let ns: Vec<usize> = (2..=16).chain([32, 64]).collect();
+    for datum in random {
+        out.push((render_blocks(&datum), datum, ns.clone()));
+    }
+    Ok(out)
+}
+
+/// Runs `f` on the quantile sample `(X⁰(i/N), U⁰(i/N))` of every datum at
+/// every N — the numbers §2.1 speaks of, admissible or not.
+fn each_sample(
+    id: &'static str,
+    mut f: impl FnMut(&str, usize, &MacroDatum, &[BigRational], &[BigRational]) -> R,
+) -> R {
+    for (name, datum, ns) in data(id)? {
+        for n in ns {
+            let (x, u) = datum
+                .quantiles(n)
                 .map_err(|e| Violation::new(id, format!("{name}, N = {n}: {e}")))?;
-            f(name, n, &datum, &data)?;
-            n *= 2;
+            f(&name, n, &datum, &x, &u)?;
         }
     }
     Ok(())
@@ -50,9 +98,8 @@ fn each_sample(
 /// ∫_{x_i^0}^{x_{i+1}^0} ρ^0(x) dx = 1/N" and hence "x_{i+1}^0 − x_i^0 ≥ 1/N".
 pub fn mass_between() -> R {
     const ID: &str = "thm:main#sampling-mass";
-    each_sample(ID, |name, n, datum, data| {
+    each_sample(ID, |name, n, datum, x, _u| {
         let inv = BigRational::one() / BigRational::from_usize(n);
-        let x = data.positions();
         for i in 0..n - 1 {
             let mass = datum.cdf(&x[i + 1]) - datum.cdf(&x[i]);
             let gap = x[i + 1].clone() - &x[i];
@@ -75,12 +122,13 @@ pub fn mass_between() -> R {
 
 /// `§2.1#contacts-equal-velocities`: "if two particles are in contact then
 /// they have the same velocity" (from `hyp:u0`, `∂_x u⁰ = 0` in
-/// `{ρ⁰ = 1}`): `u⁰_{i+1} = u⁰_i` whenever `x⁰_{i+1} − x⁰_i = 2r = 1/N`.
+/// `{ρ⁰ = 1}`): `u⁰_{i+1} = u⁰_i` whenever `x⁰_{i+1} − x⁰_i = 2r = 1/N`,
+/// with `u⁰_i = U⁰(i/N)` as printed (`U⁰` left-continuous, see
+/// [`MacroDatum::u0`]).
 pub fn contacts_equal_velocities() -> R {
     const ID: &str = "thm:main#sampling-contacts";
-    each_sample(ID, |name, n, _datum, data| {
-        let two_r = data.two_r();
-        let (x, u) = (data.positions(), data.velocities());
+    each_sample(ID, |name, n, _datum, x, u| {
+        let two_r = BigRational::one() / BigRational::from_usize(n);
         for i in 0..n - 1 {
             if x[i + 1].clone() - &x[i] == two_r && u[i] != u[i + 1] {
                 return Err(Violation::new(
@@ -91,6 +139,43 @@ pub fn contacts_equal_velocities() -> R {
                         i + 2,
                         u[i].render(),
                         u[i + 1].render()
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    })
+}
+
+/// The corrected `§2.1#contacts-equal-velocities`: two particles in contact
+/// bound an interval `(i/N, (i+1)/N)` of `{∂_w X⁰ = 1}`, on which `U⁰` is
+/// constant by `hyp:u0`; sampled from inside that interval — `U⁰(i/N+)` and
+/// `U⁰((i+1)/N−)`, the representative of `U⁰` that takes the congested
+/// side's value at the ends of a congested stretch — the two velocities are
+/// equal. (`U⁰` is only defined almost everywhere; the printed step
+/// evaluates it at the end points, where it may jump.)
+pub fn contacts_equal_velocities_inside() -> R {
+    const ID: &str = "thm:main#sampling-contacts";
+    each_sample(ID, |name, n, datum, x, _u| {
+        let inv = BigRational::one() / BigRational::from_usize(n);
+        for i in 0..n - 1 {
+            if x[i + 1].clone() - &x[i] != inv {
+                continue;
+            }
+            let w = BigRational::from_usize(i + 1) * &inv;
+            let right_of_left = datum.u0_right(&w);
+            let left_of_right = datum.u0(&(w.clone() + &inv));
+            let middle = datum.u0(&(w + &inv / BigRational::from_i64(2)));
+            if right_of_left != middle || left_of_right != middle {
+                return Err(Violation::new(
+                    ID,
+                    format!(
+                        "{name}, N = {n}: particles {} and {} touch, but U⁰ is not constant inside: U⁰(i/N+) = {}, U⁰ at the midpoint = {}, U⁰((i+1)/N−) = {}",
+                        i + 1,
+                        i + 2,
+                        right_of_left.render(),
+                        middle.render(),
+                        left_of_right.render()
                     ),
                 ));
             }
