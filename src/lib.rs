@@ -65,6 +65,7 @@
 
 // 1. The model core.
 pub mod cluster;
+pub mod columns;
 pub mod contact;
 pub mod error;
 pub mod generate;
