@@ -219,7 +219,7 @@ pub fn macro_datum(bytes: &[u8]) -> MacroDatum {
             } else {
                 q(1 + i64::from(src.below(4)), 4)
             };
-            from = from + gap;
+            from += gap;
         }
         let to = &from + &mass / &density;
         let speed =

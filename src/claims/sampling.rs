@@ -65,7 +65,7 @@ fn data(id: &'static str) -> Result<Vec<(String, MacroDatum, Vec<usize>)>, Viola
         };
         out.push((name.to_string(), datum, vec![2, 4, 8, 16, 32, 64, 128, 256]));
     }
-    let mut rng = SplitMix64::new(0x5EED_2_1);
+    let mut rng = SplitMix64::new(0x005E_ED21);
     let mut random: Vec<MacroDatum> = (0..RANDOM_DATA)
         .map(|_| macro_datum(&rng.bytes(40)))
         .collect();
