@@ -19,7 +19,8 @@
 //!    event-driven cluster merge), [`contact`] (the multipliers `λ` of
 //!    `eq:dyn-micro`, Appendix A's KKT multipliers, the pressure of
 //!    `prop:micro-pressure`), [`scene`] and [`quantile`] (scene files and
-//!    quantile sampling), [`generate`], [`violation`], [`text`], [`error`].
+//!    quantile sampling), [`generate`], [`rate`] (log-log slopes), [`violation`], [`text`],
+//!    [`error`].
 //! 2. [`fast`] — the exact integer engines (kernel, adaptive, integer merge).
 //! 3. [`reference`] — the `f64` solvers, and [`reference::measure`], the one
 //!    owner of every error metric.
@@ -40,6 +41,7 @@ pub mod generate;
 pub mod initial;
 pub mod projection;
 pub mod quantile;
+pub mod rate;
 pub mod rational;
 pub mod scalar;
 pub mod scene;

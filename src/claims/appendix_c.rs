@@ -152,7 +152,8 @@ pub fn sticky_pressure_corrected() -> R {
         right_slope: |_| q(-1, 1),
     };
     check_weight(ID, &p, zero)?;
-    let text = include_str!("../../scenes/appendix-c-two-blocks.toml");
+    let text = scene::shipped("appendix-c-two-blocks")
+        .ok_or_else(|| Violation::new(ID, "the Appendix C scene is not shipped"))?;
     let sc = scene::parse(text).map_err(|e| Violation::new(ID, e.to_string()))?;
     let scene::SceneKind::Macro { datum, .. } = sc.kind else {
         return Err(Violation::new(
