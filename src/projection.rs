@@ -129,6 +129,17 @@ pub struct Projected<S> {
     pub blocks: Vec<Block<S>>,
 }
 
+/// The free flight `y = x⁰ + t u⁰` (untranslated): the point `P_K` projects
+/// in `eq:proj-micro-x`. Written once for every scalar; the `f64` reference
+/// solvers and the claims checkers both call it.
+pub fn free_flight<S: Scalar>(data: &InitialData<S>, t: &S) -> Vec<S> {
+    data.positions()
+        .iter()
+        .zip(data.velocities())
+        .map(|(x, u)| x.clone() + &(t.clone() * u))
+        .collect()
+}
+
 /// Runs the lexicographic PAVA at time `t` (see the module documentation).
 pub fn project_at<S: Scalar>(data: &InitialData<S>, t: &S) -> Projected<S> {
     let u0 = data.velocities();

@@ -66,10 +66,45 @@ use crate::initial::InitialData;
 use crate::quantile::{render_short, Block, BlockVelocity, MacroDatum};
 use crate::rational::parse_exact;
 
+/// The scenes shipped in `scenes/`, embedded in the library: `(name, text)`,
+/// the name being the file stem. The one list the claims ledger, the
+/// scaling and sampling checks and the atlas draw their scenes from.
+pub const SHIPPED: [(&str, &str); 6] = [
+    (
+        "appendix-c-two-blocks",
+        include_str!("../scenes/appendix-c-two-blocks.toml"),
+    ),
+    (
+        "three-cluster-simultaneous",
+        include_str!("../scenes/three-cluster-simultaneous.toml"),
+    ),
+    (
+        "collision-cascade",
+        include_str!("../scenes/collision-cascade.toml"),
+    ),
+    (
+        "riemann-compression",
+        include_str!("../scenes/riemann-compression.toml"),
+    ),
+    (
+        "riemann-expansion-affine",
+        include_str!("../scenes/riemann-expansion-affine.toml"),
+    ),
+    ("random-1000", include_str!("../scenes/random-1000.toml")),
+];
+
+/// The text of the shipped scene `name` ([`SHIPPED`]), if there is one.
+pub fn shipped(name: &str) -> Option<&'static str> {
+    SHIPPED
+        .iter()
+        .find(|(n, _)| *n == name)
+        .map(|(_, text)| *text)
+}
+
 /// The default scene, embedded in the binary: Appendix C (`app:uniqueness`)
 /// of the paper, two congested blocks colliding at `t* = η/2 = 1/8`
 /// (`scenes/appendix-c-two-blocks.toml`).
-pub const DEFAULT_SCENE: &str = include_str!("../scenes/appendix-c-two-blocks.toml");
+pub const DEFAULT_SCENE: &str = SHIPPED[0].1;
 
 /// Largest scene file [`load`] reads: 64 MiB.
 pub const MAX_SCENE_BYTES: u64 = 64 * 1024 * 1024;

@@ -30,7 +30,7 @@ use sticky::limit::appendix_c::{
 };
 use sticky::limit::continuum::{Continuum, Profile, Segment};
 use sticky::limit::converge::{
-    converge, u_l1, write_csv, x_l2_squared, ConvergeOptions, ConvergenceReport, Engine, Quantity,
+    converge, u_l1, x_l2_squared, ConvergeOptions, ConvergenceReport, Engine, Quantity,
 };
 use sticky::limit::eulerian::{
     continuum_density, continuum_density_grid, continuum_momentum, continuum_pressure_potential,
@@ -43,6 +43,7 @@ use sticky::limit::sampling::{check_blocks, check_datum, check_sampling, Hypothe
 use sticky::limit::surd::Surd;
 use sticky::projection::isotonic;
 use sticky::quantile::{Block, BlockVelocity, MacroDatum};
+use sticky::report::converge::write_csv;
 use sticky::scalar::Scalar;
 use sticky::scene::{self, Scene, SceneKind};
 use sticky::trajectory::Trajectory;

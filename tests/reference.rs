@@ -249,14 +249,9 @@ fn oracle(solver: &dyn Solver, case: &Case, expect: &Expect) -> (Output, ErrorsF
 fn order(points: &[(f64, f64)]) -> f64 {
     let pts: Vec<(f64, f64)> = points
         .iter()
-        .map(|&(h, e)| (h.ln(), e.max(f64::MIN_POSITIVE).ln()))
+        .map(|&(h, e)| (h, e.max(f64::MIN_POSITIVE)))
         .collect();
-    let n = pts.len() as f64;
-    let mx = pts.iter().map(|p| p.0).sum::<f64>() / n;
-    let my = pts.iter().map(|p| p.1).sum::<f64>() / n;
-    let sxy: f64 = pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
-    let sxx: f64 = pts.iter().map(|p| (p.0 - mx).powi(2)).sum();
-    sxy / sxx
+    sticky::rate::log_log_slope(&pts)
 }
 
 fn median(mut v: Vec<f64>) -> f64 {

@@ -180,30 +180,7 @@ fn unreachable_shrink() -> ! {
 }
 
 fn shipped_cases() -> Vec<(&'static str, Case<BigRational>)> {
-    const SCENES: [(&str, &str); 6] = [
-        (
-            "appendix-c-two-blocks",
-            include_str!("../../scenes/appendix-c-two-blocks.toml"),
-        ),
-        (
-            "three-cluster-simultaneous",
-            include_str!("../../scenes/three-cluster-simultaneous.toml"),
-        ),
-        (
-            "collision-cascade",
-            include_str!("../../scenes/collision-cascade.toml"),
-        ),
-        (
-            "riemann-compression",
-            include_str!("../../scenes/riemann-compression.toml"),
-        ),
-        (
-            "riemann-expansion-affine",
-            include_str!("../../scenes/riemann-expansion-affine.toml"),
-        ),
-        ("random-1000", include_str!("../../scenes/random-1000.toml")),
-    ];
-    SCENES
+    scene::SHIPPED
         .iter()
         .filter_map(|(name, text)| {
             let s = scene::parse(text).ok()?;

@@ -21,7 +21,6 @@ use crate::initial::InitialData;
 use crate::scalar::Scalar;
 use crate::trajectory::Trajectory;
 
-pub mod appendix_c;
 pub mod discrete;
 pub mod fuzz;
 pub mod ledger;

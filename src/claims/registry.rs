@@ -4,8 +4,9 @@
 //! them. A `correction` is attached to a claim once it has been found false
 //! as printed; the corrected statement is then what the test engines require.
 
-use super::{always, appendix_c, discrete, micro, paper_radius, sampling, scaling};
+use super::{always, discrete, micro, paper_radius, sampling, scaling};
 use super::{Claim, Correction, Kind};
+use crate::limit::appendix_c;
 use crate::scalar::Scalar;
 
 const S2: &str = "§2 microscopic dynamics";
@@ -187,9 +188,9 @@ pub fn registry<S: Scalar>() -> Vec<Claim<S>> {
             "Holds: the sticky continuation is a solution with the corrected pressure; the non-uniqueness argument is unaffected.",
         ),
         fixed("app:uniqueness#rebound-pressure", APPC, "U²(t,w) = 2w − 1, X² = (w + η/2) + (t − t*)U², P² = [(2w − w²) 1_{[0,1/2)} − (w² − 1) 1_{[1/2,1]}] δ_{t=t*} solves eq:PDE-Lagr-2.", appendix_c::rebound_pressure),
-        fixed("app:uniqueness#projection-selects-sticky", APPC, "\"A natural way to restore uniqueness is to supplement eq:PDE-Lagr-2 with a projection principle on the velocity … U(t) = P_{H_{X(t)}}(U⁰)\" (eq:velocity-projection): of the two continuations only the sticky one satisfies it (and X = P_K(X⁰ + tU⁰)).", crate::limit::appendix_c::projection_selects_sticky),
-        fixed("app:uniqueness#particle-limit", APPC, "The projection principle \"can be seen as the macroscopic counterpart of the sticky blocks dynamics\": the quantile-sampled particles converge to the sticky continuation (‖X_N − X¹‖² = 1/(3N²)) and not to the rebound (‖X_N − X²‖ → (t − t*)/√3).", crate::limit::appendix_c::sticky_is_particle_limit),
-        fixed("app:uniqueness#sticky-pressure-is-continuum", APPC, "\"The pressure P is uniquely recovered from the momentum equation and the boundary condition\" P(t,0) = P(t,1) = 0: for the sticky continuation it is the jump at t* of the continuum multiplier Λ (∂_t X = U⁰ − ∂_w Λ), i.e. the corrected P¹.", crate::limit::appendix_c::sticky_pressure_is_continuum),
+        fixed("app:uniqueness#projection-selects-sticky", APPC, "\"A natural way to restore uniqueness is to supplement eq:PDE-Lagr-2 with a projection principle on the velocity … U(t) = P_{H_{X(t)}}(U⁰)\" (eq:velocity-projection): of the two continuations only the sticky one satisfies it (and X = P_K(X⁰ + tU⁰)).", appendix_c::projection_selects_sticky),
+        fixed("app:uniqueness#particle-limit", APPC, "The projection principle \"can be seen as the macroscopic counterpart of the sticky blocks dynamics\": the quantile-sampled particles converge to the sticky continuation (‖X_N − X¹‖² = 1/(3N²)) and not to the rebound (‖X_N − X²‖ → (t − t*)/√3).", appendix_c::sticky_is_particle_limit),
+        fixed("app:uniqueness#sticky-pressure-is-continuum", APPC, "\"The pressure P is uniquely recovered from the momentum equation and the boundary condition\" P(t,0) = P(t,1) = 0: for the sticky continuation it is the jump at t* of the continuum multiplier Λ (∂_t X = U⁰ − ∂_w Λ), i.e. the corrected P¹.", appendix_c::sticky_pressure_is_continuum),
         fixed("app:uniqueness#rebound-oleinik", APPC, "∂_w U² = 2, ∂_w X²(t,w) = 1 + 2(t − t*), and for η < 1, ∂_w U² ≤ ∂_w X²/t for all t > t* (eq:Oleinik-Lagr).", appendix_c::rebound_oleinik),
         Claim {
             id: "prop:cvg1",

@@ -12,19 +12,11 @@ use crate::scene::{self, SceneKind};
 
 type R = Result<(), Violation>;
 
-const SCENES: [(&str, &str); 3] = [
-    (
-        "appendix-c-two-blocks",
-        include_str!("../../scenes/appendix-c-two-blocks.toml"),
-    ),
-    (
-        "riemann-compression",
-        include_str!("../../scenes/riemann-compression.toml"),
-    ),
-    (
-        "riemann-expansion-affine",
-        include_str!("../../scenes/riemann-expansion-affine.toml"),
-    ),
+/// The shipped scenes ([`scene::SHIPPED`]) checked, by name.
+const SCENES: [&str; 3] = [
+    "appendix-c-two-blocks",
+    "riemann-compression",
+    "riemann-expansion-affine",
 ];
 
 /// Random macroscopic data ([`crate::generate::macro_datum`]) the §2.1
@@ -58,7 +50,9 @@ fn render_blocks(datum: &MacroDatum) -> String {
 /// N = 2 … 16, 32, 64.
 fn data(id: &'static str) -> Result<Vec<(String, MacroDatum, Vec<usize>)>, Violation> {
     let mut out = Vec::new();
-    for (name, text) in SCENES {
+    for name in SCENES {
+        let text = scene::shipped(name)
+            .ok_or_else(|| Violation::new(id, format!("{name} is not a shipped scene")))?;
         let s = scene::parse(text).map_err(|e| Violation::new(id, format!("{name}: {e}")))?;
         let SceneKind::Macro { datum, .. } = s.kind else {
             return Err(Violation::new(id, format!("{name} is not a macro scene")));

@@ -20,6 +20,7 @@ use super::Violation;
 use crate::contact::multipliers;
 use crate::projection::state_at;
 use crate::quantile::MacroDatum;
+use crate::rate::log_log_slope;
 use crate::scalar::Scalar;
 use crate::scene::{self, SceneKind};
 use crate::trajectory::Trajectory;
@@ -71,16 +72,8 @@ fn short(q: &BigRational) -> String {
 /// A scaling checker: the measurements, or the violation.
 pub type ScalingCheck = fn(Budget) -> Result<Vec<ScalingReport>, Violation>;
 
-const SCENES: [(&str, &str); 2] = [
-    (
-        "appendix-c-two-blocks",
-        include_str!("../../scenes/appendix-c-two-blocks.toml"),
-    ),
-    (
-        "riemann-compression",
-        include_str!("../../scenes/riemann-compression.toml"),
-    ),
-];
+/// The shipped scenes ([`scene::SHIPPED`]) checked, by name.
+const SCENES: [&str; 2] = ["appendix-c-two-blocks", "riemann-compression"];
 
 fn datum(text: &str, id: &'static str) -> Result<(MacroDatum, BigRational), Violation> {
     let s = scene::parse(text).map_err(|e| Violation::new(id, e.to_string()))?;
@@ -106,17 +99,9 @@ fn slope(values: &[(usize, BigRational)]) -> f64 {
     let pts: Vec<(f64, f64)> = values
         .iter()
         .filter(|(_, q)| q.to_f64_lossy() > 0.0)
-        .map(|(n, q)| ((*n as f64).ln(), q.to_f64_lossy().ln()))
+        .map(|(n, q)| (*n as f64, q.to_f64_lossy()))
         .collect();
-    let k = pts.len() as f64;
-    if pts.len() < 2 {
-        return f64::NAN;
-    }
-    let mx = pts.iter().map(|p| p.0).sum::<f64>() / k;
-    let my = pts.iter().map(|p| p.1).sum::<f64>() / k;
-    let sxy: f64 = pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
-    let sxx: f64 = pts.iter().map(|p| (p.0 - mx).powi(2)).sum();
-    sxy / sxx
+    log_log_slope(&pts)
 }
 
 /// Runs `q` on every shipped macro scene for every N and applies the
@@ -129,7 +114,9 @@ fn measure(
     q: impl Fn(&MacroDatum, &BigRational, usize) -> Result<BigRational, Violation>,
 ) -> Result<Vec<ScalingReport>, Violation> {
     let mut reports = Vec::new();
-    for (name, text) in SCENES {
+    for name in SCENES {
+        let text = scene::shipped(name)
+            .ok_or_else(|| Violation::new(id, format!("{name} is not a shipped scene")))?;
         let (d, t_end) = datum(text, id)?;
         let mut values = Vec::new();
         for n in ns(budget) {

@@ -22,7 +22,8 @@
 //!
 //! Entry points for the command line: [`converge::converge`] (or
 //! [`converge::converge_with_progress`]) with [`converge::ConvergeOptions`],
-//! [`converge::ConvergenceReport::summary`], [`converge::write_csv`];
+//! [`converge::ConvergenceReport::summary`] (and, in the report layer,
+//! `report::converge::write_csv`);
 //! [`eulerian::continuum_density_grid`] and
 //! [`eulerian::particle_density_grid`] for heat maps;
 //! [`eulerian::particle_pressure_atoms`] for pressure pictures.
@@ -35,4 +36,4 @@ pub mod interpolation;
 pub mod sampling;
 pub mod surd;
 
-pub use converge::{converge, write_csv, ConvergeOptions, ConvergenceReport};
+pub use converge::{converge, ConvergeOptions, ConvergenceReport};

@@ -59,9 +59,10 @@ use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
 use crate::initial::InitialData;
+use crate::projection::free_flight;
 
 use super::{
-    check_data, check_finite, check_positive, check_time, free_flight, kkt_from_positions,
+    check_data, check_finite, check_positive, check_time, kkt_from_positions,
     lambda_from_velocities, position_scale, Output, Solver, SolverError, Work,
 };
 
@@ -329,7 +330,7 @@ impl Solver for EventsF64 {
         }
         check_finite(&positions, events)?;
         let lambda = lambda_from_velocities(u0, &velocities);
-        let kkt = kkt_from_positions(&free_flight(data, t), &positions);
+        let kkt = kkt_from_positions(&free_flight(data, &t), &positions);
         Ok(Output {
             t,
             positions,

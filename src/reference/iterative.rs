@@ -30,9 +30,10 @@ use crate::initial::InitialData;
 
 use super::pgs::{gap, solve_full, Stop};
 use super::{
-    check_cap, check_data, check_finite, check_positive, check_time, free_flight, position_scale,
-    Output, Solver, SolverError, Work, ROUNDOFF,
+    check_cap, check_data, check_finite, check_positive, check_time, position_scale, Output,
+    Solver, SolverError, Work, ROUNDOFF,
 };
+use crate::projection::free_flight;
 
 /// Dual projected Gauss–Seidel on Appendix A's KKT system at one time.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -73,7 +74,7 @@ impl Solver for IterativeProjection {
             threshold: self.tol * two_r + ROUNDOFF * position_scale(data, t),
             max_sweeps: self.max_iterations,
         };
-        let mut x = free_flight(data, t);
+        let mut x = free_flight(data, &t);
         let mut nu = vec![0.0; n.saturating_sub(1)];
         let report = solve_full(&mut x, &mut nu, two_r, stop);
         check_finite(&x, report.sweeps)?;

@@ -32,6 +32,7 @@ use crate::contact::kkt_multipliers;
 use crate::initial::InitialData;
 use crate::projection::{project_at, state_at};
 use crate::scalar::Scalar;
+use crate::state::State;
 
 use super::{Output, SolverError};
 
@@ -162,6 +163,81 @@ fn max_abs_diff(a: &[BigRational], b: &[BigRational]) -> Option<BigRational> {
     a.iter().zip(b).map(|(p, q)| (p - q).abs()).max()
 }
 
+/// The contact set `Ω_{x(t)}` of an exact state (`df:Omega-micro`) as flags
+/// on the `N − 1` pairs: `flags[j]` when particles `j` and `j + 1` are in one
+/// cluster.
+pub fn contact_flags(state: &State<BigRational>) -> Vec<bool> {
+    let mut flags = vec![false; state.positions.len().saturating_sub(1)];
+    for c in &state.clusters {
+        for flag in &mut flags[c.first..c.end() - 1] {
+            *flag = true;
+        }
+    }
+    flags
+}
+
+/// A result in exact numbers: the method's own values, to be compared with
+/// the exact state.
+struct Exact<'a> {
+    positions: &'a [BigRational],
+    velocities: Option<&'a [BigRational]>,
+    lambda: Option<&'a [BigRational]>,
+    contacts: &'a [bool],
+    min_pressure_jump: Option<BigRational>,
+}
+
+/// Every metric of [`Errors`] but `kkt` (given), of `own` against the exact
+/// state `exact` at time `t` for the radius `2r = two_r`.
+fn errors(
+    own: Exact<'_>,
+    exact: &State<BigRational>,
+    kkt: Option<BigRational>,
+    two_r: &BigRational,
+    t: &BigRational,
+) -> Errors {
+    let x = own.positions;
+    let n = x.len();
+    let pairs = n.saturating_sub(1);
+    let position = max_abs_diff(x, &exact.positions).unwrap_or_else(<BigRational as Zero>::zero);
+    let velocity = own
+        .velocities
+        .map(|u| max_abs_diff(u, &exact.velocities).unwrap_or_else(<BigRational as Zero>::zero));
+    let lambda = own.lambda.and_then(|l| max_abs_diff(l, &exact.multipliers));
+    let min_lambda = own.lambda.and_then(|l| l.iter().min().cloned());
+    let exact_contact = contact_flags(exact);
+    let missed_contacts = (0..pairs)
+        .filter(|&j| exact_contact[j] && !own.contacts[j])
+        .count();
+    let spurious_contacts = (0..pairs)
+        .filter(|&j| !exact_contact[j] && own.contacts[j])
+        .count();
+    let min_gap = (0..pairs).map(|j| x[j + 1].clone() - &x[j] - two_r).min();
+    let oleinik_violations = match own.velocities {
+        Some(u) if t.is_positive() => Some(
+            (1..n)
+                .filter(|&i| {
+                    let dx = x[i].clone() - &x[i - 1];
+                    let du = u[i].clone() - &u[i - 1];
+                    !dx.is_positive() || t * du >= dx
+                })
+                .count(),
+        ),
+        _ => None,
+    };
+    Errors {
+        position,
+        velocity,
+        lambda,
+        kkt,
+        missed_contacts,
+        spurious_contacts,
+        min_gap,
+        min_lambda,
+        min_pressure_jump: own.min_pressure_jump,
+        oleinik_violations,
+    }
+}
+
 /// Measures `out` exactly against the exact solution at time `t` of `data`
 /// (pass [`exact_input`] of the solver's input to measure the method alone,
 /// or the original rational data to include the rounding of the input).
@@ -176,31 +252,25 @@ pub fn measure(
     let n = data.n();
     let pairs = n.saturating_sub(1);
     let state = state_at(data, t).map_err(exact_err)?;
-    let projected = project_at(data, t);
-    let (exact_mu, _) = kkt_multipliers(&projected.shifted_free, &projected.shifted);
 
     let x = exact(&out.positions, "positions", n)?;
-    let position = max_abs_diff(&x, &state.positions).unwrap_or_else(<BigRational as Zero>::zero);
     let u = match &out.velocities {
         Some(v) => Some(exact(v, "velocities", n)?),
         None => None,
     };
-    let velocity = u
-        .as_ref()
-        .map(|u| max_abs_diff(u, &state.velocities).unwrap_or_else(<BigRational as Zero>::zero));
-    let lambda_q = match &out.lambda {
+    let lambda = match &out.lambda {
         Some(l) => Some(exact(l, "lambda", pairs)?),
         None => None,
     };
-    let lambda = lambda_q
-        .as_ref()
-        .and_then(|l| max_abs_diff(l, &state.multipliers));
-    let min_lambda = lambda_q.as_ref().and_then(|l| l.iter().min().cloned());
     let kkt = match &out.kkt {
-        Some(m) => max_abs_diff(&exact(m, "kkt", pairs)?, &exact_mu),
+        Some(m) => {
+            let m = exact(m, "kkt", pairs)?;
+            let projected = project_at(data, t);
+            let (exact_mu, _) = kkt_multipliers(&projected.shifted_free, &projected.shifted);
+            max_abs_diff(&m, &exact_mu)
+        }
         None => None,
     };
-
     if out.contacts.len() != pairs {
         return Err(SolverError::Mismatch {
             what: "contacts",
@@ -208,21 +278,6 @@ pub fn measure(
             found: out.contacts.len(),
         });
     }
-    let mut exact_contact = vec![false; pairs];
-    for c in &state.clusters {
-        for flag in &mut exact_contact[c.first..c.end() - 1] {
-            *flag = true;
-        }
-    }
-    let missed_contacts = (0..pairs)
-        .filter(|&j| exact_contact[j] && !out.contacts[j])
-        .count();
-    let spurious_contacts = (0..pairs)
-        .filter(|&j| !exact_contact[j] && out.contacts[j])
-        .count();
-
-    let two_r = data.two_r();
-    let min_gap = (0..pairs).map(|j| x[j + 1].clone() - &x[j] - &two_r).min();
     let min_pressure_jump = match out.min_pressure_jump {
         Some(p) => Some(p.to_big_rational().ok_or(SolverError::NonFiniteOutput {
             what: "min_pressure_jump",
@@ -230,28 +285,36 @@ pub fn measure(
         })?),
         None => None,
     };
-    let oleinik_violations = match &u {
-        Some(u) if t.is_positive() => Some(
-            (1..n)
-                .filter(|&i| {
-                    let dx = x[i].clone() - &x[i - 1];
-                    let du = u[i].clone() - &u[i - 1];
-                    !dx.is_positive() || t * du >= dx
-                })
-                .count(),
-        ),
-        _ => None,
-    };
-    Ok(Errors {
-        position,
-        velocity,
-        lambda,
-        kkt,
-        missed_contacts,
-        spurious_contacts,
-        min_gap,
-        min_lambda,
+    let own = Exact {
+        positions: &x,
+        velocities: u.as_deref(),
+        lambda: lambda.as_deref(),
+        contacts: &out.contacts,
         min_pressure_jump,
-        oleinik_violations,
-    })
+    };
+    Ok(errors(own, &state, kkt, &data.two_r(), t))
+}
+
+/// Measures one exact engine's state `own` against another's, `exact`, both
+/// at time `t` of data of radius `2r = two_r`, with the same metrics as
+/// [`measure`] (`kkt` is not measured: `None`). `min_pressure_jump` is the
+/// smallest pressure jump `own`'s engine reports, if any. The atlas measures
+/// its exact engines this way, each against the other: their errors are `0`
+/// because the two agree, not by assumption.
+pub fn measure_state(
+    own: &State<BigRational>,
+    exact: &State<BigRational>,
+    two_r: &BigRational,
+    t: &BigRational,
+    min_pressure_jump: Option<BigRational>,
+) -> Errors {
+    let contacts = contact_flags(own);
+    let own = Exact {
+        positions: &own.positions,
+        velocities: Some(&own.velocities),
+        lambda: Some(&own.multipliers),
+        contacts: &contacts,
+        min_pressure_jump,
+    };
+    errors(own, exact, None, two_r, t)
 }

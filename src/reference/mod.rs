@@ -42,7 +42,7 @@ pub mod pgs;
 pub use catching_up::CatchingUp;
 pub use events::EventsF64;
 pub use iterative::IterativeProjection;
-pub use measure::{measure, Errors, ErrorsF64};
+pub use measure::{measure, measure_state, Errors, ErrorsF64};
 pub use moreau_jean::MoreauJean;
 pub use pava::PavaF64;
 
@@ -391,15 +391,6 @@ pub(crate) fn lambda_from_velocities(u0: &[f64], u: &[f64]) -> Vec<f64> {
 /// ([`crate::contact::kkt_multipliers`] run on `f64`).
 pub(crate) fn kkt_from_positions(y: &[f64], x: &[f64]) -> Vec<f64> {
     crate::contact::kkt_multipliers(y, x).0
-}
-
-/// `y = x⁰ + t u⁰` in `f64`.
-pub(crate) fn free_flight(data: &InitialData<f64>, t: f64) -> Vec<f64> {
-    data.positions()
-        .iter()
-        .zip(data.velocities())
-        .map(|(x, u)| x + t * u)
-        .collect()
 }
 
 /// The next `f64` above a finite `x`.

@@ -641,7 +641,7 @@ pub fn slopes(rows: &[ScalingRow], regime: &str, memory: bool) -> Vec<(&'static 
     methods
         .into_iter()
         .filter_map(|m| {
-            let pts: Vec<(usize, f64)> = rows
+            let pts: Vec<(f64, f64)> = rows
                 .iter()
                 .filter(|r| r.regime == regime && r.method == m)
                 .filter_map(|r| {
@@ -650,10 +650,10 @@ pub fn slopes(rows: &[ScalingRow], regime: &str, memory: bool) -> Vec<(&'static 
                     } else {
                         r.ns_per_particle.map(|v| v * r.n as f64)
                     };
-                    v.filter(|v| *v > 0.0).map(|v| (r.n, v))
+                    v.filter(|v| *v > 0.0).map(|v| (r.n as f64, v))
                 })
                 .collect();
-            (pts.len() >= 2).then(|| (m, crate::limit::converge::fit(&pts)))
+            (pts.len() >= 2).then(|| (m, crate::rate::log_log_slope(&pts)))
         })
         .collect()
 }

@@ -1,6 +1,8 @@
 //! The report layer: what turns the engines, the reference solvers, the
 //! claims and the hydrodynamic limit into files a person reads — the
-//! machine-readable JSON of the interop contract ([`json`]), and, with the
+//! machine-readable JSON of the interop contract ([`json`]), the CSV files of
+//! the convergence study ([`converge`](mod@converge)), the file helpers
+//! ([`io`]: whole writes, CSV fields), and, with the
 //! `report` feature, the charts (`plot`, `figures`), the speed-vs-accuracy
 //! atlas (`atlas`) and the benchmark (`bench`).
 //!
@@ -10,8 +12,10 @@
 pub mod atlas;
 #[cfg(feature = "report")]
 pub mod bench;
+pub mod converge;
 #[cfg(feature = "report")]
 pub mod figures;
+pub mod io;
 pub mod json;
 #[cfg(feature = "report")]
 pub mod plot;

@@ -533,16 +533,11 @@ pub fn write_grid(grid: &Grid, dir: &Path, stem: &str) -> Result<Written, PlotEr
 
 /// Writes `contents` to `path` whole: a temporary file in the same folder,
 /// then a rename.
+/// ([`crate::report::io::write_whole`], its one definition).
 pub fn write_whole(path: &Path, contents: &[u8]) -> Result<(), PlotError> {
-    let io = |e: std::io::Error| PlotError::Io {
+    crate::report::io::write_whole(path, contents).map_err(|e| PlotError::Io {
         path: path.to_path_buf(),
         message: e.to_string(),
-    };
-    let tmp = temporary(path, "tmp");
-    fs::write(&tmp, contents).map_err(io)?;
-    fs::rename(&tmp, path).map_err(|e| {
-        let _ = fs::remove_file(&tmp);
-        io(e)
     })
 }
 

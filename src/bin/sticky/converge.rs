@@ -38,7 +38,8 @@ fn converge(
     n_max: usize,
     exact_max: usize,
 ) -> Result<(), Failure> {
-    use sticky::limit::converge::{converge_with_progress, write_csv, ConvergeOptions};
+    use sticky::limit::converge::{converge_with_progress, ConvergeOptions};
+    use sticky::report::converge::write_csv;
     let opts = ConvergeOptions {
         n_max: n_max.max(8),
         exact_max,

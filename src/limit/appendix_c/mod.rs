@@ -34,6 +34,10 @@
 //!   continuum solver;
 //! * the particle limit: `‖X_N(t) − X^c(t)‖_{L²}` for the quantile
 //!   samplings.
+//!
+//! The claims ledger's checks of Appendix C (each a `Result<(), Violation>`
+//! on these formulas, called by the claims registry) are in
+//! `checks` and re-exported here: this module is their one owner.
 
 use num_rational::BigRational;
 use num_traits::Signed;
@@ -44,7 +48,14 @@ use crate::error::Error;
 use crate::quantile::{Block, BlockVelocity, MacroDatum};
 use crate::scalar::Scalar;
 use crate::trajectory::Trajectory;
-use crate::violation::Violation;
+
+mod checks;
+
+pub use checks::{
+    free_collision, projection_selects_sticky, rebound_oleinik, rebound_pressure,
+    sticky_is_particle_limit, sticky_pressure_corrected, sticky_pressure_is_continuum,
+    sticky_pressure_printed,
+};
 
 type Q = BigRational;
 
@@ -642,135 +653,4 @@ pub fn all_findings(eta: &Q) -> Result<Vec<Finding>, Error> {
     out.extend(tb.findings(Continuation::Sticky, Printing::Corrected)?);
     out.extend(tb.findings(Continuation::Rebound, Printing::AsPrinted)?);
     Ok(out)
-}
-
-fn violation(id: &'static str, e: impl std::fmt::Display) -> Violation {
-    Violation::new(id, e.to_string())
-}
-
-/// `app:uniqueness#projection-selects-sticky`: for `η ∈ {1/4, 1/2, 3/4}`,
-/// both continuations (sticky with the corrected `P¹`) solve
-/// `eq:PDE-Lagr-2` with `P ≥ 0`, complementarity and `eq:Oleinik-Lagr`;
-/// only the sticky one satisfies the projection principle
-/// `eq:velocity-projection` and the projection formula `X = P_K(X⁰ + tU⁰)`.
-pub fn projection_selects_sticky() -> Result<(), Violation> {
-    const ID: &str = "app:uniqueness#projection-selects-sticky";
-    for eta in [q(1, 4), q(1, 2), q(3, 4)] {
-        let tb = TwoBlocks::new(eta.clone()).map_err(|e| violation(ID, e))?;
-        let sticky = tb
-            .findings(Continuation::Sticky, Printing::Corrected)
-            .map_err(|e| violation(ID, e))?;
-        let rebound = tb
-            .findings(Continuation::Rebound, Printing::AsPrinted)
-            .map_err(|e| violation(ID, e))?;
-        if let Some(f) = sticky.iter().find(|f| !f.holds) {
-            return Err(violation(
-                ID,
-                format!(
-                    "η = {}: sticky fails {}: {}",
-                    eta.render(),
-                    f.claim,
-                    f.detail
-                ),
-            ));
-        }
-        for f in &rebound {
-            let expected = !matches!(
-                f.claim,
-                "eq:velocity-projection" | "eq:Lagr-1" | "eq:Lagr-1 (X(t) = P_K(X⁰ + tU⁰))"
-            );
-            if f.holds != expected {
-                return Err(violation(
-                    ID,
-                    format!(
-                        "η = {}: rebound {} {} ({})",
-                        eta.render(),
-                        if f.holds {
-                            "unexpectedly satisfies"
-                        } else {
-                            "fails"
-                        },
-                        f.claim,
-                        f.detail
-                    ),
-                ));
-            }
-        }
-    }
-    Ok(())
-}
-
-/// `app:uniqueness#particle-limit`: for `η = 1/4`, `t = 1`, the quantile
-/// samplings with `N = 8 … 512` satisfy `‖X_N − X¹‖² = 1/(3N²)` exactly
-/// (→ 0) while `‖X_N − X²‖² → (t − t*)²/3 > 0` (within `1/N`): the sticky
-/// continuation is the `N → ∞` limit, the rebound is not.
-pub fn sticky_is_particle_limit() -> Result<(), Violation> {
-    const ID: &str = "app:uniqueness#particle-limit";
-    let tb = TwoBlocks::new(q(1, 4)).map_err(|e| violation(ID, e))?;
-    let t = q(1, 1);
-    let ns = [8usize, 16, 32, 64, 128, 256, 512];
-    let d = tb
-        .particle_distances(&ns, &t)
-        .map_err(|e| violation(ID, e))?;
-    let gap = (&t - tb.t_star()) * (&t - tb.t_star()) / q(3, 1);
-    for (n, d1, d2) in d {
-        let nn = Q::from_integer(n.into());
-        if d1 != (q(3, 1) * &nn * &nn).recip() {
-            return Err(violation(
-                ID,
-                format!("N = {n}: ‖X_N − X¹‖² = {} ≠ 1/(3N²)", d1.render()),
-            ));
-        }
-        if (&d2 - &gap).abs() > nn.recip() {
-            return Err(violation(
-                ID,
-                format!(
-                    "N = {n}: ‖X_N − X²‖² = {} is not within 1/N of (t − t*)²/3 = {}",
-                    d2.render(),
-                    gap.render()
-                ),
-            ));
-        }
-    }
-    Ok(())
-}
-
-/// `app:uniqueness#sticky-pressure-is-continuum`: the corrected `P¹` weight
-/// is the jump at `t*` of the continuum multiplier `Λ` (from
-/// `∂_t X = U⁰ − ∂_w Λ`, `Λ(t,0) = Λ(t,1) = 0`), for `η ∈ {1/4, 1/2, 3/4}`.
-pub fn sticky_pressure_is_continuum() -> Result<(), Violation> {
-    const ID: &str = "app:uniqueness#sticky-pressure-is-continuum";
-    for eta in [q(1, 4), q(1, 2), q(3, 4)] {
-        let tb = TwoBlocks::new(eta.clone()).map_err(|e| violation(ID, e))?;
-        let c = Continuum::new(&tb.datum().map_err(|e| violation(ID, e))?);
-        let before = c
-            .profile(&(tb.t_star() / q(2, 1)))
-            .map_err(|e| violation(ID, e))?;
-        let at = c.profile(&tb.t_star()).map_err(|e| violation(ID, e))?;
-        let w = tb.pressure_weight(Continuation::Sticky, Printing::Corrected);
-        for k in 0..=32 {
-            let wq = q(k, 32);
-            let l0 = before
-                .lambda_exact(&wq)
-                .and_then(|s| s.as_rational().cloned());
-            let l1 = at.lambda_exact(&wq).and_then(|s| s.as_rational().cloned());
-            let jump = match (l0, l1) {
-                (Some(a), Some(b)) => b - a,
-                _ => return Err(violation(ID, "irrational Λ")),
-            };
-            if jump != w.eval(&wq) {
-                return Err(violation(
-                    ID,
-                    format!(
-                        "η = {}, w = {}: [Λ]_{{t*}} = {} but P¹ (corrected) = {}",
-                        eta.render(),
-                        wq.render(),
-                        jump.render(),
-                        w.eval(&wq).render()
-                    ),
-                ));
-            }
-        }
-    }
-    Ok(())
 }

@@ -1,0 +1,106 @@
+//! Claims of section 2 (microscopic dynamics) and Appendix A (KKT), checked
+//! on one [`Case`]: statements and the steps of their proofs, literally as
+//! printed, with the paper's normalisations (`‖x‖² = (1/N) Σ x_i²`,
+//! `⟨x, y⟩ = Σ x_i y_i`).
+
+use super::{Case, Violation};
+use crate::cluster::Cluster;
+use crate::projection::state_at;
+use crate::scalar::Scalar;
+use crate::state::State;
+use crate::trajectory::Trajectory;
+
+type R = Result<(), Violation>;
+
+mod bounds;
+mod kkt;
+mod multipliers;
+mod pressure;
+mod proj_micro;
+mod semigroup;
+
+pub use bounds::{
+    oleinik, oleinik_characteristics, position_contraction, position_nonexpansive, velocity_bound,
+};
+pub use kkt::{
+    kkt_corrected, kkt_printed, uniqueness_identity_corrected, uniqueness_identity_printed,
+};
+pub use multipliers::{
+    delta_lambda, dyn_micro, lambda_cs, multiplier_relation_corrected, multiplier_relation_printed,
+    multiplier_signs, sup_u_and_increments,
+};
+pub use pressure::{lambda_integral, micro_pressure, pressure_sign};
+pub use proj_micro::{
+    admissible, incl_hsn, incl_hsn_printed, ineg_projortho, orthogonality, proj_micro,
+    proj_u_micro_literal, projection_formula, u_in_h, u_projection, velo_step1, w_hs_perp,
+};
+pub use semigroup::{contacts_grow_corrected, contacts_grow_printed, projortho_sg, semigroup};
+
+fn render_vec<S: Scalar>(v: &[S]) -> String {
+    format!(
+        "[{}]",
+        v.iter().map(|x| x.render()).collect::<Vec<_>>().join(", ")
+    )
+}
+
+fn render_state<S: Scalar>(s: &State<S>) -> String {
+    format!(
+        "x = {}, u = {}, λ = {}, clusters = {:?}",
+        render_vec(&s.positions),
+        render_vec(&s.velocities),
+        render_vec(&s.multipliers),
+        s.clusters
+            .iter()
+            .map(|c: &Cluster| (c.first, c.size))
+            .collect::<Vec<_>>()
+    )
+}
+
+/// `⟨a, b⟩ = Σ a_i b_i` (the paper's non-rescaled inner product).
+pub fn dot<S: Scalar>(a: &[S], b: &[S]) -> S {
+    a.iter()
+        .zip(b)
+        .fold(S::zero(), |acc, (x, y)| acc + &(x.clone() * y))
+}
+
+/// `‖a‖² = (1/N) Σ a_i²` (the paper's rescaled norm).
+pub fn norm2<S: Scalar>(a: &[S]) -> S {
+    dot(a, a) / S::from_usize(a.len().max(1))
+}
+
+fn sub<S: Scalar>(a: &[S], b: &[S]) -> Vec<S> {
+    a.iter().zip(b).map(|(x, y)| x.clone() - y).collect()
+}
+
+fn state<S: Scalar>(case: &Case<S>, t: &S, id: &'static str) -> Result<State<S>, Violation> {
+    state_at(case.data(), t).map_err(|e| Violation::new(id, e.to_string()))
+}
+
+fn positive_times<S: Scalar>(case: &Case<S>) -> impl Iterator<Item = &S> {
+    case.times
+        .iter()
+        .filter(|t| t.total_cmp(&S::zero()).is_gt())
+}
+
+pub use crate::trajectory::probe_times;
+
+/// Runs the core section-2 checkers (`prop:proj-micro`, `eq:dyn-micro`,
+/// `prop:micro-pressure`) on one trajectory at the probe times (all of them,
+/// or a spread of `limit` collision instants); returns the number of checks
+/// made.
+pub fn check_trajectory<S: Scalar>(
+    traj: &Trajectory<S>,
+    limit: Option<usize>,
+) -> Result<usize, Violation> {
+    let mut count = 0;
+    for t in probe_times(traj, limit) {
+        let s = projection_formula(traj, &t)?;
+        multiplier_signs(traj.data(), &s)?;
+        count += 2;
+    }
+    for imp in traj.impulses() {
+        pressure_sign(imp)?;
+        count += 1;
+    }
+    Ok(count)
+}

@@ -1,0 +1,242 @@
+//! The multipliers `λ` of `eq:dyn-micro`: signs and complementarity, and
+//! the bounds of `prop:bound-micro` on `λ` and its increments `ΔL`.
+
+use super::{norm2, state, sub, R};
+use crate::claims::{Case, Violation};
+use crate::contact::multipliers;
+use crate::initial::InitialData;
+use crate::scalar::Scalar;
+use crate::state::State;
+
+/// `eq:dyn-micro`: `λ_0 = λ_N = 0`, `λ_i ≥ 0` and
+/// `λ_i (x_{i+1} − x_i − 2r) = 0` for the state `s` of the data `data`.
+pub fn multiplier_signs<S: Scalar>(data: &InitialData<S>, s: &State<S>) -> R {
+    const ID: &str = "eq:dyn-micro";
+    let (lambda, lambda_n) = multipliers(data.velocities(), &s.velocities);
+    if !lambda_n.is_zero() {
+        return Err(Violation::new(
+            ID,
+            format!("λ_N = {} ≠ 0 at t = {}", lambda_n.render(), s.t.render()),
+        ));
+    }
+    let two_r = data.two_r();
+    for (i, l) in lambda.iter().enumerate() {
+        if l.total_cmp(&S::zero()).is_lt() {
+            return Err(Violation::new(
+                ID,
+                format!("λ_{} = {} < 0 at t = {}", i + 1, l.render(), s.t.render()),
+            ));
+        }
+        let slack = s.positions[i + 1].clone() - &s.positions[i] - &two_r;
+        if !l.is_zero() && !slack.is_zero() {
+            return Err(Violation::new(
+                ID,
+                format!(
+                    "λ_{} = {} > 0 but x_{} − x_{} − 2r = {} ≠ 0 at t = {}",
+                    i + 1,
+                    l.render(),
+                    i + 2,
+                    i + 1,
+                    slack.render(),
+                    s.t.render()
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// `eq:dyn-micro` at every probe time.
+pub fn dyn_micro<S: Scalar>(case: &Case<S>) -> R {
+    for t in &case.times {
+        let s = state(case, t, "eq:dyn-micro")?;
+        multiplier_signs(case.data(), &s)?;
+    }
+    Ok(())
+}
+
+/// `(λ_1 − λ_0, …, λ_N − λ_{N−1})` and `L = (λ_1, …, λ_N)` at state `s`.
+fn delta_l<S: Scalar>(data: &InitialData<S>, s: &State<S>) -> (Vec<S>, Vec<S>) {
+    let (mut l, ln) = multipliers(data.velocities(), &s.velocities);
+    l.push(ln);
+    let mut prev = S::zero();
+    let d = l
+        .iter()
+        .map(|x| {
+            let v = x.clone() - &prev;
+            prev = x.clone();
+            v
+        })
+        .collect();
+    (d, l)
+}
+
+/// `prop:bound-micro#delta-lambda`: `‖ΔL‖² = Σ (1/N)(λ_i − λ_{i−1})²
+/// = Σ (1/N³)(u_i − u⁰_i)² ≤ (4/N²)‖u⁰‖²`.
+pub fn delta_lambda<S: Scalar>(case: &Case<S>) -> R {
+    const ID: &str = "prop:bound-micro#delta-lambda";
+    let n = S::from_usize(case.n());
+    let n3 = n.clone() * &n * &n;
+    for t in &case.times {
+        let s = state(case, t, ID)?;
+        let (dl, _) = delta_l(case.data(), &s);
+        let lhs = norm2(&dl);
+        let mid = sub(&s.velocities, case.data().velocities())
+            .iter()
+            .fold(S::zero(), |a, x| a + &(x.clone() * x))
+            / &n3;
+        let rhs = S::from_i64(4) / (n.clone() * &n) * norm2(case.data().velocities());
+        if lhs != mid || mid > rhs {
+            return Err(Violation::new(
+                ID,
+                format!(
+                    "t = {}: ‖ΔL‖² = {}, Σ(u_i − u⁰_i)²/N³ = {}, (4/N²)‖u⁰‖² = {}",
+                    t.render(),
+                    lhs.render(),
+                    mid.render(),
+                    rhs.render()
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// `prop:bound-micro#lambda-cauchy-schwarz`: `|λ_i| ≤ N‖ΔL‖` and
+/// `‖L‖² ≤ N²‖ΔL‖² ≤ 4‖u⁰‖²`.
+pub fn lambda_cs<S: Scalar>(case: &Case<S>) -> R {
+    const ID: &str = "prop:bound-micro#lambda-cauchy-schwarz";
+    let n = S::from_usize(case.n());
+    for t in &case.times {
+        let s = state(case, t, ID)?;
+        let (dl, l) = delta_l(case.data(), &s);
+        let bound = n.clone() * &n * norm2(&dl);
+        for (i, li) in l.iter().enumerate() {
+            if li.clone() * li > bound {
+                return Err(Violation::new(
+                    ID,
+                    format!(
+                        "t = {}: λ_{}² = {} > N²‖ΔL‖² = {}",
+                        t.render(),
+                        i + 1,
+                        (li.clone() * li).render(),
+                        bound.render()
+                    ),
+                ));
+            }
+        }
+        let four = S::from_i64(4) * norm2(case.data().velocities());
+        if norm2(&l) > bound || bound > four {
+            return Err(Violation::new(
+                ID,
+                format!(
+                    "t = {}: ‖L‖² = {}, N²‖ΔL‖² = {}, 4‖u⁰‖² = {}",
+                    t.render(),
+                    norm2(&l).render(),
+                    bound.render(),
+                    four.render()
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// `prop:bound-micro#multiplier-relation`: the proofs of `prop:bound-micro`
+/// and `prop:Linf-micro` use `N(λ_i(t) − λ_{i−1}(t)) = u_i(t) − u⁰_i`.
+pub fn multiplier_relation_printed<S: Scalar>(case: &Case<S>) -> R {
+    const ID: &str = "prop:bound-micro#multiplier-relation";
+    let n = S::from_usize(case.n());
+    for t in &case.times {
+        let s = state(case, t, ID)?;
+        let (dl, _) = delta_l(case.data(), &s);
+        for i in 0..case.n() {
+            let lhs = n.clone() * &dl[i];
+            let rhs = s.velocities[i].clone() - &case.data().velocities()[i];
+            if lhs != rhs {
+                return Err(Violation::new(
+                    ID,
+                    format!(
+                        "t = {}, i = {}: N(λ_i − λ_{{i−1}}) = {} but u_i − u⁰_i = {}",
+                        t.render(),
+                        i + 1,
+                        lhs.render(),
+                        rhs.render()
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The relation with the sign of `eq:dyn-micro`:
+/// `N(λ_i − λ_{i−1}) = u⁰_i − u_i`.
+pub fn multiplier_relation_corrected<S: Scalar>(case: &Case<S>) -> R {
+    const ID: &str = "prop:bound-micro#multiplier-relation (corrected)";
+    let n = S::from_usize(case.n());
+    for t in &case.times {
+        let s = state(case, t, ID)?;
+        let (dl, _) = delta_l(case.data(), &s);
+        for i in 0..case.n() {
+            let lhs = n.clone() * &dl[i];
+            let rhs = case.data().velocities()[i].clone() - &s.velocities[i];
+            if lhs != rhs {
+                return Err(Violation::new(
+                    ID,
+                    format!(
+                        "t = {}, i = {}: {} ≠ {}",
+                        t.render(),
+                        i + 1,
+                        lhs.render(),
+                        rhs.render()
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+fn sup_abs<S: Scalar>(v: &[S]) -> S {
+    v.iter().fold(S::zero(), |m, x| {
+        let a = if x.total_cmp(&S::zero()).is_lt() {
+            -x.clone()
+        } else {
+            x.clone()
+        };
+        if a > m {
+            a
+        } else {
+            m
+        }
+    })
+}
+
+/// `eq:sup-micro-u-L#velocity-and-increments`: the first two terms of
+/// `eq:sup-micro-u-L` for fixed N: `sup_i |u_i(t)| ≤ sup_i |u⁰_i|` and
+/// `sup_i |N(λ_i − λ_{i−1})| ≤ 2 sup_i |u⁰_i|`.
+pub fn sup_u_and_increments<S: Scalar>(case: &Case<S>) -> R {
+    const ID: &str = "eq:sup-micro-u-L#velocity-and-increments";
+    let c0 = sup_abs(case.data().velocities());
+    let n = S::from_usize(case.n());
+    for t in &case.times {
+        let s = state(case, t, ID)?;
+        let (dl, _) = delta_l(case.data(), &s);
+        let su = sup_abs(&s.velocities);
+        let sd = n.clone() * sup_abs(&dl);
+        if su > c0 || sd > S::from_i64(2) * &c0 {
+            return Err(Violation::new(
+                ID,
+                format!(
+                    "t = {}: sup|u| = {}, sup|N Δλ| = {}, sup|u⁰| = {}",
+                    t.render(),
+                    su.render(),
+                    sd.render(),
+                    c0.render()
+                ),
+            ));
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,128 @@
+//! The semigroup property (`eq:semigroup`, `eq:projortho-sg`) and the
+//! growth of the contact set in time (`df:H-micro`).
+
+use super::{render_vec, state, R};
+use crate::claims::{Case, Violation};
+use crate::cluster::{contact_clusters, project_h};
+use crate::projection::project_k;
+use crate::scalar::Scalar;
+use crate::state::State;
+
+/// `eq:semigroup` and `eq:projortho-sg`: for probe times `s < t`,
+/// `x(t) = P_K(x(s) + (t − s)u(s))` and `u(t) = P_{H_{x(t)}}(u(s))`.
+fn semigroup_both<S: Scalar>(case: &Case<S>, check_x: bool) -> R {
+    let id = if check_x {
+        "eq:semigroup"
+    } else {
+        "eq:projortho-sg"
+    };
+    let two_r = case.data().two_r();
+    let states: Vec<State<S>> = case
+        .times
+        .iter()
+        .map(|t| state(case, t, id))
+        .collect::<Result<_, _>>()?;
+    for (a, s) in states.iter().enumerate() {
+        for st in &states[a + 1..] {
+            if st.t <= s.t {
+                continue;
+            }
+            let dt = st.t.clone() - &s.t;
+            if check_x {
+                let y: Vec<S> = s
+                    .positions
+                    .iter()
+                    .zip(&s.velocities)
+                    .map(|(x, u)| x.clone() + &(dt.clone() * u))
+                    .collect();
+                let x = project_k(&y, &two_r);
+                if x != st.positions {
+                    return Err(Violation::new(
+                        id,
+                        format!(
+                            "s = {}, t = {}: P_K(x(s) + (t−s)u(s)) = {} but x(t) = {}",
+                            s.t.render(),
+                            st.t.render(),
+                            render_vec(&x),
+                            render_vec(&st.positions)
+                        ),
+                    ));
+                }
+            } else {
+                let u = project_h(&s.velocities, &contact_clusters(&st.positions, &two_r));
+                if u != st.velocities {
+                    return Err(Violation::new(
+                        id,
+                        format!(
+                            "s = {}, t = {}: P_H(u(s)) = {} but u(t) = {}",
+                            s.t.render(),
+                            st.t.render(),
+                            render_vec(&u),
+                            render_vec(&st.velocities)
+                        ),
+                    ));
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// `eq:semigroup`.
+pub fn semigroup<S: Scalar>(case: &Case<S>) -> R {
+    semigroup_both(case, true)
+}
+
+/// `eq:projortho-sg`.
+pub fn projortho_sg<S: Scalar>(case: &Case<S>) -> R {
+    semigroup_both(case, false)
+}
+
+fn contacts_grow<S: Scalar>(case: &Case<S>, id: &'static str, from_zero: bool) -> R {
+    let two_r = case.data().two_r();
+    let h0 = crate::cluster::h_violation(case.data().positions(), case.data().velocities(), &two_r)
+        .is_none();
+    let times: Vec<&S> = case
+        .times
+        .iter()
+        .filter(|t| from_zero || t.total_cmp(&S::zero()).is_gt() || h0)
+        .collect();
+    let mut prev: Option<(&S, Vec<usize>)> = None;
+    for t in times {
+        let s = state(case, t, id)?;
+        let omega = crate::cluster::contact_set(&s.positions, &two_r);
+        if let Some((ps, pomega)) = &prev {
+            if let Some(j) = pomega.iter().find(|j| !omega.contains(j)) {
+                return Err(Violation::new(
+                    id,
+                    format!(
+                        "particles {} and {} are in contact at s = {} but not at t = {} (u⁰ ∈ C_x⁰ \\ H_x⁰: u⁰_{} = {} < u⁰_{} = {})",
+                        j + 1,
+                        j + 2,
+                        ps.render(),
+                        t.render(),
+                        j + 1,
+                        case.data().velocities()[*j].render(),
+                        j + 2,
+                        case.data().velocities()[j + 1].render()
+                    ),
+                ));
+            }
+        }
+        prev = Some((t, omega));
+    }
+    Ok(())
+}
+
+/// `df:H-micro#contacts-grow`: "the set of active constraints is
+/// non-decreasing in time … N_{x(s)}K ⊂ N_{x(t)}K for all s ≤ t" (stated
+/// for data `x⁰ ∈ K`, `u⁰ ∈ C_{x⁰}`).
+pub fn contacts_grow_printed<S: Scalar>(case: &Case<S>) -> R {
+    contacts_grow(case, "df:H-micro#contacts-grow", true)
+}
+
+/// Corrected: `Ω_{x(s)} ⊂ Ω_{x(t)}` for `0 < s ≤ t`, and from `s = 0` when
+/// `u⁰ ∈ H_{x⁰}`.
+pub fn contacts_grow_corrected<S: Scalar>(case: &Case<S>) -> R {
+    contacts_grow(case, "df:H-micro#contacts-grow (corrected)", false)
+}
