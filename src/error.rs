@@ -114,6 +114,15 @@ pub enum Error {
         /// What is wrong with it.
         reason: String,
     },
+    /// The column file a `[particles]` table names (`data = "…"`) cannot be
+    /// read or holds a bad value (the message gives its line and column, or
+    /// its byte offset).
+    DataFile {
+        /// The file name as the scene gives it.
+        file: String,
+        /// What is wrong, and where in the file.
+        message: String,
+    },
     /// A requested time is negative.
     NegativeTime {
         /// The time given.
@@ -180,6 +189,9 @@ impl fmt::Display for Error {
                 write!(f, "macro blocks carry total mass {mass}, not 1")
             }
             Error::Block { block, reason } => write!(f, "macro block {block}: {reason}"),
+            Error::DataFile { file, message } => {
+                write!(f, "particle data file {file}: {message}")
+            }
             Error::NegativeTime { t } => write!(f, "time {t} is negative"),
             Error::Unsupported { message } => write!(f, "{message}"),
         }

@@ -248,6 +248,33 @@ fn unreachable_datum(e: crate::Error) -> MacroDatum {
     panic!("generate::macro_datum produced an invalid datum: {e}")
 }
 
+/// The data snapped to the binary grid `2^-bits`, so that every value is a
+/// double (for `.npy` files): translated positions (`df:translat-x`),
+/// velocities and the radius are each rounded down to the grid. Rounding
+/// down is monotone, so the translated positions stay non-decreasing
+/// (`x ∈ K^N` for any radius) and equal ones stay equal; velocities keep
+/// their order. `None` when the snapped data are not admissible (two
+/// distinct translated positions closer than the grid became a contact with
+/// approaching velocities), when the radius rounds to 0, or when a value
+/// needs more than 53 significant bits.
+pub fn dyadic(data: &InitialData<BigRational>, bits: u32) -> Option<InitialData<BigRational>> {
+    let scale = BigRational::from_integer(BigInt::from(1) << bits as usize);
+    let snap = |q: &BigRational| (q * &scale).floor() / &scale;
+    let radius = snap(data.radius());
+    let two_r = &radius + &radius;
+    let shifted: Vec<BigRational> = data.shifted_positions().iter().map(snap).collect();
+    let velocities: Vec<BigRational> = data.velocities().iter().map(snap).collect();
+    let positions = unshift(&shifted, &two_r);
+    let snapped = InitialData::new(radius, positions, velocities).ok()?;
+    let all_doubles = snapped
+        .positions()
+        .iter()
+        .chain(snapped.velocities())
+        .chain(std::iter::once(snapped.radius()))
+        .all(crate::columns::is_f64);
+    all_doubles.then_some(snapped)
+}
+
 /// SplitMix64: a tiny, well-mixed deterministic generator (for seeds and test
 /// data, not for cryptography).
 #[derive(Debug, Clone)]

@@ -13,6 +13,12 @@
 //! velocities = ["1", "1", "-1", "-1"]      # u_{i+1} ≥ u_i across contacts (def:velcone)
 //! ```
 //!
+//! Big scenes keep their columns in a file beside the TOML:
+//! `data = "particles.csv"` (header `position,velocity`, exact strings) or
+//! `data = "particles.npy"` (`f64`, shape `(N, 2)`, every double read exactly)
+//! instead of `positions`/`velocities` ([`crate::columns`]; read by [`load`]
+//! or [`parse_in`], relative to the scene's folder).
+//!
 //! or, instead of `[particles]`, a macroscopic datum sampled at the quantiles
 //! (paper §2.1, `thm:main`; see [`crate::quantile`]):
 //!
@@ -174,6 +180,14 @@ pub enum SceneKind {
 /// is an [`Error`] naming the field (see the module documentation for the
 /// field-path and numbering conventions).
 pub fn parse(text: &str) -> Result<Scene, Error> {
+    parse_in(text, None)
+}
+
+/// [`parse`] for a scene that lives in the folder `dir`: a `[particles]`
+/// table may then name a column file beside it (`data = "particles.csv"` or
+/// `"particles.npy"`, see [`crate::columns`]), read relative to `dir`.
+/// Without a folder (`None`), a `data` field is an error that says so.
+pub fn parse_in(text: &str, dir: Option<&Path>) -> Result<Scene, Error> {
     let table: Table = text.parse::<Table>().map_err(|e| toml_error(text, &e))?;
     check_keys(
         &table,
@@ -206,7 +220,7 @@ pub fn parse(text: &str) -> Result<Scene, Error> {
                 "a scene must have exactly one of [particles] and [macro], but this one has neither"
                     .to_string(),
         }),
-        (Some(p), None) => (SceneKind::Particles, particles_table(p, &budget)?),
+        (Some(p), None) => (SceneKind::Particles, particles_table(p, &budget, dir)?),
         (None, Some(m)) => macro_table(m, &budget)?,
     };
     Ok(Scene {
@@ -253,7 +267,7 @@ pub fn load(path: &Path) -> Result<Scene, Error> {
             e.utf8_error().valid_up_to()
         ),
     })?;
-    parse(&text)
+    parse_in(&text, path.parent())
 }
 
 /// The embedded [`DEFAULT_SCENE`], parsed.
@@ -451,20 +465,46 @@ fn exact_array(value: &Value, field: &str, budget: &Budget) -> Result<Vec<BigRat
 }
 
 /// `[particles]`: `radius` (optional), `positions`, `velocities`.
-fn particles_table(value: &Value, budget: &Budget) -> Result<InitialData<BigRational>, Error> {
+fn particles_table(
+    value: &Value,
+    budget: &Budget,
+    dir: Option<&Path>,
+) -> Result<InitialData<BigRational>, Error> {
     const P: &str = "particles";
     let table = as_table(value, P)?;
-    check_keys(table, P, &["radius", "positions", "velocities"])?;
-    let positions = exact_array(
-        required(table, P, "positions")?,
-        "particles.positions",
-        budget,
-    )?;
-    let velocities = exact_array(
-        required(table, P, "velocities")?,
-        "particles.velocities",
-        budget,
-    )?;
+    check_keys(table, P, &["radius", "positions", "velocities", "data"])?;
+    let (positions, velocities) = match table.get("data") {
+        Some(file) => {
+            for key in ["positions", "velocities"] {
+                if table.contains_key(key) {
+                    return Err(Error::SceneKind {
+                        message: format!(
+                            "[particles] gives both `data` and `{key}`: the columns come from one place"
+                        ),
+                    });
+                }
+            }
+            let Value::String(file) = file else {
+                return Err(Error::WrongType {
+                    field: "particles.data".to_string(),
+                    expected: "a file name (a string)",
+                });
+            };
+            read_columns(file, dir, budget)?
+        }
+        None => (
+            exact_array(
+                required(table, P, "positions")?,
+                "particles.positions",
+                budget,
+            )?,
+            exact_array(
+                required(table, P, "velocities")?,
+                "particles.velocities",
+                budget,
+            )?,
+        ),
+    };
     match table.get("radius") {
         Some(r) => {
             let radius = exact(r, "particles.radius", budget)?;
@@ -472,6 +512,59 @@ fn particles_table(value: &Value, budget: &Budget) -> Result<InitialData<BigRati
         }
         None => InitialData::with_paper_radius(positions, velocities),
     }
+}
+
+/// Largest column file a scene may name, in bytes.
+pub const MAX_DATA_BYTES: u64 = 4 * 1024 * 1024 * 1024;
+
+/// Reads the column file `file` of a `[particles]` table (CSV or NPY, by its
+/// extension), relative to the scene's folder `dir`.
+fn read_columns(
+    file: &str,
+    dir: Option<&Path>,
+    budget: &Budget,
+) -> Result<(Vec<BigRational>, Vec<BigRational>), Error> {
+    let fail = |message: String| Error::DataFile {
+        file: file.to_string(),
+        message,
+    };
+    let Some(dir) = dir else {
+        return Err(fail(
+            "a scene given as text has no folder to read its column file from: load the scene from a file".to_string(),
+        ));
+    };
+    let path = dir.join(file);
+    let meta = std::fs::metadata(&path).map_err(|e| fail(format!("{}: {e}", path.display())))?;
+    if meta.len() > MAX_DATA_BYTES {
+        return Err(fail(format!(
+            "larger than the {} GiB limit for column files",
+            MAX_DATA_BYTES >> 30
+        )));
+    }
+    let bytes = std::fs::read(&path).map_err(|e| fail(format!("{}: {e}", path.display())))?;
+    let columns = match path.extension().and_then(|e| e.to_str()) {
+        Some("csv") => {
+            let text = std::str::from_utf8(&bytes).map_err(|e| {
+                fail(format!(
+                    "not UTF-8 text (invalid byte at offset {})",
+                    e.valid_up_to()
+                ))
+            })?;
+            crate::columns::read_csv(text)
+        }
+        Some("npy") => crate::columns::read_npy(&bytes),
+        _ => {
+            return Err(fail(
+                "the file name must end in .csv (exact strings) or .npy (f64, shape (N, 2))"
+                    .to_string(),
+            ))
+        }
+    }
+    .map_err(|e| fail(e.to_string()))?;
+    for q in columns.positions.iter().chain(&columns.velocities) {
+        budget.charge(q, "particles.data")?;
+    }
+    Ok((columns.positions, columns.velocities))
 }
 
 /// `[macro]`: `particles` and `blocks`, sampled at the quantiles.

@@ -1,13 +1,22 @@
-//! `sticky generate [--n N] [--seed S]`: a random admissible scene.
+//! `sticky generate [--n N] [--seed S] [--format toml|csv|npy] [--out DIR]`:
+//! a random admissible scene.
 
 use std::io::Write;
+use std::path::PathBuf;
 
-use sticky::scene;
+use clap::ValueEnum;
+use num_rational::BigRational;
 
-use crate::{io_err, Failure};
+use sticky::columns;
+use sticky::generate::{dyadic, initial_data, Limits, SplitMix64};
+use sticky::report::io::write_whole;
+use sticky::{scene, InitialData, Scalar};
+
+use crate::{io_err, print_paths, Failure};
 
 /// Prints a random admissible `[particles]` scene (exact rationals, with
-/// contacts, separating contacts and simultaneous collisions on purpose).
+/// contacts, separating contacts and simultaneous collisions on purpose);
+/// with `--format csv|npy`, writes the scene and its column file to --out.
 #[derive(clap::Args)]
 pub struct Args {
     /// Number of particles.
@@ -16,29 +25,100 @@ pub struct Args {
     /// Seed of the generator (same seed, same scene).
     #[arg(long, default_value_t = 1)]
     seed: u64,
+    /// `toml`: the whole scene on stdout; `csv`: a TOML scene naming a CSV
+    /// column file of exact strings; `npy`: the same with an f64 `.npy` file
+    /// (the data snapped to the grid 2^-32 so that every value is a double).
+    #[arg(long, value_enum, default_value_t = Format::Toml)]
+    format: Format,
+    /// Folder for the scene and its column file (csv, npy); default
+    /// ./out/generate/.
+    #[arg(long)]
+    out: Option<PathBuf>,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum Format {
+    /// One TOML file, printed.
+    Toml,
+    /// TOML + CSV of exact strings.
+    Csv,
+    /// TOML + NPY of doubles.
+    Npy,
 }
 
 /// Runs `sticky generate`.
 pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
-    generate(out, args.n, args.seed)
-}
-
-fn generate(out: &mut impl Write, n: usize, seed: u64) -> Result<(), Failure> {
+    let n = args.n;
     if n == 0 || n > 10_000_000 {
         return Err(Failure(format!("--n must be in 1 ..= 10000000, got {n}")));
     }
-    let mut rng = sticky::generate::SplitMix64::new(seed);
-    let limits = sticky::generate::Limits {
+    let data = random(n, args.seed);
+    let mut name = format!("random-{n}-seed-{}", args.seed);
+    if args.format == Format::Toml {
+        return write!(out, "{}", scene::particles_toml(&data, Some(&name))).map_err(io_err);
+    }
+    let dir = args.out.unwrap_or_else(|| PathBuf::from("out/generate"));
+    std::fs::create_dir_all(&dir)
+        .map_err(|e| Failure(format!("cannot create {}: {e}", dir.display())))?;
+    let (file, bytes, data) = match args.format {
+        Format::Npy => {
+            name.push_str("-f64");
+            let data = dyadic(&data, 32).ok_or_else(|| {
+                Failure(format!(
+                    "the scene of seed {} does not survive snapping to doubles (grid 2^-32); use --format csv or another seed",
+                    args.seed
+                ))
+            })?;
+            let rows: Vec<(f64, f64)> = data
+                .positions()
+                .iter()
+                .zip(data.velocities())
+                .map(|(x, u)| (x.to_f64_lossy(), u.to_f64_lossy()))
+                .collect();
+            (format!("{name}.npy"), columns::write_npy(&rows), data)
+        }
+        _ => {
+            let csv = columns::write_csv(data.positions(), data.velocities());
+            (format!("{name}.csv"), csv.into_bytes(), data)
+        }
+    };
+    let toml = scene_toml(&name, data.radius(), &file, &data);
+    let scene_path = dir.join(format!("{name}.toml"));
+    let data_path = dir.join(&file);
+    write_whole(&data_path, &bytes).map_err(|e| Failure(e.to_string()))?;
+    write_whole(&scene_path, toml.as_bytes()).map_err(|e| Failure(e.to_string()))?;
+    print_paths(out, &[scene_path, data_path])
+}
+
+/// A random admissible datum of exactly `n` particles.
+fn random(n: usize, seed: u64) -> InitialData<BigRational> {
+    let mut rng = SplitMix64::new(seed);
+    let limits = Limits {
         max_n: n,
         ..Default::default()
     };
     // Enough bytes for n particles even when every group is a single one.
     let mut bytes = rng.bytes(16 * n + 16);
-    let mut data = sticky::generate::initial_data(&bytes, limits);
+    let mut data = initial_data(&bytes, limits);
     while data.n() < n {
         bytes.extend(rng.bytes(16 * n));
-        data = sticky::generate::initial_data(&bytes, limits);
+        data = initial_data(&bytes, limits);
     }
-    let name = format!("random-{n}-seed-{seed}");
-    write!(out, "{}", scene::particles_toml(&data, Some(&name))).map_err(io_err)
+    data
+}
+
+/// The TOML of a scene whose columns live in `file`.
+fn scene_toml(
+    name: &str,
+    radius: &BigRational,
+    file: &str,
+    data: &InitialData<BigRational>,
+) -> String {
+    format!(
+        "name = {}\ndescription = {}\n\n[particles]\nradius = \"{}\"\ndata = {}\n",
+        sticky::text::string(name),
+        sticky::text::string(&format!("{} random particles (sticky generate)", data.n())),
+        radius.render(),
+        sticky::text::string(file)
+    )
 }
