@@ -10,8 +10,10 @@
 pub mod atlas;
 #[cfg(feature = "report")]
 pub mod bench;
+pub mod export;
 #[cfg(feature = "report")]
 pub mod figures;
 pub mod json;
 #[cfg(feature = "report")]
 pub mod plot;
+pub mod solution;
