@@ -15,5 +15,7 @@ pub mod export;
 pub mod figures;
 pub mod json;
 #[cfg(feature = "report")]
+pub mod peers;
+#[cfg(feature = "report")]
 pub mod plot;
 pub mod solution;
