@@ -14,7 +14,7 @@ set -euo pipefail
 PY="${PYTHON:-python3}"
 
 echo "== peers from PyPI ($PY)"
-"$PY" -m pip install -q --disable-pip-version-check \
+"$PY" -m pip install -q --disable-pip-version-check --root-user-action=ignore \
   "numpy==2.4.6" "scipy==1.17.1" "osqp==1.1.3" "clarabel==0.11.1" "proxsuite==0.8.0" \
   "quadprog==0.1.14" "cvxopt==1.3.3" "cromosim==2.1.0"
 
