@@ -231,6 +231,8 @@ fn out_dir_gets_a_whole_csv() {
     assert!(out.contains("compare.csv"));
     let csv = std::fs::read_to_string(out_dir.join("compare.csv")).unwrap();
     assert_eq!(csv.lines().count(), 5);
+    assert!(out_dir.join("compare-positions.svg").exists());
+    assert!(out_dir.join("compare-velocities.svg").exists());
 }
 
 #[test]

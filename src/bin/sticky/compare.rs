@@ -36,7 +36,8 @@ pub struct Args {
     /// One JSON object (exact numbers as strings) instead of the text report.
     #[arg(long)]
     json: bool,
-    /// Also write compare.csv (per particle and time: exact errors) here.
+    /// Also write here compare.csv (per particle and time: exact errors) and
+    /// the charts compare-positions / compare-velocities (SVG, PNG).
     #[arg(long)]
     out: Option<PathBuf>,
     /// When the solution gives no `clusters`, pairs with gap ≤ 2r + TOL count
@@ -89,9 +90,10 @@ pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
     }
     let verdict = verdict(&results);
     if let Some(dir) = &args.out {
-        let path = write_csv(dir, &frames, &exact_states)?;
+        let mut paths = vec![write_csv(dir, &frames, &exact_states)?];
+        paths.extend(write_charts(dir, &frames, &exact_states)?);
         if !args.json {
-            print_paths(out, &[path])?;
+            print_paths(out, &paths)?;
         }
     }
     if args.json {
@@ -386,4 +388,54 @@ fn write_csv(
     std::fs::write(&tmp, s).map_err(fail)?;
     std::fs::rename(&tmp, &path).map_err(fail)?;
     Ok(path)
+}
+
+/// The charts in `--out`: the signed error (solver − sticky) of each
+/// particle, positions and velocities, one series per time (the first
+/// eight). Drawn in `f64` (a picture only: the exact values are in
+/// `compare.csv`).
+fn write_charts(
+    dir: &Path,
+    frames: &[Frame],
+    exact: &[sticky::State<BigRational>],
+) -> Result<Vec<PathBuf>, Failure> {
+    use sticky::report::plot::{palette, write_chart, Axis, Chart, Marker, Series};
+    let mut paths = Vec::new();
+    for (stem, what, velocity) in [
+        ("compare-positions", "position", false),
+        ("compare-velocities", "velocity", true),
+    ] {
+        let mut chart = Chart::new(
+            format!("{what} error of the solution, solver − sticky (exact values in compare.csv)"),
+            Axis::linear("particle i (0-based)"),
+            Axis::linear(format!("{what} error")),
+        );
+        for (k, (f, e)) in frames.iter().zip(exact).take(8).enumerate() {
+            let (mine, theirs) = if velocity {
+                match &f.velocities {
+                    Some(u) => (u, &e.velocities),
+                    None => continue,
+                }
+            } else {
+                (&f.positions, &e.positions)
+            };
+            let points = mine
+                .iter()
+                .zip(theirs)
+                .enumerate()
+                .map(|(i, (a, b))| (i as f64, (a - b).to_f64_lossy()))
+                .collect();
+            chart.series.push(
+                Series::line(format!("t = {}", short(&f.t)), palette(k), points)
+                    .with_marker(Marker::Circle),
+            );
+        }
+        if chart.series.is_empty() {
+            continue;
+        }
+        let written = write_chart(&chart, dir, stem)
+            .map_err(|e| Failure(format!("{}: {e}", dir.display())))?;
+        paths.extend(written.paths());
+    }
+    Ok(paths)
 }
