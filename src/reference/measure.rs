@@ -565,3 +565,100 @@ pub fn compare(
             .map(|u| oleinik_violations(x, u, &exact.t)),
     })
 }
+
+#[cfg(test)]
+mod compare_tests {
+    use super::*;
+    use crate::cluster::Cluster;
+    use crate::state::State;
+
+    fn q(n: i64, d: i64) -> BigRational {
+        BigRational::new(n.into(), d.into())
+    }
+
+    /// Three particles, 2r = 1/2, the first two in contact.
+    fn exact() -> State<BigRational> {
+        State {
+            t: q(1, 1),
+            positions: vec![q(0, 1), q(1, 2), q(2, 1)],
+            velocities: vec![q(1, 1), q(1, 1), q(0, 1)],
+            multipliers: vec![q(1, 3), q(0, 1)],
+            clusters: vec![Cluster { first: 0, size: 2 }, Cluster { first: 2, size: 1 }],
+        }
+    }
+
+    #[test]
+    fn known_perturbations_exactly() {
+        let e = exact();
+        let x = vec![q(0, 1), q(1, 2), q(2, 1) + q(3, 100)];
+        let u = vec![q(1, 1) - q(1, 7), q(1, 1), q(0, 1)];
+        let l = vec![q(1, 3), q(-1, 5)];
+        let c = compare(
+            &Candidate {
+                positions: &x,
+                velocities: Some(&u),
+                multipliers: Some(&l),
+                contacts: None,
+            },
+            &e,
+            &q(1, 2),
+            &q(0, 1),
+        )
+        .unwrap();
+        assert_eq!(
+            c.position_max,
+            MaxError {
+                value: q(3, 100),
+                index: 2
+            }
+        );
+        assert_eq!(c.position_l2_squared, q(9, 30000));
+        assert_eq!(c.velocity_max.as_ref().unwrap().value, q(1, 7));
+        assert_eq!(c.velocity_l2_squared, Some(q(1, 147)));
+        assert_eq!(c.multiplier_max.as_ref().unwrap().value, q(1, 5));
+        assert_eq!(
+            c.negative_multipliers,
+            vec![PairValue {
+                pair: 1,
+                value: q(-1, 5)
+            }]
+        );
+        // Pair 1: gap 2 + 3/100 − 1/2 − 1/2 = 103/100, λ = −1/5.
+        assert_eq!(
+            c.complementarity,
+            vec![PairValue {
+                pair: 1,
+                value: q(-103, 500)
+            }]
+        );
+        assert!(c.overlaps.is_empty());
+        // u_1 − u_0 = 1/7 over a gap 1/2 at t = 1: 1/7 < 1/2, fine.
+        assert_eq!(c.oleinik, Some(vec![]));
+        assert!(c.violates_model() && !c.is_exact());
+    }
+
+    #[test]
+    fn lengths_are_checked() {
+        let e = exact();
+        let x = vec![q(0, 1)];
+        let r = compare(
+            &Candidate {
+                positions: &x,
+                velocities: None,
+                multipliers: None,
+                contacts: None,
+            },
+            &e,
+            &q(1, 2),
+            &q(0, 1),
+        );
+        assert!(matches!(
+            r,
+            Err(CompareError::Length {
+                expected: 3,
+                found: 1,
+                ..
+            })
+        ));
+    }
+}
