@@ -226,9 +226,18 @@ pub fn run_peer(
     }
     cmd.arg("--out").arg(&out).args(peer.args);
     let start = Instant::now();
-    let o = cmd
-        .output()
-        .map_err(|e| fail(format!("cannot start {:?}: {e}", cmd.get_program())))?;
+    let o = match cmd.output() {
+        Ok(o) => o,
+        // No interpreter at all: the peer is not installed either.
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+            return Ok(PeerOutcome::Skipped(format!(
+                "SKIP {}: no interpreter {:?}",
+                peer.name,
+                cmd.get_program()
+            )))
+        }
+        Err(e) => return Err(fail(format!("cannot start {:?}: {e}", cmd.get_program()))),
+    };
     let wall_seconds = start.elapsed().as_secs_f64();
     let stdout = String::from_utf8_lossy(&o.stdout);
     if o.status.code() == Some(SKIP_STATUS) {
