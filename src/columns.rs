@@ -17,9 +17,8 @@
 
 use std::fmt::Write as _;
 
-use num_bigint::BigInt;
 use num_rational::BigRational;
-use num_traits::{One, Zero};
+use num_traits::Zero;
 
 use crate::rational::{parse_exact, render_exact};
 
@@ -138,32 +137,10 @@ pub fn write_csv(positions: &[BigRational], velocities: &[BigRational]) -> Strin
     out
 }
 
-/// The exact value of a finite double; `None` for NaN and infinities.
+/// The exact value of a finite double (the binary rational it is); `None`
+/// for NaN and infinities.
 pub fn f64_exact(v: f64) -> Option<BigRational> {
-    if !v.is_finite() {
-        return None;
-    }
-    let bits = v.to_bits();
-    let negative = bits >> 63 == 1;
-    let exponent = ((bits >> 52) & 0x7ff) as i64;
-    let fraction = bits & ((1u64 << 52) - 1);
-    let (mantissa, power) = if exponent == 0 {
-        (fraction, -1074)
-    } else {
-        (fraction | (1u64 << 52), exponent - 1075)
-    };
-    let mut q = if power >= 0 {
-        BigRational::from_integer(BigInt::from(mantissa) << power as usize)
-    } else {
-        BigRational::new(
-            BigInt::from(mantissa),
-            BigInt::one() << power.unsigned_abs() as usize,
-        )
-    };
-    if negative {
-        q = -q;
-    }
-    Some(q)
+    BigRational::from_float(v)
 }
 
 fn npy_err(byte: usize, message: impl Into<String>) -> ColumnsError {
@@ -337,6 +314,8 @@ pub fn is_f64(q: &BigRational) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use num_bigint::BigInt;
+    use num_traits::One;
 
     fn q(n: i64, d: i64) -> BigRational {
         BigRational::new(n.into(), d.into())

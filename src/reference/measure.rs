@@ -24,6 +24,13 @@
 //!   the number of pairs of the method's result that violate it, checked
 //!   exactly as `t (u_i − u_{i−1}) ≥ x_i − x_{i−1}`; a pair whose order is
 //!   lost (`x_i ≤ x_{i−1}`) counts as a violation.
+//!
+//! [`compare`] measures another solver's answer already read as rationals
+//! (`sticky compare`): the same metrics, plus the `L²` errors, which pairs
+//! overlap and by how much, which clusters are wrong, and the sign and
+//! complementarity of its `λ`.
+
+use std::fmt;
 
 use num_rational::BigRational;
 use num_traits::{Signed, Zero};
@@ -213,15 +220,7 @@ fn errors(
         .count();
     let min_gap = (0..pairs).map(|j| x[j + 1].clone() - &x[j] - two_r).min();
     let oleinik_violations = match own.velocities {
-        Some(u) if t.is_positive() => Some(
-            (1..n)
-                .filter(|&i| {
-                    let dx = x[i].clone() - &x[i - 1];
-                    let du = u[i].clone() - &u[i - 1];
-                    !dx.is_positive() || t * du >= dx
-                })
-                .count(),
-        ),
+        Some(u) if t.is_positive() => Some(oleinik_violations(x, u, t).len()),
         _ => None,
     };
     Errors {
@@ -317,4 +316,412 @@ pub fn measure_state(
         min_pressure_jump,
     };
     errors(own, exact, None, two_r, t)
+}
+
+/// `prop:Oleinik` checked exactly on positions `x` and velocities `u` at time
+/// `t > 0`: the indices `i` (0-based, for the pair `(i − 1, i)`) with
+/// `t (u_i − u_{i−1}) ≥ x_i − x_{i−1}`, i.e. where
+/// `(u_i − u_{i−1})/(x_i − x_{i−1}) < 1/t` fails; a pair whose order is lost
+/// (`x_i ≤ x_{i−1}`) counts as a violation. Empty for `t ≤ 0`.
+pub fn oleinik_violations(x: &[BigRational], u: &[BigRational], t: &BigRational) -> Vec<usize> {
+    if !t.is_positive() {
+        return Vec::new();
+    }
+    (1..x.len().min(u.len()))
+        .filter(|&i| {
+            let dx = x[i].clone() - &x[i - 1];
+            let du = u[i].clone() - &u[i - 1];
+            !dx.is_positive() || t * du >= dx
+        })
+        .collect()
+}
+
+/// Another solver's answer at one time, already read exactly (see
+/// `report::solution` for the file formats): the input of [`compare`].
+#[derive(Debug, Clone, Copy)]
+pub struct Candidate<'a> {
+    /// Positions `x_1 … x_N`.
+    pub positions: &'a [BigRational],
+    /// Velocities `u_1 … u_N` (compared with the right derivative), if given.
+    pub velocities: Option<&'a [BigRational]>,
+    /// `λ_1 … λ_{N−1}` of `eq:dyn-micro`, if given.
+    pub multipliers: Option<&'a [BigRational]>,
+    /// The solver's own contact set (`contacts[j]` for the pair `(j, j+1)`,
+    /// `N − 1` entries), if it reports one; otherwise [`compare`] takes the
+    /// pairs with `x_{j+1} − x_j ≤ 2r + tol`.
+    pub contacts: Option<&'a [bool]>,
+}
+
+/// The largest `|a_i − b_i|` and the first index where it is reached.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MaxError {
+    /// `max_i |a_i − b_i|` (exact).
+    pub value: BigRational,
+    /// The first index (0-based) reaching it.
+    pub index: usize,
+}
+
+/// One overlapping pair: `x_{j+1} − x_j < 2r` (`df:KN` violated).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Overlap {
+    /// The pair `(pair, pair + 1)`, 0-based.
+    pub pair: usize,
+    /// `2r − (x_{j+1} − x_j) > 0`.
+    pub depth: BigRational,
+}
+
+/// A value attached to one pair `(pair, pair + 1)` (0-based).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PairValue {
+    /// The pair, 0-based.
+    pub pair: usize,
+    /// The value.
+    pub value: BigRational,
+}
+
+/// Everything [`compare`] finds, exact. `L²` errors are the discrete
+/// `L²(0,1)` norm of the piecewise-constant interpolation (section 3):
+/// `‖e‖² = (1/N) Σ_i e_i²`, kept squared so that it stays rational (a
+/// constant error `δ` on every particle has `‖e‖ = δ`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Comparison {
+    /// The time.
+    pub t: BigRational,
+    /// `max_i |x_i − x_i(t)|`.
+    pub position_max: MaxError,
+    /// `(1/N) Σ_i (x_i − x_i(t))²`.
+    pub position_l2_squared: BigRational,
+    /// `max_i |u_i − u_i(t)|` (right derivative), when velocities are given.
+    pub velocity_max: Option<MaxError>,
+    /// `(1/N) Σ_i (u_i − u_i(t))²`, when velocities are given.
+    pub velocity_l2_squared: Option<BigRational>,
+    /// `max_i |λ_i − λ_i(t)|`, when multipliers are given and `N ≥ 2`.
+    pub multiplier_max: Option<MaxError>,
+    /// Every overlapping pair of the candidate's positions, left to right.
+    pub overlaps: Vec<Overlap>,
+    /// Exact contact clusters of size ≥ 2 that the candidate does not have.
+    pub missed_clusters: Vec<crate::cluster::Cluster>,
+    /// Candidate contact clusters of size ≥ 2 that the exact solution does
+    /// not have.
+    pub spurious_clusters: Vec<crate::cluster::Cluster>,
+    /// Pairs in contact in the exact solution, not in the candidate.
+    pub missed_contacts: usize,
+    /// Pairs in contact in the candidate, not in the exact solution.
+    pub spurious_contacts: usize,
+    /// Pairs with `λ_j < 0` (`eq:dyn-micro` wants `λ ≥ 0`), with `λ_j`.
+    pub negative_multipliers: Vec<PairValue>,
+    /// Pairs with `λ_j (x_{j+1} − x_j − 2r) ≠ 0` (complementarity of
+    /// `eq:dyn-micro`), with that product.
+    pub complementarity: Vec<PairValue>,
+    /// `prop:Oleinik` violations of the candidate ([`oleinik_violations`]);
+    /// `None` without velocities or at `t = 0`.
+    pub oleinik: Option<Vec<usize>>,
+}
+
+impl Comparison {
+    /// `true` when the candidate is the exact solution in every field it gave
+    /// and breaks no constraint.
+    pub fn is_exact(&self) -> bool {
+        Zero::is_zero(&self.position_max.value)
+            && self
+                .velocity_max
+                .as_ref()
+                .is_none_or(|m| Zero::is_zero(&m.value))
+            && self
+                .multiplier_max
+                .as_ref()
+                .is_none_or(|m| Zero::is_zero(&m.value))
+            && self.missed_contacts == 0
+            && self.spurious_contacts == 0
+            && !self.violates_model()
+    }
+
+    /// `true` when the candidate breaks a constraint of the model whatever
+    /// the exact solution: an overlap (`df:KN`), `λ < 0` or complementarity
+    /// (`eq:dyn-micro`), or `prop:Oleinik`.
+    pub fn violates_model(&self) -> bool {
+        !self.overlaps.is_empty()
+            || !self.negative_multipliers.is_empty()
+            || !self.complementarity.is_empty()
+            || self.oleinik.as_ref().is_some_and(|o| !o.is_empty())
+    }
+}
+
+/// Why [`compare`] cannot compare.
+#[derive(Debug, Clone, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum CompareError {
+    /// A field has the wrong length.
+    Length {
+        /// `positions`, `velocities`, `multipliers` or `contacts`.
+        what: &'static str,
+        /// The length wanted.
+        expected: usize,
+        /// The length given.
+        found: usize,
+    },
+    /// The exact solution is not defined at that time (negative `t`).
+    Exact {
+        /// The exact engine's message.
+        message: String,
+    },
+}
+
+impl fmt::Display for CompareError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            CompareError::Length {
+                what,
+                expected,
+                found,
+            } => write!(f, "{what}: {found} values, the scene needs {expected}"),
+            CompareError::Exact { message } => f.write_str(message),
+        }
+    }
+}
+
+impl std::error::Error for CompareError {}
+
+fn max_error(a: &[BigRational], b: &[BigRational]) -> MaxError {
+    let mut best = MaxError {
+        value: <BigRational as Zero>::zero(),
+        index: 0,
+    };
+    for (i, (p, q)) in a.iter().zip(b).enumerate() {
+        let d = (p - q).abs();
+        if d > best.value {
+            best = MaxError { value: d, index: i };
+        }
+    }
+    best
+}
+
+fn mean_square_error(a: &[BigRational], b: &[BigRational]) -> BigRational {
+    if a.is_empty() {
+        return <BigRational as Zero>::zero();
+    }
+    let mut s = <BigRational as Zero>::zero();
+    for (p, q) in a.iter().zip(b) {
+        let d = p - q;
+        s += &d * &d;
+    }
+    s / BigRational::from_integer(a.len().into())
+}
+
+fn check_len(what: &'static str, v: &[impl Sized], expected: usize) -> Result<(), CompareError> {
+    if v.len() == expected {
+        Ok(())
+    } else {
+        Err(CompareError::Length {
+            what,
+            expected,
+            found: v.len(),
+        })
+    }
+}
+
+/// Compares a candidate exactly with the exact state `exact` of the data
+/// whose `2r` is `two_r`. `tol ≥ 0` is the contact tolerance used when the
+/// candidate gives no contact set of its own (`0`: a contact is an exact
+/// `x_{j+1} − x_j ≤ 2r`).
+pub fn compare(
+    cand: &Candidate<'_>,
+    exact: &crate::state::State<BigRational>,
+    two_r: &BigRational,
+    tol: &BigRational,
+) -> Result<Comparison, CompareError> {
+    let n = exact.positions.len();
+    let pairs = n.saturating_sub(1);
+    check_len("positions", cand.positions, n)?;
+    if let Some(u) = cand.velocities {
+        check_len("velocities", u, n)?;
+    }
+    if let Some(l) = cand.multipliers {
+        check_len("multipliers", l, pairs)?;
+    }
+    if let Some(c) = cand.contacts {
+        check_len("contacts", c, pairs)?;
+    }
+    let x = cand.positions;
+    let gaps: Vec<BigRational> = (0..pairs).map(|j| &x[j + 1] - &x[j] - two_r).collect();
+    let overlaps = gaps
+        .iter()
+        .enumerate()
+        .filter(|(_, g)| g.is_negative())
+        .map(|(pair, g)| Overlap {
+            pair,
+            depth: -g.clone(),
+        })
+        .collect();
+    let mut exact_contact = vec![false; pairs];
+    for c in &exact.clusters {
+        for flag in &mut exact_contact[c.first..c.end() - 1] {
+            *flag = true;
+        }
+    }
+    let cand_contact: Vec<bool> = match cand.contacts {
+        Some(c) => c.to_vec(),
+        None => gaps.iter().map(|g| g <= tol).collect(),
+    };
+    let missed_contacts = (0..pairs)
+        .filter(|&j| exact_contact[j] && !cand_contact[j])
+        .count();
+    let spurious_contacts = (0..pairs)
+        .filter(|&j| !exact_contact[j] && cand_contact[j])
+        .count();
+    let cand_clusters = crate::cluster::runs(n, |j| cand_contact[j]);
+    let big = |c: &&crate::cluster::Cluster| c.size >= 2;
+    let missed_clusters = exact
+        .clusters
+        .iter()
+        .filter(big)
+        .filter(|c| !cand_clusters.contains(c))
+        .copied()
+        .collect();
+    let spurious_clusters = cand_clusters
+        .iter()
+        .filter(big)
+        .filter(|c| !exact.clusters.contains(c))
+        .copied()
+        .collect();
+    let (negative_multipliers, complementarity) = match cand.multipliers {
+        Some(l) => (
+            l.iter()
+                .enumerate()
+                .filter(|(_, v)| v.is_negative())
+                .map(|(pair, v)| PairValue {
+                    pair,
+                    value: v.clone(),
+                })
+                .collect(),
+            l.iter()
+                .zip(&gaps)
+                .enumerate()
+                .map(|(pair, (v, g))| PairValue { pair, value: v * g })
+                .filter(|p| !Zero::is_zero(&p.value))
+                .collect(),
+        ),
+        None => (Vec::new(), Vec::new()),
+    };
+    Ok(Comparison {
+        t: exact.t.clone(),
+        position_max: max_error(x, &exact.positions),
+        position_l2_squared: mean_square_error(x, &exact.positions),
+        velocity_max: cand.velocities.map(|u| max_error(u, &exact.velocities)),
+        velocity_l2_squared: cand
+            .velocities
+            .map(|u| mean_square_error(u, &exact.velocities)),
+        multiplier_max: cand
+            .multipliers
+            .filter(|_| pairs > 0)
+            .map(|l| max_error(l, &exact.multipliers)),
+        overlaps,
+        missed_clusters,
+        spurious_clusters,
+        missed_contacts,
+        spurious_contacts,
+        negative_multipliers,
+        complementarity,
+        oleinik: cand
+            .velocities
+            .filter(|_| exact.t.is_positive())
+            .map(|u| oleinik_violations(x, u, &exact.t)),
+    })
+}
+
+#[cfg(test)]
+mod compare_tests {
+    use super::*;
+    use crate::cluster::Cluster;
+    use crate::state::State;
+
+    fn q(n: i64, d: i64) -> BigRational {
+        BigRational::new(n.into(), d.into())
+    }
+
+    /// Three particles, 2r = 1/2, the first two in contact.
+    fn exact() -> State<BigRational> {
+        State {
+            t: q(1, 1),
+            positions: vec![q(0, 1), q(1, 2), q(2, 1)],
+            velocities: vec![q(1, 1), q(1, 1), q(0, 1)],
+            multipliers: vec![q(1, 3), q(0, 1)],
+            clusters: vec![Cluster { first: 0, size: 2 }, Cluster { first: 2, size: 1 }],
+        }
+    }
+
+    #[test]
+    fn known_perturbations_exactly() {
+        let e = exact();
+        let x = vec![q(0, 1), q(1, 2), q(2, 1) + q(3, 100)];
+        let u = vec![q(1, 1) - q(1, 7), q(1, 1), q(0, 1)];
+        let l = vec![q(1, 3), q(-1, 5)];
+        let c = compare(
+            &Candidate {
+                positions: &x,
+                velocities: Some(&u),
+                multipliers: Some(&l),
+                contacts: None,
+            },
+            &e,
+            &q(1, 2),
+            &q(0, 1),
+        )
+        .unwrap();
+        assert_eq!(
+            c.position_max,
+            MaxError {
+                value: q(3, 100),
+                index: 2
+            }
+        );
+        assert_eq!(c.position_l2_squared, q(9, 30000));
+        assert_eq!(c.velocity_max.as_ref().unwrap().value, q(1, 7));
+        assert_eq!(c.velocity_l2_squared, Some(q(1, 147)));
+        assert_eq!(c.multiplier_max.as_ref().unwrap().value, q(1, 5));
+        assert_eq!(
+            c.negative_multipliers,
+            vec![PairValue {
+                pair: 1,
+                value: q(-1, 5)
+            }]
+        );
+        // Pair 1: gap 2 + 3/100 − 1/2 − 1/2 = 103/100, λ = −1/5.
+        assert_eq!(
+            c.complementarity,
+            vec![PairValue {
+                pair: 1,
+                value: q(-103, 500)
+            }]
+        );
+        assert!(c.overlaps.is_empty());
+        // u_1 − u_0 = 1/7 over a gap 1/2 at t = 1: 1/7 < 1/2, fine.
+        assert_eq!(c.oleinik, Some(vec![]));
+        assert!(c.violates_model() && !c.is_exact());
+    }
+
+    #[test]
+    fn lengths_are_checked() {
+        let e = exact();
+        let x = vec![q(0, 1)];
+        let r = compare(
+            &Candidate {
+                positions: &x,
+                velocities: None,
+                multipliers: None,
+                contacts: None,
+            },
+            &e,
+            &q(1, 2),
+            &q(0, 1),
+        );
+        assert!(matches!(
+            r,
+            Err(CompareError::Length {
+                expected: 3,
+                found: 1,
+                ..
+            })
+        ));
+    }
 }

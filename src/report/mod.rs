@@ -2,9 +2,12 @@
 //! claims and the hydrodynamic limit into files a person reads — the
 //! machine-readable JSON of the interop contract ([`json`]), the CSV files of
 //! the convergence study ([`converge`](mod@converge)), the file helpers
-//! ([`io`]: whole writes, CSV fields), and, with the
+//! ([`io`]: whole writes, CSV fields), the exact reading of another solver's
+//! answer ([`solution`]) and the export of a scene as a peer reads it
+//! ([`export`]), and, with the
 //! `report` feature, the charts (`plot`, `figures`), the speed-vs-accuracy
-//! atlas (`atlas`) and the benchmark (`bench`).
+//! atlas (`atlas`), the benchmark (`bench`) and the peer solvers' runner
+//! (`peers`).
 //!
 //! Nothing below this layer imports it.
 
@@ -13,9 +16,13 @@ pub mod atlas;
 #[cfg(feature = "report")]
 pub mod bench;
 pub mod converge;
+pub mod export;
 #[cfg(feature = "report")]
 pub mod figures;
 pub mod io;
 pub mod json;
 #[cfg(feature = "report")]
+pub mod peers;
+#[cfg(feature = "report")]
 pub mod plot;
+pub mod solution;

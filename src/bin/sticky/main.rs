@@ -6,6 +6,9 @@
 //! * `sticky run SCENE --at T [--at T2 …] [--json]` — the state at each time.
 //! * `sticky events SCENE [--json]` — every collision.
 //! * `sticky check SCENE` — the summary of the default run, for any scene.
+//! * `sticky compare SCENE SOLUTION [--json]` — another solver's answer
+//!   against the exact one; `sticky export SCENE --format json|csv|npy` — the
+//!   scene as a peer solver reads it.
 //! * `sticky generate`, `claims`, `bench`, `converge`, `plot`, `atlas` — see
 //!   `sticky help COMMAND`.
 //!
@@ -15,8 +18,10 @@ mod atlas;
 mod bench;
 mod check;
 mod claims;
+mod compare;
 mod converge;
 mod events;
+mod export;
 mod generate;
 mod plot;
 mod run;
@@ -73,6 +78,12 @@ enum Command {
     /// The claims ledger: runs every checker of the paper's claims and prints
     /// the computed statuses.
     Claims(claims::Args),
+    /// Another solver's answer (JSON or CSV) against the exact one: position,
+    /// velocity, λ errors, overlaps, wrong clusters, Oleinik, and a verdict.
+    Compare(compare::Args),
+    /// The scene's data as a peer solver reads it: nearest doubles, their
+    /// exact rounding errors, exact values (JSON, CSV or NPY).
+    Export(export::Args),
 }
 
 fn parse_time(s: &str) -> Result<BigRational, String> {
@@ -133,6 +144,8 @@ fn main() -> ExitCode {
         Some(Command::Plot(args)) => plot::exec(args, &mut out),
         Some(Command::Atlas(args)) => atlas::exec(args, &mut out),
         Some(Command::Claims(args)) => claims::exec(args, &mut out),
+        Some(Command::Compare(args)) => compare::exec(args, &mut out),
+        Some(Command::Export(args)) => export::exec(args, &mut out),
     };
     let flushed = out.flush();
     match result {
