@@ -41,7 +41,8 @@
 //! run whose work (`N × steps` or `N × sweeps`) exceeds the budget `B`
 //! (`5·10⁸`; `2·10⁷` with `--quick`) is left out of the grid of that scene
 //! (the CSV lists what ran). The `parameter` column is the solver's own
-//! [`Solver::parameters`] string, so each row names every setting.
+//! [`Solver::parameters`](crate::reference::Solver::parameters) string, so
+//! each row names every setting.
 //!
 //! **The stability section** runs each floating-point method once per
 //! scene with its default tolerances: the time-steppers with a power-of-two
