@@ -65,6 +65,12 @@
 //! **Wall time** is the time of the solve alone (not of the measurement),
 //! averaged over repeated solves for fast runs (at least 20 ms of work in
 //! total, 2 ms with `--quick`; the `repeats` column).
+//!
+//! **Files.** This one: options, errors, the CSV columns and the driver
+//! ([`run`]); `suite.rs`: the scenes; `jobs.rs`: the grid of methods and
+//! parameters; `solve.rs`: timing and exact measurement; `failure.rs`: the
+//! failure kinds ([`Failure`]) and their classification; `csv.rs`,
+//! `charts.rs`, `stability.rs`: the files written.
 
 use std::fmt;
 use std::fs;
