@@ -140,15 +140,20 @@ pub fn free_flight<S: Scalar>(data: &InitialData<S>, t: &S) -> Vec<S> {
         .collect()
 }
 
+/// The translated free flight `ỹ_i = x̃⁰_i + t u⁰_i` (`x̃⁰_i = x⁰_i − 2r·i`):
+/// what the lexicographic PAVA projects on the monotone cone.
+pub fn shifted_free_flight<S: Scalar>(data: &InitialData<S>, t: &S) -> Vec<S> {
+    data.shifted_positions()
+        .into_iter()
+        .zip(data.velocities())
+        .map(|(x, u)| x + &(t.clone() * u))
+        .collect()
+}
+
 /// Runs the lexicographic PAVA at time `t` (see the module documentation).
 pub fn project_at<S: Scalar>(data: &InitialData<S>, t: &S) -> Projected<S> {
     let u0 = data.velocities();
-    let shifted_free: Vec<S> = data
-        .shifted_positions()
-        .into_iter()
-        .zip(u0)
-        .map(|(x, u)| x + &(t.clone() * u))
-        .collect();
+    let shifted_free = shifted_free_flight(data, t);
     let blocks = pava_blocks(&shifted_free, Some(u0));
     let mut shifted = Vec::with_capacity(data.n());
     for b in &blocks {

@@ -14,7 +14,7 @@
 //!   weak residuals of `eq:macro-euler`, `(1 − ρ)p` and the Oleinik
 //!   inequality, for the particles and the continuum;
 //! * [`converge`](mod@converge) — the convergence study across N (exact engine, then
-//!   `f64`), fitted rates, CSV files;
+//!   `f64`), fitted rates (its CSV files are written by the report layer);
 //! * [`appendix_c`] — the two-block example with its sticky and rebound
 //!   continuations, checked exactly as printed, and the ledger-ready checks
 //!   that the projection principle selects the sticky one, which is the

@@ -42,7 +42,7 @@ use crate::fast::kernel::{blocks_at, IntegerData};
 use crate::fast::merge::IntegerTrajectory;
 use crate::generate::{initial_data, Limits, SplitMix64};
 use crate::initial::InitialData;
-use crate::projection::{isotonic, pava_blocks};
+use crate::projection::{isotonic, pava_blocks, shifted_free_flight};
 use crate::scalar::Scalar;
 use crate::trajectory::Trajectory;
 
@@ -159,10 +159,9 @@ pub fn decimal_scene(d: &InitialData<BigRational>, digits: usize) -> InitialData
 
 /// `ỹ = x̃⁰ + t u⁰` in f64 (the peers' input).
 fn free_f64(d: &InitialData<BigRational>, t: &BigRational) -> Vec<f64> {
-    d.shifted_positions()
+    shifted_free_flight(d, t)
         .iter()
-        .zip(d.velocities())
-        .map(|(x, u)| (x + t * u).to_f64_lossy())
+        .map(Scalar::to_f64_lossy)
         .collect()
 }
 
@@ -333,12 +332,7 @@ pub fn run(opts: &BenchOptions, t: &BigRational, scripts: &Path) -> BenchReport 
         acc[at("adaptive_bigdata")].push(ns / nf, mib);
 
         let small = scene(naive_n, 5000 + rep as u64);
-        let ys: Vec<BigRational> = small
-            .shifted_positions()
-            .iter()
-            .zip(small.velocities())
-            .map(|(x, u)| x + t * u)
-            .collect();
+        let ys = shifted_free_flight(&small, t);
         let (ns, mib, out) = measured(|| pava_blocks(&ys, Some(small.velocities())));
         std::hint::black_box(out);
         acc[at("bigrational_naive")].note = format!(

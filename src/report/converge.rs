@@ -1,5 +1,5 @@
 //! The files of the convergence study (`sticky converge`): the CSV tables
-//! of a [`ConvergenceReport`] computed by [`crate::limit::converge`].
+//! of a [`ConvergenceReport`] computed by [`crate::limit::converge()`].
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};

@@ -1,5 +1,6 @@
-//! Appendix A: the KKT multipliers `μ(t)` of the projection
-//! (`app:KKT`) and the uniqueness identity of `prop:uniqueness-micro`.
+//! Appendix A: the KKT multipliers `μ(t)` of the projection (`app:KKT`),
+//! and the identity of the uniqueness proof of `prop:proj-micro`
+//! (`prop:proj-micro#uniqueness-identity`).
 
 use super::{dot, lambda_integral, render_vec, state, sub, R};
 use crate::claims::{Case, Violation};

@@ -2,6 +2,13 @@
 //! on one [`Case`]: statements and the steps of their proofs, literally as
 //! printed, with the paper's normalisations (`‖x‖² = (1/N) Σ x_i²`,
 //! `⟨x, y⟩ = Σ x_i y_i`).
+//!
+//! One file per group of claims, every checker re-exported here:
+//! `proj_micro.rs` (the projection formulas and the steps of their proofs),
+//! `multipliers.rs` (`eq:dyn-micro`, the bounds on `λ`), `bounds.rs`
+//! (`prop:bound-micro`, `prop:Oleinik`), `semigroup.rs` (the semigroup and
+//! the growth of the contact set), `pressure.rs` (`prop:micro-pressure`),
+//! `kkt.rs` (Appendix A). The shared helpers (norms, rendering) are here.
 
 use super::{Case, Violation};
 use crate::cluster::Cluster;

@@ -1,5 +1,6 @@
 //! The multipliers `λ` of `eq:dyn-micro`: signs and complementarity, and
-//! the bounds of `prop:bound-micro` on `λ` and its increments `ΔL`.
+//! the bounds of `prop:bound-micro` and `eq:sup-micro-u-L` on `λ` and its
+//! increments `ΔL`.
 
 use super::{norm2, state, sub, R};
 use crate::claims::{Case, Violation};

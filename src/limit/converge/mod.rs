@@ -21,6 +21,13 @@
 //! errors vanish by accident. Sups over `[0, T]` (or `[α, T]`, `α = t_1`)
 //! are maxima over these times, except the pressure mass, which is exact
 //! over `[0, T]`.
+//!
+//! **Files.** This one: the options, the report and the driver
+//! ([`converge`]); `quantity.rs`: what is measured ([`Measure`],
+//! [`Quantity`], [`Row`]) and the fitted [`rates`]; `distance.rs`: the
+//! `L²`/`L¹` distances of `thm:main` (iii); `particles.rs`: one N, the
+//! particle side against the continuum samples; `summary.rs`: the text
+//! table. The CSV files are written by `report::converge`.
 
 use num_bigint::BigInt;
 use num_rational::BigRational;

@@ -17,7 +17,8 @@ pub struct Measure {
     /// values (`2ε·max|X|`) and the `f64` summation (`(n + 20)ε` times the
     /// value); 0 for an exact value (the rounding of the exact value to a
     /// double aside).
-    /// It does not cover the `f64` particle engine (see [`EngineCheck`]).
+    /// It does not cover the `f64` particle engine (see
+    /// [`EngineCheck`](super::EngineCheck)).
     pub bound: f64,
     /// The exact value, when exact and short (a rational `p/q`, or
     /// `sqrt(p/q)` for a norm whose square is rational).

@@ -82,7 +82,7 @@ pub(super) fn pareto_chart(case: &str, rows: &[&Row], velocity: bool) -> Option<
     for method in all_methods() {
         let pts: Vec<(f64, f64)> = usable
             .iter()
-            .filter(|r| r.method == method)
+            .filter(|r| r.setting.method == method)
             .filter_map(|r| err(r).map(|e| (r.wall, if e > 0.0 { e } else { floor })))
             .collect();
         if pts.is_empty() {
@@ -124,7 +124,9 @@ pub(super) fn dt_chart(case: &str, rows: &[&Row]) -> Option<Chart> {
     let sel: Vec<&Row> = rows
         .iter()
         .copied()
-        .filter(|r| steppers.contains(&r.method) && r.sweep == "dt" && r.errors.is_some())
+        .filter(|r| {
+            steppers.contains(&r.setting.method) && r.setting.sweep == "dt" && r.errors.is_some()
+        })
         .collect();
     if sel.is_empty() {
         return None;
@@ -147,11 +149,11 @@ pub(super) fn dt_chart(case: &str, rows: &[&Row]) -> Option<Chart> {
         for velocity in [false, true] {
             let mut pts: Vec<(f64, f64)> = sel
                 .iter()
-                .filter(|r| r.method == *m)
+                .filter(|r| r.setting.method == *m)
                 .filter_map(|r| {
                     let e = r.errors?;
                     let v = if velocity { e.velocity? } else { e.position };
-                    Some((r.dt?, if v > 0.0 { v } else { floor }))
+                    Some((r.setting.dt?, if v > 0.0 { v } else { floor }))
                 })
                 .collect();
             if pts.is_empty() {
@@ -190,15 +192,19 @@ fn zero_errors() -> ErrorsF64 {
 
 /// The representative row of each method in `cost-vs-n`, and its legend.
 pub(super) fn representative(r: &Row) -> Option<String> {
-    match r.method {
-        "exact-pava" | "exact-events" | "pava-f64" => Some(r.method.to_string()),
-        "events-f64" if r.tol == Some(EVENTS_TOL) => {
+    match r.setting.method {
+        "exact-pava" | "exact-events" | "pava-f64" => Some(r.setting.method.to_string()),
+        "events-f64" if r.setting.tol == Some(EVENTS_TOL) => {
             Some(format!("events-f64 (tol {EVENTS_TOL:e})"))
         }
-        "moreau-jean" | "catching-up" if r.sweep == "dt" && r.dt == Some(SWEEP_DT) => {
-            Some(format!("{} (Δt = 2^-8)", r.method))
+        "moreau-jean" | "catching-up"
+            if r.setting.sweep == "dt" && r.setting.dt == Some(SWEEP_DT) =>
+        {
+            Some(format!("{} (Δt = 2^-8)", r.setting.method))
         }
-        "iterative-projection" if r.sweep == "tol" && r.tol == Some(ITERATIVE_TOL) => {
+        "iterative-projection"
+            if r.setting.sweep == "tol" && r.setting.tol == Some(ITERATIVE_TOL) =>
+        {
             Some(format!("iterative-projection (tol {ITERATIVE_TOL:e})"))
         }
         _ => None,
@@ -216,7 +222,7 @@ pub(super) fn cost_chart(rows: &[Row]) -> Chart {
         let mut pts = Vec::new();
         for r in rows
             .iter()
-            .filter(|r| r.scene.starts_with("random-") && r.method == method)
+            .filter(|r| r.scene.starts_with("random-") && r.setting.method == method)
         {
             if let Some(l) = representative(r) {
                 if !matches!(r.status, Status::Refused(_)) {

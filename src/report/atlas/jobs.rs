@@ -12,25 +12,41 @@ pub(super) enum Engine {
     Float(Box<dyn Solver>),
 }
 
-pub(super) struct Job {
+/// What identifies a job, and the row it becomes: the method and its
+/// settings.
+#[derive(Debug, Clone)]
+pub(super) struct Setting {
+    /// One of [`super::EXACT_METHODS`] or [`super::METHODS`].
     pub(super) method: &'static str,
+    /// The solver's own [`Solver::parameters`] string (empty for the exact
+    /// engines).
     pub(super) parameter: String,
+    /// The parameter varied: `dt`, `tol`, `cap` or empty.
     pub(super) sweep: &'static str,
+    /// The time step, when the method has one.
     pub(super) dt: Option<f64>,
+    /// The tolerance, when the method has one.
     pub(super) tol: Option<f64>,
+    /// The iteration cap, when the method has one.
     pub(super) cap: Option<usize>,
+}
+
+pub(super) struct Job {
+    pub(super) setting: Setting,
     pub(super) engine: Engine,
 }
 
 impl Job {
     fn exact(pava: bool) -> Job {
         Job {
-            method: if pava { "exact-pava" } else { "exact-events" },
-            parameter: String::new(),
-            sweep: "",
-            dt: None,
-            tol: None,
-            cap: None,
+            setting: Setting {
+                method: if pava { "exact-pava" } else { "exact-events" },
+                parameter: String::new(),
+                sweep: "",
+                dt: None,
+                tol: None,
+                cap: None,
+            },
             engine: if pava {
                 Engine::ExactPava
             } else {
@@ -47,12 +63,14 @@ impl Job {
         cap: Option<usize>,
     ) -> Job {
         Job {
-            method: solver.method(),
-            parameter: solver.parameters(),
-            sweep,
-            dt,
-            tol,
-            cap,
+            setting: Setting {
+                method: solver.method(),
+                parameter: solver.parameters(),
+                sweep,
+                dt,
+                tol,
+                cap,
+            },
             engine: Engine::Float(solver),
         }
     }

@@ -41,7 +41,8 @@
 //! run whose work (`N × steps` or `N × sweeps`) exceeds the budget `B`
 //! (`5·10⁸`; `2·10⁷` with `--quick`) is left out of the grid of that scene
 //! (the CSV lists what ran). The `parameter` column is the solver's own
-//! [`Solver::parameters`] string, so each row names every setting.
+//! [`Solver::parameters`](crate::reference::Solver::parameters) string, so
+//! each row names every setting.
 //!
 //! **The stability section** runs each floating-point method once per
 //! scene with its default tolerances: the time-steppers with a power-of-two
@@ -64,6 +65,12 @@
 //! **Wall time** is the time of the solve alone (not of the measurement),
 //! averaged over repeated solves for fast runs (at least 20 ms of work in
 //! total, 2 ms with `--quick`; the `repeats` column).
+//!
+//! **Files.** This one: options, errors, the CSV columns and the driver
+//! ([`run`]); `suite.rs`: the scenes; `jobs.rs`: the grid of methods and
+//! parameters; `solve.rs`: timing and exact measurement; `failure.rs`: the
+//! failure kinds ([`Failure`]) and their classification; `csv.rs`,
+//! `charts.rs`, `stability.rs`: the files written.
 
 use std::fmt;
 use std::fs;

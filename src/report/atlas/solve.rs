@@ -14,7 +14,7 @@ use crate::reference::{measure, measure_state, ErrorsF64, Output, Work};
 use crate::state::State;
 use crate::trajectory::Trajectory;
 
-use super::jobs::{Engine, Job};
+use super::jobs::{Engine, Job, Setting};
 use super::suite::{data_err, Case};
 use super::AtlasError;
 
@@ -44,12 +44,7 @@ pub(super) struct Row {
     pub(super) t: f64,
     pub(super) two_r: f64,
     pub(super) v: f64,
-    pub(super) method: &'static str,
-    pub(super) parameter: String,
-    pub(super) sweep: &'static str,
-    pub(super) dt: Option<f64>,
-    pub(super) tol: Option<f64>,
-    pub(super) cap: Option<usize>,
+    pub(super) setting: Setting,
     pub(super) status: Status,
     pub(super) wall: f64,
     pub(super) repeats: usize,
@@ -117,12 +112,7 @@ fn solve_job(
         t: case.t,
         two_r: case.two_r,
         v: case.v,
-        method: job.method,
-        parameter: job.parameter.clone(),
-        sweep: job.sweep,
-        dt: job.dt,
-        tol: job.tol,
-        cap: job.cap,
+        setting: job.setting.clone(),
         status: Status::Ok,
         wall: 0.0,
         repeats: 0,
@@ -219,7 +209,10 @@ pub(super) fn run_case(
     };
     let mut solved = Vec::with_capacity(jobs.len());
     for job in jobs {
-        bar.set_message(format!("{}: {} {}", case.name, job.method, job.parameter));
+        bar.set_message(format!(
+            "{}: {} {}",
+            case.name, job.setting.method, job.setting.parameter
+        ));
         solved.push(solve_job(case, exact.as_ref(), job, min_time));
         bar.inc(1);
     }

@@ -18,7 +18,7 @@ pub(super) fn stability_grid(cases: &[Case], rows: &[Row], failures: &[Vec<Failu
             let found = rows
                 .iter()
                 .zip(failures)
-                .find(|(r, _)| r.scene == case.name && r.method == *method);
+                .find(|(r, _)| r.scene == case.name && r.setting.method == *method);
             let Some((_, fs)) = found else {
                 continue;
             };
@@ -79,7 +79,7 @@ pub(super) fn stability_markdown(
             let found = rows
                 .iter()
                 .zip(failures)
-                .find(|(r, _)| r.scene == case.name && r.method == m);
+                .find(|(r, _)| r.scene == case.name && r.setting.method == m);
             let cell = match found {
                 None => "—".to_string(),
                 Some((_, fs)) if fs.is_empty() => "OK".to_string(),
