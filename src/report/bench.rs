@@ -664,7 +664,7 @@ fn scaling_chart(
     t: &str,
     memory: bool,
 ) -> crate::report::plot::Chart {
-    use crate::report::plot::{palette, Axis, Chart, Marker, Series};
+    use crate::report::plot::{palette, series_style, Axis, Chart, Series};
     let slopes = slopes(rows, regime, memory);
     let title = if memory {
         format!("Peak memory against N — {regime} (t = {t})")
@@ -691,16 +691,10 @@ fn scaling_chart(
             })
             .collect();
         let label = format!("{method} (slope {slope:.2})");
-        let marker = [
-            Marker::Circle,
-            Marker::Square,
-            Marker::Triangle,
-            Marker::Cross,
-            Marker::Ring,
-        ][k % 5];
+        // More than ten series: colour, marker and dash vary together.
         chart
             .series
-            .push(Series::line(label, palette(k), pts).with_marker(marker));
+            .push(Series::line(label, palette(k), pts).with_style(series_style(k)));
     }
     chart
 }
