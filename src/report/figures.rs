@@ -356,19 +356,19 @@ fn series_label(quantity: &str, slope: f64, values: &[(usize, f64)]) -> String {
     let zeros = values.iter().filter(|(_, v)| *v == 0.0).count();
     if positive.is_empty() {
         return if zeros == values.len() {
-            format!("{quantity}: exactly 0 at every N (not drawable on a log axis)")
+            format!("{quantity}: 0 at every N (not drawn)")
         } else {
-            format!("{quantity}: no positive finite value (not drawable on a log axis)")
+            format!("{quantity}: no positive value (not drawn)")
         };
     }
     if slope.is_finite() {
         return format!("{quantity} (slope {slope:.2})");
     }
     let why = match (positive.as_slice(), zeros) {
-        ([n], 0) => format!("one value only, N = {n}"),
-        ([n], z) => format!("nonzero only at N = {n}, exactly 0 at {z} other N"),
-        (_, 0) => "values at rounding level".to_string(),
-        (_, z) => format!("values at rounding level; exactly 0 at {z} N"),
+        ([n], 0) => format!("one value, N = {n}"),
+        ([n], _) => format!("0 except at N = {n}"),
+        (_, 0) => "rounding-level values".to_string(),
+        (_, z) => format!("rounding level, 0 at {z} N"),
     };
     format!("{quantity} (no slope: {why})")
 }

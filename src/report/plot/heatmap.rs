@@ -212,7 +212,7 @@ fn colour_bar<DB: DrawingBackend>(
         .margin_left(8)
         .margin_right(4)
         .x_label_area_size(48)
-        .right_y_label_area_size(90)
+        .right_y_label_area_size(72)
         .build_cartesian_2d(0.0..1.0, lo..hi)
         .map_err(|e| err(&e))?;
     let fy = |v: &f64| tick(*v, Scale::Linear);
