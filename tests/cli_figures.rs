@@ -175,8 +175,63 @@ fn svg_texts(svg: &str) -> Vec<String> {
         let Some(close) = rest.find("</text>") else {
             break;
         };
-        out.push(rest[open + 1..close].to_string());
+        out.push(rest[open + 1..close].trim().to_string());
         rest = &rest[close..];
     }
     out
+}
+
+/// The particle and continuum density maps of a scene share one colour
+/// scale: the same colour bar (label and ticks, every text but the title),
+/// drawn with the viridis ends.
+#[test]
+fn density_maps_share_one_labelled_colour_scale() {
+    let dir = std::env::temp_dir().join(format!("sticky-density-{}", std::process::id()));
+    run(&[
+        "plot",
+        "scenes/riemann-compression.toml",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    let read = |stem: &str| std::fs::read_to_string(dir.join(format!("{stem}.svg"))).unwrap();
+    let (p, c) = (read("density-particles"), read("density-continuum"));
+    for svg in [&p, &c] {
+        assert!(
+            svg_texts(svg).iter().any(|t| t == "density ρ"),
+            "no colour bar label"
+        );
+        let upper = svg.to_uppercase();
+        assert!(
+            upper.contains("#440154") && upper.contains("#FDE725"),
+            "not viridis"
+        );
+    }
+    let (tp, tc) = (svg_texts(&p), svg_texts(&c));
+    assert_eq!(tp[1..], tc[1..], "the two maps differ beyond their titles");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Without a TrueType font the PNGs are skipped, SVGs still written, and
+/// stderr says so once, with how to get them.
+#[test]
+fn missing_font_is_said_once_on_stderr() {
+    let dir = std::env::temp_dir().join(format!("sticky-nofont-{}", std::process::id()));
+    let out = Command::new(env!("CARGO_BIN_EXE_sticky"))
+        .args([
+            "plot",
+            "scenes/three-cluster-simultaneous.toml",
+            "--out",
+            dir.to_str().unwrap(),
+        ])
+        .env("STICKY_FONT", "none")
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("sticky runs");
+    assert!(out.status.success());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(stderr.matches("PNG charts skipped").count(), 1, "{stderr}");
+    assert!(stderr.contains("fonts-dejavu-core"), "{stderr}");
+    assert!(dir.join("spacetime.svg").exists());
+    assert!(!dir.join("spacetime.png").exists());
+    let _ = std::fs::remove_dir_all(&dir);
 }

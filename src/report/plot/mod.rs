@@ -2,7 +2,7 @@
 //! PNG side by side, each file whole (a temporary name in the target folder,
 //! then a rename), as DESIGN.md §3 asks of every command that writes files.
 //!
-//! Two kinds of figure:
+//! Three kinds of figure:
 //!
 //! * [`Chart`] — x/y axes, each linear or logarithmic, with labels and a
 //!   title; [`Series`] of points drawn as a line, as markers, or both (one
@@ -23,18 +23,19 @@
 //! (in SVG as well: label sizes are measured before they are written). The
 //! first figure looks for a TrueType font on the machine: the file named by
 //! the environment variable `STICKY_FONT`, then a list of common locations
-//! ([`FONT_PATHS`]); `STICKY_FONT=none` skips the search. If none is found, a *metrics-only* font (every glyph
-//! empty, 0.6 em wide) is built in memory and registered instead: SVG text is
+//! ([`FONT_PATHS`]); `STICKY_FONT=none` skips the search. If none is found,
+//! a *metrics-only* font (every glyph empty, 0.6 em wide) is built in memory and registered instead: SVG text is
 //! drawn by the viewer's own fonts, so SVG files come out complete, but a PNG
 //! would have no visible text, so PNGs are skipped ([`Written::png`] is
-//! `None` and [`png_support`] says why). Nothing here panics for want of a
-//! font.
+//! `None` and [`png_support`] says why) and standard error says so once per
+//! process, with how to get them (install a font such as Debian's
+//! `fonts-dejavu-core`, or set `STICKY_FONT`). Nothing here panics for want
+//! of a font.
 //!
 //! **Log axes** cannot show `0` or negative values: such points are left out
 //! of a log axis (callers that want to show an error of exactly 0 place it at
 //! a floor value and say so in the legend). Non-finite points are always
 //! left out.
-
 //!
 //! The module is split by idea: the data types (`model.rs`),
 //! line/scatter drawing (`chart.rs`), heat maps and the colour scale

@@ -328,3 +328,21 @@ pub struct Grid {
     /// The legend: what each colour means.
     pub legend: Vec<(String, Rgb)>,
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn thirty_series_styles_are_distinct() {
+        let styles: Vec<SeriesStyle> = (0..30).map(series_style).collect();
+        for (i, a) in styles.iter().enumerate() {
+            for (j, b) in styles.iter().enumerate().skip(i + 1) {
+                assert_ne!(a, b, "series {i} and {j} look alike");
+                if j == i + 10 {
+                    assert!(a.marker != b.marker && a.dash != b.dash, "{i} and {j}");
+                }
+            }
+        }
+    }
+}
