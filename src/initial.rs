@@ -94,6 +94,17 @@ impl<S: Scalar> InitialData<S> {
     pub fn shifted_positions(&self) -> Vec<S> {
         shift(&self.positions, &self.two_r())
     }
+    /// The same data rounded to `f64`, **not** re-validated: for pictures
+    /// of a history computed exactly ([`crate::trajectory::Trajectory::to_f64_lossy`]),
+    /// never as the input of a computation.
+    pub(crate) fn to_f64_lossy(&self) -> InitialData<f64> {
+        InitialData {
+            radius: self.radius.to_f64_lossy(),
+            positions: self.positions.iter().map(S::to_f64_lossy).collect(),
+            velocities: self.velocities.iter().map(S::to_f64_lossy).collect(),
+        }
+    }
+
     /// Converts every number to another scalar type (`None` when one does not
     /// fit). The result is re-validated, so a rounding f64 conversion that
     /// creates an overlap is reported, not hidden.

@@ -613,14 +613,76 @@ pub fn scaling(
     let csv_path = opts.out.join(format!("{stem}.csv"));
     crate::report::plot::write_whole(&csv_path, csv.as_bytes())?;
     let mut written = vec![csv_path];
+    written.extend(scaling_charts(&rows, &opts.out, opts.memory)?);
+    Ok((rows, written))
+}
+
+/// Reads the rows of a `scaling.csv` (or `scaling-memory.csv`) that
+/// [`scaling`] wrote; a line that is not a row (bad field count, unknown
+/// regime, bad number) is an error naming its line.
+pub fn read_scaling_csv(text: &str) -> Result<Vec<ScalingRow>, String> {
+    let mut rows = Vec::new();
+    let mut names: Vec<&'static str> = Vec::new();
+    for (k, line) in text.lines().enumerate().skip(1) {
+        if line.trim().is_empty() {
+            continue;
+        }
+        let bad = |what: &str| format!("line {}: {what}: {line:?}", k + 1);
+        let f: Vec<&str> = line.split(',').collect();
+        let [regime, n, method, ns, mib] = f[..] else {
+            return Err(bad("expected 5 fields"));
+        };
+        let regime = REGIMES
+            .iter()
+            .map(|r| r.0)
+            .find(|r| *r == regime)
+            .ok_or_else(|| bad("unknown regime"))?;
+        let n = n.parse().map_err(|_| bad("bad N"))?;
+        let num = |v: &str| -> Result<Option<f64>, String> {
+            if v.is_empty() {
+                Ok(None)
+            } else {
+                v.parse().map(Some).map_err(|_| bad("bad number"))
+            }
+        };
+        // Method names are few: each distinct one is kept once for the
+        // process (rows hold `&'static str`, as when measured).
+        let method = match names.iter().find(|m| **m == method) {
+            Some(m) => *m,
+            None => {
+                let m: &'static str = Box::leak(method.to_string().into_boxed_str());
+                names.push(m);
+                m
+            }
+        };
+        rows.push(ScalingRow {
+            regime,
+            n,
+            method,
+            ns_per_particle: num(ns)?,
+            peak_mib: num(mib)?,
+        });
+    }
+    Ok(rows)
+}
+
+/// The charts of [`scaling`] redrawn from its rows (for example read back
+/// from a CSV with [`read_scaling_csv`]), one per regime, into `out` as
+/// `scaling-REGIME` (or `scaling-memory-REGIME`); returns the paths written.
+pub fn scaling_charts(
+    rows: &[ScalingRow],
+    out: &Path,
+    memory: bool,
+) -> Result<Vec<std::path::PathBuf>, crate::report::plot::PlotError> {
+    let stem = if memory { "scaling-memory" } else { "scaling" };
+    let mut written = Vec::new();
     for &(regime, p, q) in &REGIMES {
-        let chart = scaling_chart(&rows, regime, &format!("{p}/{q}"), opts.memory);
+        let chart = scaling_chart(rows, regime, &format!("{p}/{q}"), memory);
         written.extend(
-            crate::report::plot::write_chart(&chart, &opts.out, &format!("{stem}-{regime}"))?
-                .paths(),
+            crate::report::plot::write_chart(&chart, out, &format!("{stem}-{regime}"))?.paths(),
         );
     }
-    Ok((rows, written))
+    Ok(written)
 }
 
 /// Per method: the least-squares slope of the total time (or memory)
@@ -658,7 +720,7 @@ fn scaling_chart(
     t: &str,
     memory: bool,
 ) -> crate::report::plot::Chart {
-    use crate::report::plot::{palette, Axis, Chart, Marker, Series};
+    use crate::report::plot::{palette, series_style, Axis, Chart, Series};
     let slopes = slopes(rows, regime, memory);
     let title = if memory {
         format!("Peak memory against N — {regime} (t = {t})")
@@ -685,16 +747,10 @@ fn scaling_chart(
             })
             .collect();
         let label = format!("{method} (slope {slope:.2})");
-        let marker = [
-            Marker::Circle,
-            Marker::Square,
-            Marker::Triangle,
-            Marker::Cross,
-            Marker::Ring,
-        ][k % 5];
+        // More than ten series: colour, marker and dash vary together.
         chart
             .series
-            .push(Series::line(label, palette(k), pts).with_marker(marker));
+            .push(Series::line(label, palette(k), pts).with_style(series_style(k)));
     }
     chart
 }

@@ -4,21 +4,27 @@
 
 use std::fs;
 use std::io;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// Writes `contents` to `path` whole: a hidden temporary file in the same
 /// folder (`.NAME.partial-PID.tmp`), then a rename; the temporary file is
 /// removed when the rename fails. The folder must exist.
 pub fn write_whole(path: &Path, contents: &[u8]) -> io::Result<()> {
-    let name = path
-        .file_stem()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let tmp = path.with_file_name(format!(".{name}.partial-{}.tmp", std::process::id()));
+    let tmp = temporary(path, "tmp");
     fs::write(&tmp, contents)?;
     fs::rename(&tmp, path).inspect_err(|_| {
         let _ = fs::remove_file(&tmp);
     })
+}
+
+/// `dir/.NAME.partial-PID.EXT`: a hidden sibling of `path` ending in `ext`
+/// (a chart encoder picks its format from the extension).
+pub fn temporary(path: &Path, ext: &str) -> PathBuf {
+    let name = path
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    path.with_file_name(format!(".{name}.partial-{}.{ext}", std::process::id()))
 }
 
 /// One CSV field (RFC 4180): quoted, with its quotes doubled, when it holds

@@ -54,6 +54,10 @@ pub struct Args {
     /// Output folder of the scaling study (default ./out/bench/).
     #[arg(long)]
     out: Option<PathBuf>,
+    /// With --scaling: measure nothing, redraw the charts from a CSV that
+    /// an earlier `--scaling` run wrote (e.g. docs/scaling.csv).
+    #[arg(long, requires = "scaling")]
+    charts_from: Option<PathBuf>,
 }
 
 /// glibc's allocator settings for a [`Memory`] mode.
@@ -126,6 +130,16 @@ fn scaling(args: Args, out: &mut impl Write) -> Result<(), Failure> {
         n = n.saturating_mul(10);
     }
     let memory = args.memory;
+    if let Some(csv) = &args.charts_from {
+        let text = std::fs::read_to_string(csv)
+            .map_err(|e| Failure(format!("cannot read {}: {e}", csv.display())))?;
+        let rows = bench::read_scaling_csv(&text)
+            .map_err(|e| Failure(format!("{}: {e}", csv.display())))?;
+        let dir = args.out.unwrap_or_else(|| PathBuf::from("out/bench"));
+        let paths =
+            bench::scaling_charts(&rows, &dir, memory).map_err(|e| Failure(e.to_string()))?;
+        return print_paths(out, &paths);
+    }
     let opts = bench::ScalingOptions {
         ns,
         reps: args.reps.unwrap_or(3),

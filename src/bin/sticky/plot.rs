@@ -52,27 +52,44 @@ fn plot(
     let mut paths =
         sticky::report::figures::spacetime(&traj, &t_end, &dir, "spacetime").map_err(lib_err)?;
     // The x range: everything the particles visit on [0, t_end], with a margin.
-    let (mut lo, mut hi) = (None::<BigRational>, None::<BigRational>);
-    for t in [<BigRational as Scalar>::zero(), t_end.clone()] {
-        let s = traj.at(&t).map_err(lib_err)?;
-        for x in [s.positions.first(), s.positions.last()]
-            .into_iter()
-            .flatten()
-        {
-            lo = Some(lo.map_or(x.clone(), |l| if *x < l { x.clone() } else { l }));
-            hi = Some(hi.map_or(x.clone(), |h| if *x > h { x.clone() } else { h }));
-        }
+    // The leftmost and rightmost particles at 0 and at t_end (they move
+    // rigidly with their clusters: O(1) each, exactly).
+    let n = scene.data.n();
+    let mut ends: Vec<BigRational> = Vec::new();
+    ends.extend(scene.data.positions().first().cloned());
+    ends.extend(scene.data.positions().last().cloned());
+    let at_end = traj.clusters_after(&t_end);
+    if let Some(c) = at_end.first() {
+        ends.push(traj.position_in(c, 0, &t_end));
     }
-    let (lo, hi) = (lo.unwrap_or_default(), hi.unwrap_or_default());
+    if let Some(c) = at_end.last() {
+        ends.push(traj.position_in(c, n.saturating_sub(1), &t_end));
+    }
+    let lo = ends.iter().min().cloned().unwrap_or_default();
+    let hi = ends.iter().max().cloned().unwrap_or_default();
     let margin = (hi.clone() - &lo) / BigRational::from_i64(20) + scene.data.two_r();
     let (lo, hi) = (lo - &margin, hi + &margin);
-    let delta = <BigRational as Scalar>::one();
-    let grid =
-        particle_density_grid(&traj, &delta, &t_end, 60, (&lo, &hi), 160).map_err(lib_err)?;
+    // One colour scale for both density maps: side by side, one colour is
+    // one density.
+    let scale = sticky::report::figures::density_scale();
+    // The particle density map from the exact history rounded to f64 (a
+    // picture: 60 states of N particles in exact arithmetic would take
+    // minutes at N = 10^5).
+    let lossy = traj.to_f64_lossy();
+    let grid = particle_density_grid(
+        &lossy,
+        &1.0, // δ = 1
+        &t_end,
+        60,
+        (&lo, &hi),
+        160,
+    )
+    .map_err(lib_err)?;
     paths.extend(
         sticky::report::figures::density(
             &grid,
             "particle density ρ_N = 1/∂_w X̃_N",
+            &scale,
             &dir,
             "density-particles",
         )
@@ -85,6 +102,7 @@ fn plot(
             sticky::report::figures::density(
                 &grid,
                 "continuum density ρ = X(t)#Leb",
+                &scale,
                 &dir,
                 "density-continuum",
             )
