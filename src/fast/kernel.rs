@@ -476,7 +476,15 @@ pub fn state_at(d: &IntegerData, t: &BigRational) -> Result<State<BigRational>, 
     if t.is_negative() {
         return Err(Error::NegativeTime { t: t.to_string() });
     }
-    let b = blocks_at(d, t);
+    Ok(state_of_blocks(d, &blocks_at(d, t), t))
+}
+
+/// The [`State`] at `t` from exact PAVA blocks at `t + ε` on `d` (the
+/// kernel's, or the adaptive solver's: the same blocks, one construction):
+/// positions `x_i = x̃ + 2r i`, velocities the block means
+/// (`eq:proj-u-micro`), the multipliers `λ` of `eq:dyn-micro` and the
+/// contact clusters (`df:Omega-micro`).
+pub fn state_of_blocks(d: &IntegerData, b: &Blocks, t: &BigRational) -> State<BigRational> {
     let n = d.n();
     let mut shifted = Vec::with_capacity(n);
     let mut positions = Vec::with_capacity(n);
@@ -514,13 +522,13 @@ pub fn state_at(d: &IntegerData, t: &BigRational) -> Result<State<BigRational>, 
         }
     }
     let clusters = runs(n, |j| shifted[j] == shifted[j + 1]);
-    Ok(State {
+    State {
         t: t.clone(),
         positions,
         velocities,
         multipliers,
         clusters,
-    })
+    }
 }
 
 #[cfg(test)]
