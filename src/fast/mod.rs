@@ -9,6 +9,8 @@
 //! * [`merge`] — the event-driven cluster merge on fixed-width integers
 //!   (`i64`/`i128` sums, 256-bit time comparisons);
 //! * [`scaling`] — the one scaling to common denominators both use;
+//! * `int` — the integer helpers they share (gcd and reduction, checked
+//!   products, narrowing to the smallest width, the block-size bound);
 //! * [`engine`] — the one interface every exact engine implements (the
 //!   generic `BigRational` ones of the core included) and the one list of
 //!   them, [`engine::ENGINES`];
@@ -18,6 +20,7 @@
 pub mod adaptive;
 pub mod battery;
 pub mod engine;
+pub(crate) mod int;
 pub mod kernel;
 pub mod merge;
 pub(crate) mod scaling;
