@@ -20,6 +20,10 @@
 //! moves rigidly and `λ` is constant, so `p_i` is a sum of Dirac masses at the
 //! collision times, with weights the jumps of `λ_i` ([`Impulse`]).
 
+use std::ops::{AddAssign, Mul, Sub};
+
+use num_traits::Zero;
+
 use crate::cluster::Cluster;
 use crate::scalar::Scalar;
 
@@ -41,6 +45,34 @@ fn scaled_prefix<S: Scalar>(a: &[S], b: &[S]) -> (Vec<S>, S) {
 /// `u(t)`. `λ_N` must be zero; it is returned, not assumed.
 pub fn multipliers<S: Scalar>(u0: &[S], u: &[S]) -> (Vec<S>, S) {
     scaled_prefix(u0, u)
+}
+
+/// The multipliers of `eq:dyn-micro` on one cluster, in closed form: the
+/// cluster moves with the mean `ū = S/k` of `u⁰` over it (`S = Σ a_j`,
+/// `k` particles), and `λ` vanishes at both of its ends, so the recurrence
+/// above gives, for the `m`-th particle of the cluster (`m = 1 … k`),
+/// `N k λ = k Σ_{j ≤ m} a_j − m S` — with the velocities written as
+/// `u⁰_j = a_j / D` over any common denominator `D`, `λ` is this numerator
+/// over `k D N`. Returns the `k` numerators (the last one, at the cluster's
+/// right end, is zero). The exact integer kernel builds `λ` with it.
+pub fn cluster_multiplier_numerators<T>(a: &[T]) -> Vec<T>
+where
+    T: Zero + From<usize> + for<'x> AddAssign<&'x T>,
+    for<'x> &'x T: Mul<&'x T, Output = T> + Sub<&'x T, Output = T>,
+{
+    let k = T::from(a.len());
+    let mut sum = T::zero();
+    for v in a {
+        sum += v;
+    }
+    let mut prefix = T::zero();
+    a.iter()
+        .enumerate()
+        .map(|(m, v)| {
+            prefix += v;
+            &(&k * &prefix) - &(&T::from(m + 1) * &sum)
+        })
+        .collect()
 }
 
 /// Appendix A's KKT multipliers of the position projection:
@@ -128,6 +160,29 @@ mod tests {
         let (mu, mu_n) = kkt_multipliers(&[q(1, 1), q(0, 1)], &[q(1, 2), q(1, 2)]);
         assert_eq!(mu, vec![q(1, 4)]);
         assert_eq!(mu_n, S::zero());
+    }
+
+    /// The closed form on a cluster is the recurrence: on integer data
+    /// (`D = 1`), `N k λ` from both.
+    #[test]
+    fn cluster_form_is_the_recurrence() {
+        use num_bigint::BigInt;
+        let a: Vec<i64> = vec![5, -3, 2, 2, -7, 4];
+        let k = a.len();
+        let mean = BigRational::new(BigInt::from(a.iter().sum::<i64>()), BigInt::from(k));
+        let u0: Vec<BigRational> = a
+            .iter()
+            .map(|&v| BigRational::from(BigInt::from(v)))
+            .collect();
+        let (lambda, last) = multipliers(&u0, &vec![mean; k]);
+        let nums =
+            cluster_multiplier_numerators(&a.iter().map(|&v| BigInt::from(v)).collect::<Vec<_>>());
+        let scale = BigRational::from(BigInt::from(k * k));
+        let mut want: Vec<BigRational> = lambda.iter().map(|l| l * &scale).collect();
+        want.push(last * &scale);
+        let got: Vec<BigRational> = nums.into_iter().map(BigRational::from).collect();
+        assert_eq!(got, want);
+        assert_eq!(got.last(), Some(&BigRational::from(BigInt::from(0))));
     }
 
     #[test]

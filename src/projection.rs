@@ -62,13 +62,31 @@ impl<S: Scalar> Block<S> {
     }
 }
 
-/// Lexicographic comparison of the block means `(ȳ_a, ū_a)` and `(ȳ_b, ū_b)`,
-/// by cross-multiplication (no division).
-fn cmp_means<S: Scalar>(a: &Block<S>, b: &Block<S>) -> Ordering {
+/// The pooling decision of PAVA, for every PAVA loop of the crate (this
+/// one on any [`Scalar`], the integer kernel, the adaptive solver): the
+/// left block `a` pools with the right block `b` iff its mean is `≥` in the
+/// lexicographic order on `(ȳ, ū)` — the order at `t + ε` that makes the
+/// velocity the right derivative (module documentation, `prop:proj-micro`).
+/// `primary` compares `ΣY_a k_b` with `ΣY_b k_a` (the means
+/// cross-multiplied, no division); `secondary`, asked only on a tie,
+/// compares `ΣU_a k_b` with `ΣU_b k_a`.
+#[inline(always)]
+pub fn pools(primary: Ordering, secondary: impl FnOnce() -> Ordering) -> bool {
+    match primary {
+        Ordering::Greater => true,
+        Ordering::Less => false,
+        Ordering::Equal => secondary() != Ordering::Less,
+    }
+}
+
+/// [`pools`] on two blocks of scalars.
+fn blocks_pool<S: Scalar>(a: &Block<S>, b: &Block<S>) -> bool {
     let ka = S::from_usize(a.size);
     let kb = S::from_usize(b.size);
-    let primary = (a.sum_y.clone() * &kb).total_cmp(&(b.sum_y.clone() * &ka));
-    primary.then_with(|| (a.sum_u.clone() * &kb).total_cmp(&(b.sum_u.clone() * &ka)))
+    pools(
+        (a.sum_y.clone() * &kb).total_cmp(&(b.sum_y.clone() * &ka)),
+        || (a.sum_u.clone() * &kb).total_cmp(&(b.sum_u.clone() * &ka)),
+    )
 }
 
 /// Pool-adjacent-violators on the pairs `(y_i, u_i)` in lexicographic order
@@ -85,7 +103,7 @@ pub fn pava_blocks<S: Scalar>(y: &[S], u: Option<&[S]>) -> Vec<Block<S>> {
             sum_u: u.map_or_else(S::zero, |u| u[i].clone()),
         };
         while let Some(top) = stack.pop() {
-            if cmp_means(&top, &cur) == Ordering::Less {
+            if !blocks_pool(&top, &cur) {
                 stack.push(top);
                 break;
             }

@@ -1,6 +1,6 @@
-//! Arbitrary bytes → admissible data in every integer width → the integer
-//! kernel, the adaptive solver and the integer event engine against the
-//! generic `BigRational` oracle.
+//! Arbitrary bytes → admissible data in every integer width → every exact
+//! engine of `sticky::fast::engine::ENGINES` against the generic
+//! `BigRational` oracle (the oracle battery, `sticky::fast::battery`).
 #![no_main]
 use libfuzzer_sys::fuzz_target;
 

@@ -43,15 +43,14 @@ pub fn scene_parser(bytes: &[u8]) {
     }
 }
 
-/// Fuzz target `kernels`: one oracle battery against every exact
-/// implementation. The first two bytes pick a scale `2^s` and an offset
-/// `2^o + 1/3` (so that the data land in every integer width of
-/// [`crate::fast::kernel`]: `i128`, 256-bit, `BigInt`), the rest decode into
-/// admissible data (N ≤ 40); then, at the collision instants (exact ties)
-/// and between them, the integer kernel and the adaptive solver must equal
-/// the generic `BigRational` projection, and the integer event engine
-/// ([`crate::fast::merge`]) must equal the generic event-driven merge. Panics on
-/// any difference.
+/// Fuzz target `kernels`: the oracle battery ([`crate::fast::battery`])
+/// on every exact engine of [`crate::fast::engine::ENGINES`]. The first two
+/// bytes pick a scale `2^s` and an offset `2^o + 1/3` (so that the data land
+/// in every integer width of [`crate::fast::kernel`]: `i128`, 256-bit,
+/// `BigInt`), the rest decode into admissible data (N ≤ 40); then, at the
+/// collision instants (exact ties) and between them, every engine must equal
+/// the generic `BigRational` projection, and every history engine the
+/// generic event-driven merge. Panics on any difference.
 pub fn kernels(bytes: &[u8]) {
     use num_bigint::BigInt;
     use num_traits::One;
@@ -75,33 +74,7 @@ pub fn kernels(bytes: &[u8]) {
     let Ok(data) = crate::InitialData::new(data.radius() * &s, x, u) else {
         panic!("scaling and shifting admissible data must keep it admissible");
     };
-    let generic = crate::trajectory::Trajectory::new(data.clone());
-    let merged = crate::fast::merge::trajectory(&data);
-    assert_eq!(
-        merged.impulses(),
-        generic.impulses(),
-        "integer events ≠ generic events"
-    );
-    assert_eq!(
-        merged.join_times(),
-        generic.join_times(),
-        "integer join times ≠ generic"
-    );
-    let ints = crate::fast::kernel::IntegerData::new(&data);
-    for t in crate::trajectory::probe_times(&generic, Some(6)) {
-        let want = crate::projection::state_at(&data, &t).expect("t ≥ 0");
-        let got = crate::fast::kernel::state_at(&ints, &t).expect("t ≥ 0");
-        assert_eq!(got, want, "integer kernel ≠ generic projection at t = {t}");
-        let adaptive = crate::fast::adaptive::adaptive_blocks_at(&ints, &t).blocks;
-        assert_eq!(
-            adaptive,
-            crate::fast::kernel::blocks_at(&ints, &t),
-            "adaptive ≠ kernel at t = {t}"
-        );
-        assert_eq!(
-            merged.at(&t).expect("t ≥ 0"),
-            want,
-            "integer events ≠ projection at t = {t}"
-        );
+    if let Err(m) = crate::fast::battery::check_probes(&data, Some(6)).map(drop) {
+        panic!("{m}");
     }
 }

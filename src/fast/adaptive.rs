@@ -34,9 +34,13 @@
 
 use num_bigint::BigInt;
 use num_rational::BigRational;
-use num_traits::ToPrimitive;
+use num_traits::{Signed, ToPrimitive};
 
-use crate::fast::kernel::{blocks_at, pools, AtTime, Blocks, IntegerData, Run, Sums, Width};
+use crate::error::Error;
+use crate::fast::kernel::{
+    blocks_at, pools, state_of_blocks, AtTime, Blocks, IntegerData, Run, Sums, Width,
+};
+use crate::state::State;
 
 /// `u = 2^−53`, the unit roundoff of `f64`.
 const U: f64 = f64::EPSILON / 2.0;
@@ -218,6 +222,16 @@ pub fn adaptive_blocks_at(d: &IntegerData, t: &BigRational) -> Adaptive {
             exact: exact.calls,
         },
     }
+}
+
+/// The state at `t ≥ 0` from the adaptive solver's blocks, built by the
+/// kernel's one construction ([`state_of_blocks`]): equal, field by field,
+/// to [`crate::projection::state_at`] on `BigRational`.
+pub fn state_at(d: &IntegerData, t: &BigRational) -> Result<State<BigRational>, Error> {
+    if t.is_negative() {
+        return Err(Error::NegativeTime { t: t.to_string() });
+    }
+    Ok(state_of_blocks(d, &adaptive_blocks_at(d, t).blocks, t))
 }
 
 #[cfg(test)]

@@ -44,9 +44,12 @@ use num_rational::BigRational;
 use num_traits::{Signed, ToPrimitive, Zero};
 
 use crate::cluster::{runs, Cluster};
+use crate::contact::cluster_multiplier_numerators;
 use crate::error::Error;
+use crate::fast::int::{narrowed, pair_bound, ratio_over};
 use crate::fast::wide::I256;
 use crate::initial::InitialData;
+use crate::projection;
 use crate::state::State;
 
 /// The integer type the PAVA loop ran on.
@@ -73,17 +76,13 @@ pub(crate) enum Column {
 
 impl Column {
     fn of(v: &[BigInt]) -> Column {
-        if let Some(s) = v
-            .iter()
-            .map(ToPrimitive::to_i64)
-            .collect::<Option<Vec<_>>>()
-        {
+        if let Some(s) = narrowed(v, ToPrimitive::to_i64) {
             return Column::Small(s);
         }
-        v.iter()
-            .map(|x| (x.bits() <= 254).then(|| I256::from_bigint(x)).flatten())
-            .collect::<Option<Vec<_>>>()
-            .map_or(Column::Big, Column::Wide)
+        narrowed(v, |x| {
+            (x.bits() <= 254).then(|| I256::from_bigint(x)).flatten()
+        })
+        .map_or(Column::Big, Column::Wide)
     }
     pub(crate) fn wide(&self, i: usize) -> I256 {
         match self {
@@ -265,7 +264,12 @@ impl Blocks {
         };
         let pick = |r: &Run<BigInt>| if y { r.sy.clone() } else { r.su.clone() };
         match &self.sums {
-            Sums::I128(v) => reduce_small(if y { v[j].sy } else { v[j].su }, d, d_small, v[j].k),
+            Sums::I128(v) => ratio_over(
+                if y { v[j].sy } else { v[j].su },
+                i128::from(v[j].k),
+                d,
+                d_small,
+            ),
             Sums::I256(v) => {
                 let s = if y { v[j].sy } else { v[j].su };
                 BigRational::new(s.to_bigint(), d * BigInt::from(v[j].k))
@@ -313,16 +317,14 @@ impl Word for BigInt {
     }
 }
 
-/// The pooling decision of PAVA: does the left block `a` pool with the right
-/// block `b`, i.e. is its mean `≥` in the lexicographic order on `(Y, U)`
-/// (cross-multiplied, no division)?
+/// The pooling decision of PAVA ([`projection::pools`], the one
+/// definition) on two blocks of integer sums: is the left block's mean `≥`
+/// in the lexicographic order on `(Y, U)` (cross-multiplied, no division)?
 #[inline]
 pub(crate) fn pools<W: Word>(a: &Run<W>, b: &Run<W>) -> bool {
-    match a.sy.mul_k(b.k).cmp(&b.sy.mul_k(a.k)) {
-        std::cmp::Ordering::Greater => true,
-        std::cmp::Ordering::Less => false,
-        std::cmp::Ordering::Equal => a.su.mul_k(b.k) >= b.su.mul_k(a.k),
-    }
+    projection::pools(a.sy.mul_k(b.k).cmp(&b.sy.mul_k(a.k)), || {
+        a.su.mul_k(b.k).cmp(&b.su.mul_k(a.k))
+    })
 }
 
 /// PAVA on the pairs `(y_i, u_i)` (produced by `item`) in lexicographic
@@ -332,16 +334,14 @@ pub(crate) fn pools<W: Word>(a: &Run<W>, b: &Run<W>) -> bool {
 fn pava_words<W: Word>(n: usize, mut item: impl FnMut(usize) -> (W, W)) -> Vec<Run<W>> {
     let mut stack: Vec<Run<W>> = Vec::with_capacity(n);
     for i in 0..n {
-        // The same decision as [`pools`], written out on loose variables:
+        // The decision of [`projection::pools`] on loose variables:
         // building a `Run` for the entry being pooled cost ~10 % here.
         let (mut sy, mut su) = item(i);
         let mut k = 1u64;
         while let Some(top) = stack.last() {
-            let pool = match top.sy.mul_k(k).cmp(&sy.mul_k(top.k)) {
-                std::cmp::Ordering::Greater => true,
-                std::cmp::Ordering::Less => false,
-                std::cmp::Ordering::Equal => top.su.mul_k(k) >= su.mul_k(top.k),
-            };
+            let pool = projection::pools(top.sy.mul_k(k).cmp(&sy.mul_k(top.k)), || {
+                top.su.mul_k(k).cmp(&su.mul_k(top.k))
+            });
             if !pool {
                 break;
             }
@@ -359,9 +359,7 @@ fn pava_words<W: Word>(n: usize, mut item: impl FnMut(usize) -> (W, W)) -> Vec<R
 /// `bits(max(N, ⌊N²/4⌋))`: every block size `k ≤ N` and every product of
 /// two adjacent block sizes `k_a k_b ≤ N²/4` is below `2^b_K`.
 fn size_bits(n: usize) -> u64 {
-    let n = n as u128;
-    let m = n.max(n * n / 4);
-    u64::from(128 - m.leading_zeros())
+    u64::from(128 - pair_bound(n).leading_zeros())
 }
 
 /// The scaling at one time `t = p/q`: `Y_i = a X_i + b U_i` with
@@ -438,45 +436,21 @@ pub fn blocks_at(d: &IntegerData, t: &BigRational) -> Blocks {
     Blocks::new(sums, at.dy, d.du.clone())
 }
 
-/// `s / (k d)` in lowest terms for an `i128` sum `s`: `i128` arithmetic and
-/// a binary gcd when `k d` fits, `BigRational::new` otherwise.
-fn reduce_small(s: i128, d: &BigInt, d_small: Option<i128>, k: u64) -> BigRational {
-    if let Some(den) = d_small.and_then(|d| d.checked_mul(i128::from(k))) {
-        if den > 0 {
-            // `g` divides both exactly and `den / g > 0`: lowest terms.
-            let g = gcd_u128(s.unsigned_abs(), den.unsigned_abs()) as i128;
-            return BigRational::new_raw(BigInt::from(s / g), BigInt::from(den / g));
-        }
-    }
-    BigRational::new(BigInt::from(s), d * BigInt::from(k))
-}
-
-/// Binary gcd (`gcd(0, b) = b`); `b > 0` here.
-fn gcd_u128(mut a: u128, mut b: u128) -> u128 {
-    if a == 0 {
-        return b;
-    }
-    let shift = (a | b).trailing_zeros();
-    a >>= a.trailing_zeros();
-    loop {
-        b >>= b.trailing_zeros();
-        if a > b {
-            std::mem::swap(&mut a, &mut b);
-        }
-        b -= a;
-        if b == 0 {
-            return a << shift;
-        }
-    }
-}
-
 /// The state at `t ≥ 0` from the integer kernel: equal, field by field, to
 /// [`crate::projection::state_at`] on `BigRational` (the tests check it).
 pub fn state_at(d: &IntegerData, t: &BigRational) -> Result<State<BigRational>, Error> {
     if t.is_negative() {
         return Err(Error::NegativeTime { t: t.to_string() });
     }
-    let b = blocks_at(d, t);
+    Ok(state_of_blocks(d, &blocks_at(d, t), t))
+}
+
+/// The [`State`] at `t` from exact PAVA blocks at `t + ε` on `d` (the
+/// kernel's, or the adaptive solver's: the same blocks, one construction):
+/// positions `x_i = x̃ + 2r i`, velocities the block means
+/// (`eq:proj-u-micro`), the multipliers `λ` of `eq:dyn-micro` and the
+/// contact clusters (`df:Omega-micro`).
+pub fn state_of_blocks(d: &IntegerData, b: &Blocks, t: &BigRational) -> State<BigRational> {
     let n = d.n();
     let mut shifted = Vec::with_capacity(n);
     let mut positions = Vec::with_capacity(n);
@@ -485,14 +459,11 @@ pub fn state_at(d: &IntegerData, t: &BigRational) -> Result<State<BigRational>, 
     let big_n = BigInt::from(n);
     for (j, c) in b.clusters().into_iter().enumerate() {
         let (mean_y, mean_u) = (b.mean_y(j), b.mean_u(j));
-        // λ_i = (1/N) Σ_{j ≤ i}(u⁰_j − u_j): zero at block ends, and inside a
-        // block of size k with ΣU = S:
-        // λ_i = (k Σ_{first..=i} U_j − (i − first + 1) S) / (k du N).
-        let k = BigInt::from(c.size);
-        let den = &k * &d.du * &big_n;
-        let sum_u: BigInt = d.u[c.range()].iter().sum();
-        let mut prefix = BigInt::zero();
-        for (m, i) in c.range().enumerate() {
+        // λ on the block (`eq:dyn-micro`, one definition in
+        // [`crate::contact`]): numerators over k D_u N.
+        let den = BigInt::from(c.size) * &d.du * &big_n;
+        let lambda = cluster_multiplier_numerators(&d.u[c.range()]);
+        for (num, i) in lambda.into_iter().zip(c.range()) {
             shifted.push(mean_y.clone());
             // x_i = x̃ + 2r·i as one fraction (a single reduction).
             let (yn, yd) = (mean_y.numer(), mean_y.denom());
@@ -502,9 +473,7 @@ pub fn state_at(d: &IntegerData, t: &BigRational) -> Result<State<BigRational>, 
                 yd * rd,
             ));
             velocities.push(mean_u.clone());
-            prefix += &d.u[i];
             if i + 1 < n {
-                let num = &k * &prefix - BigInt::from(m + 1) * &sum_u;
                 multipliers.push(if num.sign() == Sign::NoSign {
                     BigRational::zero()
                 } else {
@@ -514,20 +483,19 @@ pub fn state_at(d: &IntegerData, t: &BigRational) -> Result<State<BigRational>, 
         }
     }
     let clusters = runs(n, |j| shifted[j] == shifted[j + 1]);
-    Ok(State {
+    State {
         t: t.clone(),
         positions,
         velocities,
         multipliers,
         clusters,
-    })
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::generate::{initial_data, Limits, SplitMix64};
-    use crate::projection;
     use num_traits::One;
 
     #[test]

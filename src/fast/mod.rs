@@ -8,9 +8,19 @@
 //!   bound, exact integers for the decisions the bound cannot settle;
 //! * [`merge`] — the event-driven cluster merge on fixed-width integers
 //!   (`i64`/`i128` sums, 256-bit time comparisons);
-//! * `scaling` — the one scaling to common denominators both use.
+//! * `scaling` — the one scaling to common denominators both use;
+//! * `int` — the integer helpers they share (gcd and reduction, checked
+//!   products, narrowing to the smallest width, the block-size bound);
+//! * [`engine`] — the one interface every exact engine implements (the
+//!   generic `BigRational` ones of the core included) and the one list of
+//!   them, [`engine::ENGINES`];
+//! * [`battery`] — the oracle battery: every engine of the list against the
+//!   generic `BigRational` projection and event merge.
 
 pub mod adaptive;
+pub mod battery;
+pub mod engine;
+pub(crate) mod int;
 pub mod kernel;
 pub mod merge;
 pub(crate) mod scaling;

@@ -15,6 +15,7 @@ use num_integer::Integer;
 use num_rational::BigRational;
 use num_traits::ToPrimitive;
 
+use crate::fast::int::{gcd, narrowed, MulSmall};
 use crate::initial::InitialData;
 
 /// The scaled data `x̃⁰_i = x[i] / dx`, `u⁰_i = u[i] / du`.
@@ -37,14 +38,6 @@ fn div_rem(a: u128, b: u128) -> (u128, u128) {
     match (u64::try_from(a), u64::try_from(b)) {
         (Ok(a), Ok(b)) => (u128::from(a / b), u128::from(a % b)),
         _ => (a / b, a % b),
-    }
-}
-
-/// `gcd(a, b)`, on 64-bit words when both fit.
-fn gcd_fast(a: u128, b: u128) -> u128 {
-    match (u64::try_from(a), u64::try_from(b)) {
-        (Ok(a), Ok(b)) => u128::from(a.gcd(&b)),
-        _ => a.gcd(&b),
     }
 }
 
@@ -74,7 +67,7 @@ impl Denominators {
             return Some(());
         }
         if div_rem(self.lcm, d).1 != 0 {
-            self.lcm = (self.lcm / gcd_fast(self.lcm, d)).checked_mul(d)?;
+            self.lcm = (self.lcm / gcd(self.lcm, d)).checked_mul(d)?;
         }
         // A multiple of the lcm stays a multiple as it grows; the quotient
         // is filled in by `factor` once the lcm is final.
@@ -92,23 +85,6 @@ impl Denominators {
             self.memo[h] = (d, div_rem(self.lcm, d).0);
         }
         self.memo[h].1
-    }
-}
-
-/// `a · b` checked, with a fast path for factors that fit `i64`.
-pub(crate) trait MulSmall: Sized {
-    fn mul_small(self, b: Self) -> Option<Self>;
-}
-
-impl MulSmall for i128 {
-    #[inline]
-    fn mul_small(self, b: i128) -> Option<i128> {
-        match (i64::try_from(self), i64::try_from(b)) {
-            // |a|, |b| ≤ 2^63: the product is at most 2^126, the wrapping
-            // product is the exact one.
-            (Ok(a), Ok(b)) => Some(i128::from(a).wrapping_mul(i128::from(b))),
-            _ => self.checked_mul(b),
-        }
     }
 }
 
@@ -210,7 +186,7 @@ pub(crate) fn scale_words(data: &InitialData<BigRational>) -> Option<Scaled> {
             .checked_sub(offset)?;
         offset = offset.checked_add(step)?;
         if g != 1 && !test.divides(v.unsigned_abs()) {
-            g = gcd_fast(g, div_rem(v.unsigned_abs(), g).1);
+            g = gcd(g, div_rem(v.unsigned_abs(), g).1);
             test = Divisibility::new(g);
         }
         x.push(v);
@@ -257,16 +233,35 @@ pub(crate) fn scale_big(
 pub(crate) fn scale_i128(data: &InitialData<BigRational>) -> Option<Scaled> {
     scale_words(data).or_else(|| {
         let (x, u, dx, du) = scale_big(data);
-        let narrow = |v: &[BigInt]| {
-            v.iter()
-                .map(ToPrimitive::to_i128)
-                .collect::<Option<Vec<_>>>()
-        };
         Some(Scaled {
-            x: narrow(&x)?,
-            u: narrow(&u)?,
+            x: narrowed(&x, ToPrimitive::to_i128)?,
+            u: narrowed(&u, ToPrimitive::to_i128)?,
             dx,
             du,
         })
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::generate::SplitMix64;
+
+    #[test]
+    fn exact_division_and_divisibility() {
+        let mut rng = SplitMix64::new(17);
+        for _ in 0..2000 {
+            let g =
+                u128::from(rng.next_u64() >> (rng.next_u64() % 64)).max(1) << (rng.next_u64() % 20);
+            let k = i128::from(rng.next_u64() as i64 >> (rng.next_u64() % 64));
+            let Some(v) = k.checked_mul(g as i128) else {
+                continue;
+            };
+            assert_eq!(ExactDiv::new(g).apply(v), k, "{v} / {g}");
+            let test = Divisibility::new(g);
+            assert!(test.divides(v.unsigned_abs()), "{g} | {v}");
+            let w = v.unsigned_abs() + 1 + u128::from(rng.next_u64() % 5);
+            assert_eq!(test.divides(w), w % g == 0, "{g} | {w}?");
+        }
+    }
 }

@@ -105,6 +105,14 @@ impl I256 {
         I256(out)
     }
 
+    /// `a · b` exactly, for any two `i128` (`|a b| ≤ 2^254` is in range):
+    /// the 256-bit products of the kernel and of the merge's time
+    /// comparisons.
+    #[inline]
+    pub fn product(a: i128, b: i128) -> Self {
+        Self::from_i128(a).wrapping_mul(Self::from_i128(b))
+    }
+
     /// `a · b` (wrapping): the low 256 bits of the product, which is the
     /// exact product when it lies in range (two's complement multiplication
     /// is the same modulo `2^256` for signed and unsigned operands).
@@ -205,6 +213,9 @@ mod tests {
         }
         for v in [i128::MIN, i128::MAX, -1, 0, 1] {
             assert_eq!(I256::from_i128(v).to_bigint(), BigInt::from(v));
+            for w in [i128::MIN, i128::MAX, -1, 0, 1, 1 << 64] {
+                assert_eq!(I256::product(v, w).to_bigint(), BigInt::from(v) * w);
+            }
         }
     }
 }

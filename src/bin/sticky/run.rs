@@ -4,11 +4,11 @@
 use std::io::{self, Write};
 use std::path::PathBuf;
 
+use clap::builder::{PossibleValue, PossibleValuesParser};
 use clap::ValueEnum;
 use num_rational::BigRational;
 
-use sticky::fast::kernel::{self, IntegerData};
-use sticky::projection::state_at;
+use sticky::fast::engine::{self, ENGINES};
 use sticky::report::json;
 use sticky::scene::{Scene, SceneKind};
 use sticky::{Scalar, State};
@@ -27,11 +27,12 @@ pub struct Args {
     /// One JSON object per time (the interop contract, DESIGN.md §3).
     #[arg(long)]
     json: bool,
-    /// Which exact algorithm answers: the one-shot projection P_K(x⁰+tu⁰)
-    /// (O(N) per time, on the integer kernel) or the event-driven merge
-    /// (O(N log N) once).
-    #[arg(long, value_enum, default_value_t = Engine::Projection)]
-    engine: Engine,
+    /// Which exact engine answers (every one gives the same exact state):
+    /// `auto` picks the cheapest for the data (the integer kernel's one-shot
+    /// projection, O(N) per time); `projection` and `events` name the
+    /// kernel and the integer event merge (O(N log N) once).
+    #[arg(long, default_value = "auto", value_parser = engine_names())]
+    engine: String,
     /// Which model answers: the N particles of the scene, or (for a
     /// `[macro]` scene) the continuum solution of its macroscopic datum,
     /// block by block, whose cost does not grow with N.
@@ -48,19 +49,22 @@ enum Model {
     Continuum,
 }
 
-#[derive(Clone, Copy, ValueEnum)]
-enum Engine {
-    /// x(t) = P_K(x⁰ + t u⁰) by pool-adjacent-violators.
-    Projection,
-    /// The event-driven cluster merge.
-    Events,
+/// `auto`, then every engine of [`ENGINES`] by name (aliases accepted),
+/// each with its one-line summary for `--help`.
+fn engine_names() -> PossibleValuesParser {
+    let auto = PossibleValue::new("auto").help("the cheapest exact engine for the data");
+    PossibleValuesParser::new(std::iter::once(auto).chain(ENGINES.iter().map(|e| {
+        PossibleValue::new(e.name())
+            .aliases(e.aliases().iter().copied())
+            .help(e.summary())
+    })))
 }
 
 /// Runs `sticky run`.
 pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
     let scene = load(&args.scene)?;
     match args.model {
-        Model::Particles => run(out, &scene, &args.at, args.json, args.engine),
+        Model::Particles => run(out, &scene, &args.at, args.json, &args.engine),
         Model::Continuum => run_continuum(out, &scene, &args.scene, &args.at, args.json),
     }
 }
@@ -70,23 +74,16 @@ fn run(
     scene: &Scene,
     times: &[BigRational],
     as_json: bool,
-    engine: Engine,
+    engine: &str,
 ) -> Result<(), Failure> {
     let data = &scene.data;
-    let traj = match engine {
-        Engine::Events => Some(sticky::fast::merge::trajectory(data)),
-        Engine::Projection => None,
+    let engine = match engine {
+        "auto" => engine::auto(data),
+        name => engine::by_name(name).ok_or_else(|| Failure(format!("unknown engine {name:?}")))?,
     };
-    // The projection runs on the integer kernel (common denominators, i128
-    // when the data fit): the same exact result as the generic path.
-    let ints = traj.is_none().then(|| IntegerData::new(data));
+    let prepared = engine.prepare(data);
     for t in times {
-        let state = match (&traj, &ints) {
-            (Some(traj), _) => traj.at(t),
-            (None, Some(ints)) => kernel::state_at(ints, t),
-            (None, None) => state_at(data, t),
-        }
-        .map_err(|e| Failure(e.to_string()))?;
+        let state = prepared.state_at(t).map_err(|e| Failure(e.to_string()))?;
         if as_json {
             writeln!(out, "{}", json::state(&state, data.radius())).map_err(io_err)?;
         } else {

@@ -1,18 +1,25 @@
-//! The integer event engine [`sticky::fast::merge::IntegerTrajectory`] against the
-//! generic exact engine `Trajectory::<BigRational>::new` (an independent
-//! implementation of the same merge on `BigRational`, itself checked against
-//! the projection formula `prop:proj-micro` elsewhere): equal impulses, join
-//! times and states at the probe times, on random scenes, hand-built
-//! degenerate scenes and proptest-generated scenes.
+//! Every exact engine of `sticky::fast::engine::ENGINES` against the generic
+//! `BigRational` oracle, through the one oracle battery
+//! (`sticky::fast::battery`): `prop:proj-micro`'s `x(t) = P_K(x⁰ + t u⁰)`,
+//! the right-derivative velocities and the multipliers of `eq:dyn-micro`
+//! must come out the same whatever algorithm and integer type computed
+//! them, and the event engines must record the generic merge's impulses and
+//! join times. The data: random scenes scaled across the `i128`, 256-bit and
+//! `BigInt` widths (the overflow edges included), hand-built degenerate
+//! scenes (simultaneous collisions of several clusters, contacts at `t = 0`,
+//! times equal in `f64`), the width bound of the integer merge, and
+//! proptest-generated scenes.
 
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{One, Zero};
 use proptest::prelude::*;
+
+use sticky::fast::battery;
+use sticky::fast::kernel::{blocks_at, IntegerData, Width};
 use sticky::fast::merge::{Engine, IntegerTrajectory};
 use sticky::generate::{initial_data, Limits, SplitMix64};
 use sticky::initial::unshift;
-use sticky::trajectory::probe_times;
 use sticky::trajectory::Trajectory;
 use sticky::InitialData;
 
@@ -34,32 +41,21 @@ fn from_shifted(
     InitialData::new(two_r / q(2, 1), positions, u).expect("admissible test data")
 }
 
-/// Both engines on `data`; panics on the first difference. `limit` bounds
+/// Every engine on `data` through the oracle battery (panics on the first
+/// difference), then what only the integer event engine reports: the width
+/// it ran on, its counts of impulses and distinct instants. `limit` bounds
 /// the number of probed collision instants (`None`: all of them).
 fn agree_with(
     data: &InitialData<BigRational>,
     limit: Option<usize>,
 ) -> (Engine, Trajectory<BigRational>) {
+    let slow = battery::check_probes(data, limit).unwrap_or_else(|m| panic!("{m}"));
     let it = IntegerTrajectory::new(data);
-    let engine = it.engine();
-    let (events, instants) = (it.events(), it.instants());
-    let fast = it.into_trajectory();
-    let slow = Trajectory::new(data.clone());
-    assert_eq!(fast.data(), data, "rebuilt data");
-    assert_eq!(events, slow.impulses().len(), "events()");
-    assert_eq!(fast.impulses(), slow.impulses(), "impulses");
-    assert_eq!(fast.join_times(), slow.join_times(), "join times");
+    assert_eq!(it.events(), slow.impulses().len(), "events()");
     let mut distinct = slow.impulses().iter().map(|i| &i.t).collect::<Vec<_>>();
     distinct.dedup();
-    assert_eq!(instants, distinct.len(), "instants()");
-    for t in probe_times(&slow, limit) {
-        assert_eq!(
-            fast.at(&t).unwrap(),
-            slow.at(&t).unwrap(),
-            "state at t = {t}"
-        );
-    }
-    (engine, slow)
+    assert_eq!(it.instants(), distinct.len(), "instants()");
+    (it.engine(), slow)
 }
 
 fn agree(data: &InitialData<BigRational>) -> (Engine, Trajectory<BigRational>) {
@@ -317,12 +313,60 @@ fn bench_scenes_agree() {
     }
 }
 
+/// The data, every position scaled by `2^scale` and shifted by
+/// `2^offset + 1/3`: large scales push `b_Y` across the `i128` and 256-bit
+/// bounds, the offset adds digits that no width absorbs by cancellation.
+fn scaled(bytes: &[u8], max_n: usize, scale: u32, offset: u32) -> InitialData<BigRational> {
+    let data = initial_data(
+        bytes,
+        Limits {
+            max_n,
+            ..Limits::default()
+        },
+    );
+    let s = BigRational::from_integer(BigInt::one() << scale);
+    let o = BigRational::from_integer(BigInt::one() << offset)
+        + BigRational::new(BigInt::one(), BigInt::from(3));
+    let x = data.positions().iter().map(|x| x * &s + &o).collect();
+    let r = data.radius() * &s;
+    let u = data.velocities().iter().map(|u| u * &s).collect();
+    InitialData::new(r, x, u).expect("scaling and shifting keep the data admissible")
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig {
+        cases: if cfg!(debug_assertions) { 64 } else { 512 },
+        ..ProptestConfig::default()
+    })]
+
+    /// Every engine equals the generic path, field by field, at a random
+    /// time, on data scaled into every integer width.
+    #[test]
+    fn engines_equal_the_oracle_in_every_width(
+        bytes in proptest::collection::vec(any::<u8>(), 0..200),
+        max_n in 1usize..40,
+        scale in 0u32..300,
+        offset in 0u32..330,
+        tn in 0i64..1000,
+        td in 1i64..1000,
+    ) {
+        let data = scaled(&bytes, max_n, scale, offset);
+        let t = BigRational::new(BigInt::from(tn), BigInt::from(td));
+        if let Err(m) = battery::check(&data, &[t]) {
+            return Err(TestCaseError::fail(m.to_string()));
+        }
+    }
+}
+
 proptest! {
     #![proptest_config(ProptestConfig {
         cases: 300,
         failure_persistence: None,
         ..ProptestConfig::default()
     })]
+
+    /// Every engine at the collision instants (exact ties) and between
+    /// them, on scenes of every density of denominators and speeds.
     #[test]
     fn prop_engines_agree(
         bytes in proptest::collection::vec(any::<u8>(), 0..600),
@@ -331,15 +375,23 @@ proptest! {
         max_speed in 1u32..400,
     ) {
         let data = initial_data(&bytes, Limits { max_n, max_den, max_speed });
-        let it = IntegerTrajectory::new(&data);
-        let events = it.events();
-        let fast = it.into_trajectory();
-        let slow = Trajectory::new(data.clone());
-        prop_assert_eq!(events, slow.impulses().len());
-        prop_assert_eq!(fast.impulses(), slow.impulses());
-        prop_assert_eq!(fast.join_times(), slow.join_times());
-        for t in probe_times(&slow, Some(8)) {
-            prop_assert_eq!(fast.at(&t).unwrap(), slow.at(&t).unwrap());
+        if let Err(m) = battery::check_probes(&data, Some(8)).map(drop) {
+            return Err(TestCaseError::fail(m.to_string()));
         }
     }
+}
+
+/// The proptest ranges above reach every width (a guard against a generator
+/// that silently stops exercising one).
+#[test]
+fn the_ranges_reach_every_width() {
+    let bytes: Vec<u8> = (0..120u8).map(|b| b.wrapping_mul(37)).collect();
+    let t = BigRational::new(BigInt::from(7), BigInt::from(3));
+    let width = |scale, offset| {
+        blocks_at(&IntegerData::new(&scaled(&bytes, 30, scale, offset)), &t).width()
+    };
+    assert_eq!(width(0, 0), Width::I128);
+    assert_eq!(width(0, 100), Width::I256);
+    assert_eq!(width(250, 0), Width::Big);
+    assert_eq!(width(0, 320), Width::Big);
 }

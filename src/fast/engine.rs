@@ -1,0 +1,214 @@
+//! One interface for every exact engine, and the one list of them.
+//!
+//! Every engine computes the same exact answer — the state of
+//! `prop:proj-micro`, `x(t) = P_K(x⁰ + t u⁰)` and `u(t) = P_{H_{x(t)}}(u⁰)`
+//! (`eq:proj-micro-x`, `eq:proj-u-micro`), with the multipliers `λ` of
+//! `eq:dyn-micro` — by a different algorithm or on different numbers. An
+//! engine is [prepared](ExactEngine::prepare) once for an initial datum
+//! (scaling to integers, or the whole event history), then asked for the
+//! [state at](Prepared::state_at) any number of times. History engines (the
+//! event-driven merges) also give their [`Trajectory`]: the impulses and the
+//! join times.
+//!
+//! [`ENGINES`] lists them all; the oracle battery ([`crate::fast::battery`])
+//! runs every engine of the list against the generic `BigRational`
+//! projection (and the history engines against the generic event merge),
+//! and the command line chooses from it by name ([`by_name`], [`auto`]).
+//! Adding an engine is one line in [`ENGINES`].
+
+use num_rational::BigRational;
+
+use crate::error::Error;
+use crate::fast::{adaptive, kernel, merge};
+use crate::initial::InitialData;
+use crate::projection;
+use crate::state::State;
+use crate::trajectory::Trajectory;
+
+/// An exact engine: prepared once per initial datum, then asked for states.
+pub trait ExactEngine: Sync {
+    /// The engine's stable name (the command line's `--engine NAME`).
+    fn name(&self) -> &'static str;
+    /// Other names the command line accepts for it.
+    fn aliases(&self) -> &'static [&'static str] {
+        &[]
+    }
+    /// One line: the algorithm and the numbers it runs on.
+    fn summary(&self) -> &'static str;
+    /// Prepares the engine for `data` (scaling, or the whole history).
+    fn prepare(&self, data: &InitialData<BigRational>) -> Box<dyn Prepared>;
+}
+
+/// An engine prepared for one initial datum.
+pub trait Prepared {
+    /// The exact state at `t` (an error for `t < 0`).
+    fn state_at(&self, t: &BigRational) -> Result<State<BigRational>, Error>;
+    /// The whole history (impulses, join times), for a history engine;
+    /// `None` for a one-shot projection.
+    fn trajectory(&self) -> Option<&Trajectory<BigRational>> {
+        None
+    }
+}
+
+/// The generic projection on `BigRational` ([`projection::state_at`]): the
+/// oracle.
+#[derive(Debug, Clone, Copy)]
+pub struct GenericProjection;
+
+/// The generic event-driven cluster merge on `BigRational`
+/// ([`Trajectory::new`]): the history oracle.
+#[derive(Debug, Clone, Copy)]
+pub struct GenericEvents;
+
+/// The integer PAVA kernel ([`kernel`]): `i128`, 256-bit or `BigInt`.
+#[derive(Debug, Clone, Copy)]
+pub struct Kernel;
+
+/// The adaptive solver ([`adaptive`]): certified `f64` decisions, exact
+/// integers where the bound cannot settle them.
+#[derive(Debug, Clone, Copy)]
+pub struct Adaptive;
+
+/// The event-driven merge on fixed-width integers ([`merge`]).
+#[derive(Debug, Clone, Copy)]
+pub struct Merge;
+
+/// Every exact engine, the oracle first. Adding an engine is one line here.
+pub static ENGINES: &[&dyn ExactEngine] = &[
+    &GenericProjection,
+    &GenericEvents,
+    &Kernel,
+    &Adaptive,
+    &Merge,
+];
+
+/// The engine called `name` (or one of its aliases) in [`ENGINES`].
+pub fn by_name(name: &str) -> Option<&'static dyn ExactEngine> {
+    ENGINES
+        .iter()
+        .copied()
+        .find(|e| e.name() == name || e.aliases().contains(&name))
+}
+
+/// The cheapest exact engine for one-shot states of `data`: the integer
+/// kernel, which runs on the narrowest integer width the data allow at each
+/// time (`i128`, 256-bit, `BigInt`).
+pub fn auto(_data: &InitialData<BigRational>) -> &'static dyn ExactEngine {
+    &Kernel
+}
+
+/// A prepared engine that answers from a closure of `t`.
+struct OneShot<F>(F);
+
+impl<F: Fn(&BigRational) -> Result<State<BigRational>, Error>> Prepared for OneShot<F> {
+    fn state_at(&self, t: &BigRational) -> Result<State<BigRational>, Error> {
+        (self.0)(t)
+    }
+}
+
+/// A prepared history engine: the trajectory answers.
+struct History(Trajectory<BigRational>);
+
+impl Prepared for History {
+    fn state_at(&self, t: &BigRational) -> Result<State<BigRational>, Error> {
+        self.0.at(t)
+    }
+    fn trajectory(&self) -> Option<&Trajectory<BigRational>> {
+        Some(&self.0)
+    }
+}
+
+impl ExactEngine for GenericProjection {
+    fn name(&self) -> &'static str {
+        "generic-projection"
+    }
+    fn summary(&self) -> &'static str {
+        "P_K(x⁰ + t u⁰) by pool-adjacent-violators on BigRational (the oracle)"
+    }
+    fn prepare(&self, data: &InitialData<BigRational>) -> Box<dyn Prepared> {
+        let data = data.clone();
+        Box::new(OneShot(move |t: &BigRational| {
+            projection::state_at(&data, t)
+        }))
+    }
+}
+
+impl ExactEngine for GenericEvents {
+    fn name(&self) -> &'static str {
+        "generic-events"
+    }
+    fn summary(&self) -> &'static str {
+        "the event-driven cluster merge on BigRational"
+    }
+    fn prepare(&self, data: &InitialData<BigRational>) -> Box<dyn Prepared> {
+        Box::new(History(Trajectory::new(data.clone())))
+    }
+}
+
+impl ExactEngine for Kernel {
+    fn name(&self) -> &'static str {
+        "kernel"
+    }
+    fn aliases(&self) -> &'static [&'static str] {
+        &["projection"]
+    }
+    fn summary(&self) -> &'static str {
+        "P_K(x⁰ + t u⁰) by PAVA on integers (i128, 256-bit or BigInt), O(N) per time"
+    }
+    fn prepare(&self, data: &InitialData<BigRational>) -> Box<dyn Prepared> {
+        let d = kernel::IntegerData::new(data);
+        Box::new(OneShot(move |t: &BigRational| kernel::state_at(&d, t)))
+    }
+}
+
+impl ExactEngine for Adaptive {
+    fn name(&self) -> &'static str {
+        "adaptive"
+    }
+    fn summary(&self) -> &'static str {
+        "the integer PAVA with certified f64 decisions, exact integers where needed"
+    }
+    fn prepare(&self, data: &InitialData<BigRational>) -> Box<dyn Prepared> {
+        let d = kernel::IntegerData::new(data);
+        Box::new(OneShot(move |t: &BigRational| adaptive::state_at(&d, t)))
+    }
+}
+
+impl ExactEngine for Merge {
+    fn name(&self) -> &'static str {
+        "merge"
+    }
+    fn aliases(&self) -> &'static [&'static str] {
+        &["events"]
+    }
+    fn summary(&self) -> &'static str {
+        "the event-driven cluster merge on i64/i128 integers, O(N log N) once"
+    }
+    fn prepare(&self, data: &InitialData<BigRational>) -> Box<dyn Prepared> {
+        Box::new(History(merge::trajectory(data)))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_are_distinct_and_found() {
+        let mut names: Vec<&str> = ENGINES
+            .iter()
+            .flat_map(|e| std::iter::once(e.name()).chain(e.aliases().iter().copied()))
+            .collect();
+        let count = names.len();
+        names.sort_unstable();
+        names.dedup();
+        assert_eq!(names.len(), count, "{names:?}");
+        assert!(!names.contains(&"auto"));
+        for e in ENGINES {
+            assert_eq!(by_name(e.name()).map(|f| f.name()), Some(e.name()));
+        }
+        assert_eq!(by_name("projection").map(|e| e.name()), Some("kernel"));
+        assert_eq!(by_name("events").map(|e| e.name()), Some("merge"));
+        assert!(by_name("nope").is_none());
+    }
+}

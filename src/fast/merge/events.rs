@@ -1,0 +1,294 @@
+//! The event loop on integer cluster sums: every instant found exactly,
+//! every pair meeting at it merged in one step, one impulse per cluster
+//! formed (see the module documentation of [`crate::fast::merge`]).
+
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+
+use super::queue::{Entry, Lookahead, Near, RadixQueue, DEEP_BYTES};
+use super::sums::{meeting, Node, SumWord};
+use super::time::Time;
+
+/// Particle indices, instants and join codes are `u32`: larger systems
+/// take the generic engine.
+pub(super) const MAX_N: usize = (u32::MAX / 2) as usize;
+/// `join` code: never joined.
+pub(super) const JOIN_NEVER: u32 = u32::MAX;
+/// `join` code: joined at `t = 0` (an initial cluster).
+pub(super) const JOIN_ZERO: u32 = u32::MAX - 1;
+
+/// The history found by the integer engine, before conversion.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub(super) struct History {
+    /// Distinct collision instants `(gap, closing)`, increasing.
+    pub(super) instants: Vec<(i128, i128)>,
+    /// One entry per cluster formed: `(instant, offset into parts)`.
+    pub(super) impulses: Vec<(u32, u32)>,
+    /// For each impulse, the first particle of each part, left to right,
+    /// then one past the cluster's last particle.
+    pub(super) parts: Vec<u32>,
+    /// For each pair `(j, j+1)`: the instant it joins, or [`JOIN_ZERO`],
+    /// [`JOIN_NEVER`].
+    pub(super) join: Vec<u32>,
+}
+
+/// The event loop (see the module docs); `x`, `u` satisfy the width bound.
+///
+/// **Finding an instant.** Every live candidate `e` has a key
+/// `lo(e) ≤ t(e) ≤ hi(e)` ([`Time::lo`]). The earliest instant is found in
+/// three steps:
+/// 1. `e₁`, the live entry of smallest key (the first live entry of the
+///    [`Lookahead`], which holds the smallest keys of the queue);
+/// 2. the *window*: every live entry with `lo ≤ hi(e₁)`. It contains every
+///    entry whose exact time is at most `t(e₁)` — such an entry has
+///    `lo ≤ t ≤ t(e₁) ≤ hi(e₁)` — hence the earliest exact time `t*` and all
+///    the pairs meeting at `t*`;
+/// 3. the exact times of the window entries (recomputed from the clusters,
+///    unchanged since the entry was queued since its stamp is current):
+///    those equal to `t*` merge now; the others, later than `t*` but within
+///    the bracket, wait in `near`, a binary heap ordered by exact time whose
+///    top takes part in steps 2 and 3 (`hi` of the top bounds the window
+///    too).
+///
+/// Both `near` and the lookahead's `early` heap (new candidates whose key
+/// falls below the queue's last key) are almost always empty: they need
+/// times equal to within the bracket `2^-40`.
+pub(super) fn run<T: Copy + PartialEq + Into<W>, W: SumWord>(x: &[T], u: &[T]) -> History {
+    let n = x.len();
+    // At most N − 1 merges: reserving that much costs address space only
+    // (untouched pages are never mapped) and spares the copies of growth.
+    let mut hist = History {
+        instants: Vec::with_capacity(n),
+        impulses: Vec::with_capacity(n),
+        parts: Vec::with_capacity(3 * n),
+        join: Vec::new(),
+    };
+    let mut nodes = vec![
+        Node::<W> {
+            join: JOIN_NEVER,
+            ..Node::default()
+        };
+        n
+    ];
+    // Initial clusters: contacts with equal velocities.
+    let mut first = 0usize;
+    for j in 0..n {
+        if j + 1 == n || x[j] != x[j + 1] || u[j] != u[j + 1] {
+            let (mut sx, mut su) = (W::default(), W::default());
+            for i in first..=j {
+                sx += x[i].into();
+                su += u[i].into();
+            }
+            for end in [first, j] {
+                let node = &mut nodes[end];
+                node.sum_x = sx;
+                node.sum_u = su;
+                node.size = (j + 1 - first) as u32;
+            }
+            for node in &mut nodes[first + 1..=j] {
+                node.join = JOIN_ZERO;
+            }
+            first = j + 1;
+        }
+    }
+    // The exact time of the pair at a live boundary `b`, if it approaches.
+    let time_of = |nodes: &[Node<W>], b: usize| meeting(&nodes[b - 1], &nodes[b]);
+    // The low byte of every stamp, in a compact array (one byte a particle
+    // stays in cache where the nodes do not): most stale entries are
+    // rejected here; a matching byte is confirmed by the full stamp.
+    let mut tags = vec![0u8; n];
+    let mut queue = RadixQueue::new();
+    let mut near: BinaryHeap<Near> = BinaryHeap::new();
+    let mut b = nodes.first().map_or(n, |node| node.size as usize);
+    while b < n {
+        if let Some(t) = time_of(&nodes, b) {
+            queue.push(Entry {
+                key: t.lo(),
+                slot: b as u32,
+                stamp: 0,
+            });
+        }
+        b += nodes[b].size as usize;
+    }
+
+    let mut ahead = Lookahead {
+        deep: std::mem::size_of_val(nodes.as_slice()) > DEEP_BYTES,
+        ..Lookahead::default()
+    };
+    let mut window: Vec<(Entry, Time)> = Vec::new();
+    let mut pending: Vec<u32> = Vec::new();
+    let mut fresh: Vec<u32> = Vec::new();
+    let mut bounds: Vec<u32> = Vec::new();
+    loop {
+        let live = |nodes: &[Node<W>], tags: &[u8], e: &Entry| {
+            tags[e.slot as usize] == e.stamp as u8 && nodes[e.slot as usize].stamp == e.stamp
+        };
+        while near.peek().is_some_and(|w| !live(&nodes, &tags, &w.entry)) {
+            near.pop();
+        }
+        // 1. The first live entry of the queue (smallest `lo`).
+        window.clear();
+        while let Some(e) = ahead.take_le(&mut queue, u64::MAX, &nodes, &tags) {
+            if live(&nodes, &tags, &e) {
+                if let Some(t) = time_of(&nodes, e.slot as usize) {
+                    window.push((e, t));
+                    break;
+                }
+            }
+        }
+        // 2. An upper bound of the earliest time `t*`, and every queued
+        //    entry whose `lo` is below it.
+        let bound = match (window.first(), near.peek()) {
+            (None, None) => break,
+            (Some(w), None) => w.1.hi(),
+            (None, Some(m)) => m.t.hi(),
+            (Some(w), Some(m)) => w.1.hi().min(m.t.hi()),
+        };
+        while let Some(e) = ahead.take_le(&mut queue, bound, &nodes, &tags) {
+            if live(&nodes, &tags, &e) {
+                if let Some(t) = time_of(&nodes, e.slot as usize) {
+                    window.push((e, t));
+                }
+            }
+        }
+        // 3. `t*` exactly; the later window entries wait in `near`. (The
+        //    usual window is one entry and `near` is empty: nothing to
+        //    compare.)
+        pending.clear();
+        let t = match (window.as_slice(), near.peek()) {
+            ([(entry, t)], None) => {
+                pending.push(entry.slot);
+                *t
+            }
+            _ => {
+                let mut t = match (window.first(), near.peek()) {
+                    (Some(w), _) => w.1,
+                    (None, Some(m)) => m.t,
+                    (None, None) => break,
+                };
+                for tw in window.iter().map(|w| &w.1).chain(near.peek().map(|m| &m.t)) {
+                    if tw.cmp(&t) == Ordering::Less {
+                        t = *tw;
+                    }
+                }
+                for &(entry, tw) in &window {
+                    if tw.cmp(&t) == Ordering::Greater {
+                        near.push(Near { t: tw, entry });
+                    } else {
+                        pending.push(entry.slot);
+                    }
+                }
+                while let Some(m) = near.peek() {
+                    if live(&nodes, &tags, &m.entry) {
+                        if m.t.cmp(&t) == Ordering::Greater {
+                            break;
+                        }
+                        pending.push(m.entry.slot);
+                    }
+                    near.pop();
+                }
+                t
+            }
+        };
+        let instant = hist.instants.len() as u32;
+        hist.instants.push((t.gap, t.closing));
+        fresh.clear();
+        bounds.clear();
+        while !pending.is_empty() {
+            // Left to right: a chain of pairs meeting at `t` becomes one
+            // cluster (the left part of a later pair may have been formed
+            // earlier in this loop; it ends at the boundary all the same).
+            pending.sort_unstable();
+            let batch = fresh.len();
+            for &r in &pending {
+                let ri = r as usize;
+                let (left, right) = (nodes[ri - 1], nodes[ri]);
+                if left.size == 0 || right.size == 0 {
+                    continue;
+                }
+                // Merge `f .. r` and `r .. e`; the boundary `r` is gone.
+                let f = ri - left.size as usize;
+                let e = ri + right.size as usize;
+                nodes[ri].join = instant;
+                nodes[ri].stamp = nodes[ri].stamp.wrapping_add(1);
+                tags[ri] = nodes[ri].stamp as u8;
+                if ri - 1 != f {
+                    nodes[ri - 1].size = 0;
+                }
+                if ri != e - 1 {
+                    nodes[ri].size = 0;
+                }
+                let (sx, su) = (left.sum_x + right.sum_x, left.sum_u + right.sum_u);
+                for end in [f, e - 1] {
+                    let node = &mut nodes[end];
+                    node.sum_x = sx;
+                    node.sum_u = su;
+                    node.size = left.size + right.size;
+                }
+                bounds.push(r);
+                fresh.push(f as u32);
+            }
+            pending.clear();
+            // New candidates on both sides of every cluster formed. One
+            // meeting at `t` or before would join this instant, as in
+            // `Trajectory::new` (it cannot happen with exact times).
+            for k in batch..fresh.len() {
+                let f = fresh[k] as usize;
+                if nodes[f].size == 0 || (k > batch && fresh[k - 1] == fresh[k]) {
+                    continue;
+                }
+                let e = f + nodes[f].size as usize;
+                for b in [f, e] {
+                    if b == 0 || b >= n {
+                        continue;
+                    }
+                    let stamp = nodes[b].stamp.wrapping_add(1);
+                    nodes[b].stamp = stamp;
+                    tags[b] = stamp as u8;
+                    let Some(tb) = time_of(&nodes, b) else {
+                        continue;
+                    };
+                    let entry = Entry {
+                        key: tb.lo(),
+                        slot: b as u32,
+                        stamp,
+                    };
+                    if tb.cmp(&t) != Ordering::Greater {
+                        pending.push(b as u32);
+                        nodes[b].stamp = stamp.wrapping_add(1);
+                        tags[b] = nodes[b].stamp as u8;
+                    } else if entry.key >= queue.last {
+                        queue.push(entry);
+                    } else {
+                        ahead.insert(entry);
+                    }
+                }
+            }
+            pending.sort_unstable();
+            pending.dedup();
+        }
+        // One impulse per cluster formed at `t`: its parts are split at the
+        // boundaries joined at `t`.
+        fresh.retain(|&f| nodes[f as usize].size != 0);
+        fresh.sort_unstable();
+        fresh.dedup();
+        bounds.sort_unstable();
+        let mut b = 0;
+        for &f in &fresh {
+            let end = f + nodes[f as usize].size;
+            hist.impulses.push((instant, hist.parts.len() as u32));
+            hist.parts.push(f);
+            while b < bounds.len() && bounds[b] < end {
+                debug_assert!(bounds[b] > f);
+                hist.parts.push(bounds[b]);
+                b += 1;
+            }
+            hist.parts.push(end);
+        }
+    }
+    hist.join = nodes.iter().skip(1).map(|node| node.join).collect();
+    hist.instants.shrink_to_fit();
+    hist.impulses.shrink_to_fit();
+    hist.parts.shrink_to_fit();
+    hist
+}

@@ -1,0 +1,453 @@
+//! The exact event-driven cluster merge on fixed-width integers.
+//!
+//! [`IntegerTrajectory`] computes the same history as
+//! [`Trajectory::<BigRational>::new`](crate::trajectory::Trajectory::new) —
+//! the sticky dynamics whose positions are the projection formula
+//! `x(t) = P_K(x⁰ + t u⁰)` of `prop:proj-micro` (`eq:proj-micro-x`), with the
+//! velocities `u(t) = P_{H_{x(t)}}(u⁰)` of `eq:proj-u-micro` — but with no
+//! `BigInt` or `BigRational` in the event loop, and converts it to a
+//! [`Trajectory<BigRational>`] on request ([`IntegerTrajectory::into_trajectory`]),
+//! equal field by field to the generic engine's (the tests check impulses,
+//! join times and the states at the probe times).
+//!
+//! **Scaling.** The translated initial positions (`df:translat-x`) and the
+//! velocities are written once over their least common denominators,
+//! `x̃⁰_i = X_i / D_x`, `u⁰_i = U_i / D_u`, with integers `X_i`, `U_i`
+//! (stored as `i64` when every value fits, else `i128`). A cluster `C` of `k`
+//! particles moves rigidly, `x̃_C(t) = (Σ_C X_i + t D_x/D_u Σ_C U_i) / (k D_x)`,
+//! so two adjacent clusters `L`, `R` (sizes `k_L`, `k_R`, integer sums
+//! `SX`, `SU`) approach iff
+//!
+//! `closing = SU_L k_R − SU_R k_L > 0`
+//!
+//! and then meet at `t = (gap · D_u) / (closing · D_x)` with
+//! `gap = SX_R k_L − SX_L k_R ≥ 0` (`gap = k_L k_R (X̄_R − X̄_L)` and the `X_i`
+//! are non-decreasing, `df:tKN`). The factor `D_u / D_x` is common to every
+//! candidate, so two candidate times compare as `gap₁ closing₂` against
+//! `gap₂ closing₁` — a 256-bit product ([`I256::product`](crate::fast::wide::I256::product)), never an overflow.
+//! An event time is stored unreduced as the pair `(gap, closing)` and turned
+//! into a lowest-terms [`BigRational`] only by
+//! [`IntegerTrajectory::into_trajectory`].
+//!
+//! **Width bound.** Let `M = max(max|X_i|, max|U_i|)` and
+//! `B = max(N, ⌊N²/4⌋) · M`. The engine runs on `i128` only when `B < 2^126`;
+//! otherwise [`IntegerTrajectory::new`] falls back to the generic
+//! [`Trajectory::<BigRational>::new`](crate::trajectory::Trajectory::new)
+//! and [`IntegerTrajectory::engine`] says so ([`Engine::BigRational`]).
+//! With `B < 2^126`:
+//! * a cluster sum has `|S_C| ≤ k M ≤ N M ≤ B < 2^126` (merged clusters too);
+//! * two adjacent clusters have `k_L + k_R ≤ N`, hence `k_L k_R ≤ ⌊N²/4⌋`, and
+//!   each product `|SX_R k_L|`, `|SX_L k_R|`, `|SU_L k_R|`, `|SU_R k_L|` is
+//!   at most `k_L k_R M ≤ B < 2^126`;
+//! * so `|gap|`, `|closing| < 2 · 2^126 = 2^127`: every intermediate value
+//!   fits `i128` (and the release profile's overflow checks would report a
+//!   mistake in this bound rather than wrap);
+//! * the cross products `gap₁ closing₂ < 2^254` are computed exactly on 256
+//!   bits.
+//!
+//! When moreover `N M < 2^63` the cluster sums are kept in `i64` (then
+//! `|S_C| k < 2^95` and one machine multiplication gives each product).
+//!
+//! **Float filter.** Each candidate also carries `τ = fl(fl(gap) / fl(closing))`,
+//! compared first; the exact 256-bit comparison runs only when two `τ` are
+//! within a relative `10⁻⁹` of each other ([`FILTER`] explains why the answer
+//! is still exact). The queue itself orders candidates by a lower bound of
+//! `τ` only; exactness is restored around each instant (see below).
+//!
+//! **Semantics** (identical to [`crate::trajectory`]): initial clusters are
+//! the runs of contacts (`X_i = X_{i+1}`) with equal velocities
+//! (`U_i = U_{i+1}`); candidates are ordered by time, then by the first
+//! particle of the left cluster; every pair meeting at the same instant is
+//! merged in the same step (chains of three or more clusters included), and
+//! one [`Impulse`] is recorded per cluster formed at that instant, with all
+//! its pre-collision parts left to right.
+//!
+//! **Event loop** (memory is the bottleneck at large N, so the layout is
+//! chosen for it):
+//! * one node per particle; a cluster keeps its sums and size at both of its
+//!   ends, so the pair at a boundary `b` is read from the neighbouring nodes
+//!   `b − 1`, `b`, and a merge touches only the boundary's neighbourhood and
+//!   the two outer ends;
+//! * candidates wait in a monotone radix queue keyed by a lower bound of
+//!   their time (lazy deletion: re-keying a boundary bumps its stamp, stale
+//!   entries are dropped when they come out), taken out 16 at a time so that
+//!   the cache misses of coming events overlap;
+//! * the exact order is restored in a small window around the earliest
+//!   candidate (see `run`): the queue only needs approximate keys.
+//!
+//! Every event costs O(1) node accesses and O(1) amortized queue work (an
+//! entry moves at most 16 times between buckets); candidates whose times
+//! agree with the current instant to about 12 digits without being equal go
+//! through a binary heap, O(log N) each. At most N − 1 merges: O(N log N) in
+//! all, O(N) memory (the parts of every impulse are kept as a flat list of
+//! part boundaries, the times as unreduced `(gap, closing)` pairs).
+
+use num_bigint::BigInt;
+use num_rational::BigRational;
+use num_traits::{ToPrimitive, Zero};
+
+use crate::cluster::Cluster;
+use crate::contact::Impulse;
+use crate::fast::int::{narrowed, ratio, ratio_over};
+use crate::fast::scaling::{scale_i128, Scaled};
+use crate::initial::InitialData;
+use crate::trajectory::Trajectory;
+
+mod events;
+mod queue;
+mod sums;
+mod time;
+
+use events::{run, History, JOIN_NEVER, JOIN_ZERO, MAX_N};
+use sums::{max_abs, within_bound, Words};
+pub use time::FILTER;
+
+/// Which engine computed an [`IntegerTrajectory`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Engine {
+    /// The integer engine; every scaled datum `X_i`, `U_i` fitted `i64`.
+    Int64,
+    /// The integer engine; the scaled data needed `i128`.
+    Int128,
+    /// The generic [`Trajectory::<BigRational>::new`](Trajectory::new): the
+    /// data were too large for the `i128` bound (see the module docs).
+    BigRational,
+}
+
+/// The integer engine's result, with what the conversion needs.
+#[derive(Debug, Clone)]
+struct IntegerHistory {
+    words: Words,
+    dx: BigInt,
+    du: BigInt,
+    radius: BigRational,
+    hist: History,
+}
+
+#[derive(Debug, Clone)]
+enum Inner {
+    Integer(Box<IntegerHistory>),
+    Generic(Box<Trajectory<BigRational>>),
+}
+
+/// The sticky history of one initial datum, computed on fixed-width
+/// integers (see the module docs); [`IntegerTrajectory::into_trajectory`]
+/// gives the same [`Trajectory<BigRational>`] as
+/// [`Trajectory::new`](crate::trajectory::Trajectory::new).
+#[derive(Debug, Clone)]
+pub struct IntegerTrajectory {
+    inner: Inner,
+}
+
+impl IntegerTrajectory {
+    /// Computes every collision of the sticky dynamics started from `data`:
+    /// on `i128` when the width bound holds, otherwise with the generic
+    /// `BigRational` engine ([`IntegerTrajectory::engine`] tells which).
+    pub fn new(data: &InitialData<BigRational>) -> IntegerTrajectory {
+        let scaled = if data.n() < MAX_N {
+            scale_i128(data)
+        } else {
+            None
+        };
+        let Some(s) = scaled.filter(within_bound) else {
+            return IntegerTrajectory {
+                inner: Inner::Generic(Box::new(Trajectory::new(data.clone()))),
+            };
+        };
+        let Scaled { x, u, dx, du } = s;
+        let narrow = |v: &[i128]| narrowed(v, |&a| i64::try_from(a).ok());
+        let words = match (narrow(&x), narrow(&u)) {
+            (Some(x), Some(u)) => Words::I64(x, u),
+            _ => Words::I128(x, u),
+        };
+        // Cluster sums in i64 when N · M < 2^63.
+        let narrow_sums = (words.len() as u128)
+            .checked_mul(max_abs(&words))
+            .is_some_and(|b| b < 1u128 << 63);
+        let hist = match (&words, narrow_sums) {
+            (Words::I64(x, u), true) => run::<i64, i64>(x, u),
+            (Words::I64(x, u), false) => run::<i64, i128>(x, u),
+            (Words::I128(x, u), _) => run::<i128, i128>(x, u),
+        };
+        IntegerTrajectory {
+            inner: Inner::Integer(Box::new(IntegerHistory {
+                words,
+                dx,
+                du,
+                radius: data.radius().clone(),
+                hist,
+            })),
+        }
+    }
+
+    /// The engine that ran.
+    pub fn engine(&self) -> Engine {
+        match &self.inner {
+            Inner::Integer(h) => match h.words {
+                Words::I64(..) => Engine::Int64,
+                Words::I128(..) => Engine::Int128,
+            },
+            Inner::Generic(_) => Engine::BigRational,
+        }
+    }
+
+    /// The number of clusters formed (one [`Impulse`] each).
+    pub fn events(&self) -> usize {
+        match &self.inner {
+            Inner::Integer(h) => h.hist.impulses.len(),
+            Inner::Generic(t) => t.impulses().len(),
+        }
+    }
+
+    /// The number of distinct collision instants.
+    pub fn instants(&self) -> usize {
+        match &self.inner {
+            Inner::Integer(h) => h.hist.instants.len(),
+            Inner::Generic(t) => {
+                let mut count = 0;
+                let mut last: Option<&BigRational> = None;
+                for imp in t.impulses() {
+                    if last != Some(&imp.t) {
+                        count += 1;
+                        last = Some(&imp.t);
+                    }
+                }
+                count
+            }
+        }
+    }
+
+    /// The exact history as a [`Trajectory<BigRational>`]: every time and
+    /// velocity reduced to lowest terms, equal to
+    /// [`Trajectory::new`](crate::trajectory::Trajectory::new) on the same
+    /// data.
+    pub fn into_trajectory(self) -> Trajectory<BigRational> {
+        match self.inner {
+            Inner::Generic(t) => *t,
+            Inner::Integer(h) => h.convert(),
+        }
+    }
+}
+
+/// The exact sticky history of `data`, computed by the integer engine and
+/// converted: equal to [`Trajectory::new`](crate::trajectory::Trajectory::new)
+/// (the tests check it), and the way the CLI computes every trajectory.
+pub fn trajectory(data: &InitialData<BigRational>) -> Trajectory<BigRational> {
+    IntegerTrajectory::new(data).into_trajectory()
+}
+
+impl IntegerHistory {
+    fn convert(self) -> Trajectory<BigRational> {
+        let IntegerHistory {
+            words,
+            dx,
+            du,
+            radius,
+            hist,
+        } = self;
+        let n = words.len();
+        let two_r = &radius + &radius;
+        // The initial data, rebuilt exactly: x⁰_i = X_i / D_x + 2r i.
+        let (rn, rd) = (two_r.numer(), two_r.denom());
+        let den = &dx * rd;
+        let rn_dx = rn * &dx;
+        let mut positions = Vec::with_capacity(n);
+        let mut velocities = Vec::with_capacity(n);
+        let du_small = du.to_i128();
+        for i in 0..n {
+            positions.push(BigRational::new(
+                BigInt::from(words.x(i)) * rd + &rn_dx * BigInt::from(i),
+                den.clone(),
+            ));
+            velocities.push(ratio_over(words.u(i), 1, &du, du_small));
+        }
+        let data = match InitialData::new(radius, positions, velocities) {
+            Ok(d) => d,
+            Err(e) => unreachable_data(e),
+        };
+        // t = gap D_u / (closing D_x).
+        let times: Vec<BigRational> = hist
+            .instants
+            .iter()
+            .map(|&(gap, closing)| {
+                match (
+                    du_small.and_then(|d| gap.checked_mul(d)),
+                    dx.to_i128().and_then(|d| closing.checked_mul(d)),
+                ) {
+                    (Some(a), Some(b)) => ratio(a, b),
+                    _ => BigRational::new(BigInt::from(gap) * &du, BigInt::from(closing) * &dx),
+                }
+            })
+            .collect();
+        let join_time = hist
+            .join
+            .iter()
+            .map(|&code| match code {
+                JOIN_NEVER => None,
+                JOIN_ZERO => Some(BigRational::zero()),
+                k => Some(times[k as usize].clone()),
+            })
+            .collect();
+        // Prefix sums of U: |Σ| ≤ N M < 2^126.
+        let mut prefix_u = Vec::with_capacity(n + 1);
+        let mut acc = 0i128;
+        prefix_u.push(acc);
+        for i in 0..n {
+            acc += words.u(i);
+            prefix_u.push(acc);
+        }
+        let velocity = |first: usize, end: usize| {
+            let k = (end - first) as i128;
+            ratio_over(prefix_u[end] - prefix_u[first], k, &du, du_small)
+        };
+        let mut impulses = Vec::with_capacity(hist.impulses.len());
+        for (k, &(instant, off)) in hist.impulses.iter().enumerate() {
+            let stop = hist
+                .impulses
+                .get(k + 1)
+                .map_or(hist.parts.len(), |&(_, o)| o as usize);
+            let bounds = &hist.parts[off as usize..stop];
+            let mut parts = Vec::with_capacity(bounds.len() - 1);
+            let mut part_velocities = Vec::with_capacity(bounds.len() - 1);
+            for w in bounds.windows(2) {
+                let (a, b) = (w[0] as usize, w[1] as usize);
+                parts.push(Cluster {
+                    first: a,
+                    size: b - a,
+                });
+                part_velocities.push(velocity(a, b));
+            }
+            let (first, end) = (bounds[0] as usize, bounds[bounds.len() - 1] as usize);
+            impulses.push(Impulse {
+                t: times[instant as usize].clone(),
+                cluster: Cluster {
+                    first,
+                    size: end - first,
+                },
+                parts,
+                part_velocities,
+                velocity: velocity(first, end),
+                n,
+            });
+        }
+        Trajectory::from_parts(data, join_time, impulses)
+    }
+}
+
+#[cold]
+fn unreachable_data(e: crate::Error) -> InitialData<BigRational> {
+    // The data are rebuilt from admissible data, value for value.
+    panic!("merge: rebuilt initial data are invalid: {e}")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fast::battery;
+    use crate::generate::{initial_data, Limits, SplitMix64};
+    use num_traits::One;
+    use time::Time;
+
+    fn q(n: i64, d: i64) -> BigRational {
+        BigRational::new(BigInt::from(n), BigInt::from(d))
+    }
+
+    fn big(v: &BigInt) -> BigRational {
+        BigRational::from_integer(v.clone())
+    }
+
+    /// Every engine on `data` through the oracle battery (this one's
+    /// impulses, join times and states against the generic ones).
+    fn agree(data: &InitialData<BigRational>) -> IntegerTrajectory {
+        if let Err(m) = battery::check_probes(data, Some(8)) {
+            panic!("{m}");
+        }
+        IntegerTrajectory::new(data)
+    }
+
+    #[test]
+    fn equal_times_straddling_a_queue_key() {
+        // Three particles with velocities 8, 5, 0 and gaps 3m, 5m: both
+        // pairs meet at t = m exactly, one impulse with three parts. Pick m
+        // so that the doubles of 3m/3 and 5m/5 round to different queue
+        // keys: the window must still gather both pairs.
+        let base = 1i128 << 58;
+        let m = (0..1_000_000)
+            .map(|k| base + 7919 * k)
+            .find(|&m| Time::new(3 * m, 3).lo() != Time::new(5 * m, 5).lo())
+            .expect("a straddling m");
+        let x = |v: i128| BigRational::from_integer(BigInt::from(v));
+        let data = InitialData::new(
+            q(1, 2),
+            vec![x(0), x(3 * m + 1), x(8 * m + 2)],
+            vec![q(8, 1), q(5, 1), q(0, 1)],
+        )
+        .unwrap();
+        let it = agree(&data);
+        assert_eq!((it.events(), it.instants()), (1, 1));
+        assert_eq!(it.into_trajectory().impulses()[0].parts.len(), 3);
+        // The same two times on separate pairs: two impulses at one instant
+        // (then the two clusters meet, a second instant).
+        let data = InitialData::new(
+            q(1, 2),
+            vec![x(0), x(3 * m + 1), x(9 * m + 2), x(14 * m + 3)],
+            vec![q(8, 1), q(5, 1), q(5, 1), q(0, 1)],
+        )
+        .unwrap();
+        let it = agree(&data);
+        assert_eq!((it.events(), it.instants()), (3, 2));
+        let traj = it.into_trajectory();
+        assert_eq!(traj.impulses()[0].t, traj.impulses()[1].t);
+    }
+
+    #[test]
+    fn random_scenes_agree() {
+        let mut rng = SplitMix64::new(2024);
+        for k in 0..400 {
+            let data = initial_data(
+                &rng.bytes(600),
+                Limits {
+                    max_n: 1 + k % 120,
+                    ..Limits::default()
+                },
+            );
+            let it = agree(&data);
+            assert_ne!(it.engine(), Engine::BigRational);
+        }
+    }
+
+    #[test]
+    fn degenerate_scenes_agree() {
+        // N = 1.
+        let one = InitialData::new(q(1, 2), vec![q(3, 1)], vec![q(-2, 1)]).unwrap();
+        assert_eq!(agree(&one).events(), 0);
+        // Three clusters meeting at t = 1 (one impulse, three parts).
+        let x = [0, 1, 3, 4, 5, 7, 8].map(|v| q(v, 1)).to_vec();
+        let u = [1, 1, 0, 0, 0, -1, -1].map(|v| q(v, 1)).to_vec();
+        let it = agree(&InitialData::new(q(1, 2), x, u).unwrap());
+        assert_eq!((it.events(), it.instants()), (1, 1));
+        let traj = it.into_trajectory();
+        assert_eq!(traj.impulses()[0].parts.len(), 3);
+    }
+
+    #[test]
+    fn fallback_when_the_bound_fails() {
+        // max|X| ≈ 2^125 with N = 10 breaks max(N, N²/4) M < 2^126.
+        let huge = big(&(BigInt::one() << 125u32));
+        let x: Vec<BigRational> = (0..10)
+            .map(|i| q(i, 1) + if i > 6 { huge.clone() } else { q(0, 1) })
+            .collect();
+        let u: Vec<BigRational> = (0..10).map(|i| q(5 - i, 1)).collect();
+        let data = InitialData::new(q(1, 4), x, u).unwrap();
+        assert_eq!(agree(&data).engine(), Engine::BigRational);
+        // Values far beyond i128.
+        let huge = big(&(BigInt::one() << 140u32));
+        let data = InitialData::new(
+            q(1, 2),
+            vec![q(0, 1), q(3, 1), huge.clone(), huge + q(5, 1)],
+            vec![q(1, 1), q(-1, 1), q(1, 3), q(-1, 7)],
+        )
+        .unwrap();
+        assert_eq!(agree(&data).engine(), Engine::BigRational);
+    }
+}
