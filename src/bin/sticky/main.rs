@@ -6,6 +6,8 @@
 //! * `sticky run SCENE --at T [--at T2 …] [--json]` — the state at each time.
 //! * `sticky events SCENE [--json]` — every collision.
 //! * `sticky check SCENE` — the summary of the default run, for any scene.
+//! * `sticky prove [--n N] [--claim ID] [--json]` — claims proved for all
+//!   real data at N = 1 … N, or refuted with a replayed counterexample.
 //! * `sticky generate`, `claims`, `bench`, `converge`, `plot`, `atlas` — see
 //!   `sticky help COMMAND`.
 //!
@@ -19,6 +21,7 @@ mod converge;
 mod events;
 mod generate;
 mod plot;
+mod prove;
 mod run;
 mod table;
 
@@ -73,6 +76,10 @@ enum Command {
     /// The claims ledger: runs every checker of the paper's claims and prints
     /// the computed statuses.
     Claims(claims::Args),
+    /// Proves every per-case claim of section 2 for all real initial data
+    /// at N = 1 … N (symbolic execution of the engine and the checkers, z3),
+    /// or refutes it with an exact, replayed counterexample.
+    Prove(prove::Args),
 }
 
 fn parse_time(s: &str) -> Result<BigRational, String> {
@@ -133,6 +140,7 @@ fn main() -> ExitCode {
         Some(Command::Plot(args)) => plot::exec(args, &mut out),
         Some(Command::Atlas(args)) => atlas::exec(args, &mut out),
         Some(Command::Claims(args)) => claims::exec(args, &mut out),
+        Some(Command::Prove(args)) => prove::exec(args, &mut out),
     };
     let flushed = out.flush();
     match result {
