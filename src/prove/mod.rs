@@ -403,11 +403,13 @@ pub fn prove_target(target: &Target, n: usize, limits: Limits) -> ProofResult {
 }
 
 /// One JSON object (DESIGN.md §3): `{"id", "n", "status", "paths",
-/// "queries", "seconds", "hypotheses", "witness"}` (plus `"note"`).
-pub fn json(r: &ProofResult) -> String {
+/// "queries", "seconds", "hypotheses", "witness"}`, plus `"erratum"` (the
+/// ledger reports the printed claim false) and `"note"` (why `unknown`, or
+/// the exact checker's message on the witness).
+pub fn json(r: &ProofResult, erratum: bool) -> String {
     use crate::text::string;
     format!(
-        "{{\"id\": {}, \"n\": {}, \"status\": \"{}\", \"paths\": {}, \"queries\": {}, \"seconds\": {:.3}, \"hypotheses\": {}, \"witness\": {}, \"note\": {}}}",
+        "{{\"id\": {}, \"n\": {}, \"status\": \"{}\", \"paths\": {}, \"queries\": {}, \"seconds\": {:.3}, \"hypotheses\": {}, \"witness\": {}, \"erratum\": {erratum}, \"note\": {}}}",
         string(&r.id),
         r.n,
         r.status.as_str(),

@@ -80,7 +80,7 @@ pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
         for t in &targets {
             let r = prove::prove_target(t, n, limits);
             if args.json {
-                writeln!(out, "{}", prove::json(&r)).map_err(io_err)?;
+                writeln!(out, "{}", prove::json(&r, t.erratum)).map_err(io_err)?;
             } else {
                 writeln!(
                     out,
