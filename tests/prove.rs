@@ -45,6 +45,8 @@ fn limits() -> ProofLimits {
 }
 
 /// Errata that no datum with N ≤ 3 can expose, with the reason.
+/// (`prop:2ndorder-LagrPDE#UN-L1` needs a non-monotone u, hence N ≥ 3: it
+/// is expected only when N = 3 is reached.)
 const NOT_EXPRESSIBLE_UP_TO_3: [(&str, &str); 0] = [];
 
 #[test]
@@ -55,7 +57,9 @@ fn claims_proved_and_errata_refuted_up_to_n3() {
     let max_n: usize = std::env::var("STICKY_PROVE_N")
         .ok()
         .and_then(|v| v.parse().ok())
-        .unwrap_or(3);
+        // N ≤ 3 in release (CI's `cargo test --release`), N ≤ 2 in a debug
+        // build; `STICKY_PROVE_N` overrides.
+        .unwrap_or(if cfg!(debug_assertions) { 2 } else { 3 });
     let mut problems = Vec::new();
     for target in prove::targets() {
         let mut refuted_at = None;
@@ -91,8 +95,10 @@ fn claims_proved_and_errata_refuted_up_to_n3() {
                 _ => {}
             }
         }
+        let needs_3 = target.id == "prop:2ndorder-LagrPDE#UN-L1" && max_n < 3;
         if target.erratum
             && refuted_at.is_none()
+            && !needs_3
             && !NOT_EXPRESSIBLE_UP_TO_3
                 .iter()
                 .any(|(id, _)| *id == target.id)
