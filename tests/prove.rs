@@ -321,3 +321,58 @@ fn toy_programs() {
     assert_eq!(r.status, Status::Proved, "{:?}", r.note);
     let _ = BigRational::from_integer(1.into());
 }
+
+/// `sticky prove --json`: one object per claim and N with the fields of
+/// DESIGN.md §3; a witness for the erratum, null for the proved claim.
+#[test]
+fn cli_json_contract() {
+    if !solver() {
+        return;
+    }
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_sticky"))
+        .args([
+            "prove",
+            "--n",
+            "2",
+            "--claim",
+            "df:H-micro#contacts-grow",
+            "--json",
+        ])
+        .output()
+        .expect("run sticky");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).expect("utf-8");
+    let objects: Vec<serde_json::Value> = text
+        .lines()
+        .map(|l| serde_json::from_str(l).expect("one JSON object per line"))
+        .collect();
+    assert_eq!(objects.len(), 4, "printed and corrected, N = 1 and 2");
+    for o in &objects {
+        for key in [
+            "id",
+            "n",
+            "status",
+            "paths",
+            "queries",
+            "seconds",
+            "hypotheses",
+            "witness",
+        ] {
+            assert!(o.get(key).is_some(), "missing {key}: {o}");
+        }
+    }
+    let printed_n2 = &objects[2];
+    assert_eq!(printed_n2["id"], "df:H-micro#contacts-grow");
+    assert_eq!(printed_n2["status"], "refuted");
+    assert!(printed_n2["witness"]
+        .as_str()
+        .unwrap()
+        .contains("[particles]"));
+    let corrected_n2 = &objects[3];
+    assert_eq!(corrected_n2["status"], "proved");
+    assert!(corrected_n2["witness"].is_null());
+}
