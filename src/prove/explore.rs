@@ -94,7 +94,11 @@ type Decision = (u64, u8);
 struct PathState {
     forced: Vec<Decision>,
     taken: Vec<Decision>,
-    branches: Vec<Vec<Decision>>,
+    branches: Vec<(Vec<Decision>, Option<Vec<BigRational>>)>,
+    /// A point satisfying the path condition (the solver's last model),
+    /// when known and rational: the outcome it takes is feasible without a
+    /// query.
+    model: Option<Vec<BigRational>>,
     /// Signs still possible for each normalised polynomial.
     masks: HashMap<Poly, u8>,
     /// The path condition as SMT-LIB text (hypotheses first).
@@ -189,34 +193,54 @@ impl PathState {
             self.record(&np, flipped, outcomes[k], Some(outcomes[k].smt(&ptext)));
             return k;
         }
-        let mut feasible: Vec<usize> = Vec::new();
+        // The outcome the current model takes is feasible: no query.
+        let model_k = self.model.as_ref().and_then(|m| {
+            let b = sign_bit(&p.eval(m));
+            candidates
+                .iter()
+                .copied()
+                .find(|&k| outcomes[k].mask() & b != 0)
+        });
+        let mut feasible: Vec<(usize, Option<Vec<BigRational>>)> = Vec::new();
+        if let Some(k0) = model_k {
+            feasible.push((k0, self.model.clone()));
+        }
         for (i, &k) in candidates.iter().enumerate() {
-            if i + 1 == candidates.len() && feasible.is_empty() {
+            if Some(k) == model_k {
+                continue;
+            }
+            if model_k.is_none() && i + 1 == candidates.len() && feasible.is_empty() {
                 // The path condition is satisfiable and the outcomes cover
                 // every sign: the last one must be feasible.
-                feasible.push(k);
+                feasible.push((k, None));
                 continue;
             }
             let q = outcomes[k].smt(&ptext);
             self.queries += 1;
-            match self.solver.check(&self.pc, Some(&q)) {
-                Ok(Sat::Sat) => feasible.push(k),
-                Ok(Sat::Unsat) => {}
-                Ok(Sat::Unknown) => {
+            match self.solver.check_with_model(&self.pc, &q, &self.names) {
+                Ok((Sat::Sat, m)) => feasible.push((k, m)),
+                Ok((Sat::Unsat, _)) => {}
+                Ok((Sat::Unknown, _)) => {
                     self.unknown_answers += 1;
-                    feasible.push(k);
+                    feasible.push((k, None));
                 }
                 Err(e) => {
                     self.error.get_or_insert(e.0);
-                    feasible.push(k);
+                    feasible.push((k, None));
                 }
             }
         }
-        let k = feasible[0];
-        for &alt in &feasible[1..] {
+        let mut feasible = feasible.into_iter();
+        let Some((k, model)) = feasible.next() else {
+            self.error
+                .get_or_insert_with(|| "no feasible outcome".into());
+            return 0;
+        };
+        self.model = model;
+        for (alt, m) in feasible {
             let mut prefix = self.taken.clone();
             prefix.push((fingerprint, alt as u8));
-            self.branches.push(prefix);
+            self.branches.push((prefix, m));
         }
         self.taken.push((fingerprint, k as u8));
         self.record(&np, flipped, outcomes[k], Some(outcomes[k].smt(&ptext)));
@@ -353,18 +377,19 @@ pub fn explore(
     };
     // The hypotheses must be satisfiable, or everything is vacuous.
     result.queries += 1;
-    match solver.check(&base_pc, None)? {
-        Sat::Sat => {}
+    let base_model = match solver.check(&base_pc, None)? {
+        Sat::Sat => solver.model(names)?,
         other => {
             result.verdict = Verdict::Unknown(format!("hypotheses not satisfiable ({other:?})"));
             return Ok(result);
         }
-    }
-    let mut stack: Vec<Vec<Decision>> = vec![Vec::new()];
+    };
+    let mut stack: Vec<(Vec<Decision>, Option<Vec<BigRational>>)> = vec![(Vec::new(), base_model)];
     let mut state = Some(PathState {
         forced: Vec::new(),
         taken: Vec::new(),
         branches: Vec::new(),
+        model: None,
         masks: base_masks.clone(),
         pc: base_pc.clone(),
         solver,
@@ -375,7 +400,7 @@ pub fn explore(
         error: None,
     });
     let mut unknown_total = 0;
-    while let Some(prefix) = stack.pop() {
+    while let Some((prefix, model)) = stack.pop() {
         if result.paths >= limits.max_paths {
             result.verdict = Verdict::Unknown(format!(
                 "path limit reached ({} paths, {} still queued)",
@@ -395,6 +420,7 @@ pub fn explore(
         }
         let Some(mut st) = state.take() else { break };
         st.forced = prefix;
+        st.model = model;
         st.taken.clear();
         st.branches.clear();
         st.masks = base_masks.clone();

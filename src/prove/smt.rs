@@ -197,6 +197,51 @@ impl Solver {
         }
     }
 
+    /// The current model's values of `names` (after a `sat` answer), when
+    /// all are rational.
+    pub fn model(&mut self, names: &[String]) -> Result<Option<Vec<BigRational>>, SolverError> {
+        if names.is_empty() {
+            return Ok(Some(Vec::new()));
+        }
+        self.send(&format!("(get-value ({}))\n", names.join(" ")))?;
+        let answer = self.read_sexp()?;
+        let Some(Sexp::List(pairs)) = parse_sexp(&answer) else {
+            return Ok(None);
+        };
+        let mut out = Vec::with_capacity(names.len());
+        for (pair, name) in pairs.iter().zip(names) {
+            match pair {
+                Sexp::List(kv) if kv.len() == 2 && kv[0] == Sexp::Atom(name.clone()) => {
+                    match sexp_value(&kv[1]) {
+                        Some(q) => out.push(q),
+                        None => return Ok(None),
+                    }
+                }
+                _ => return Ok(None),
+            }
+        }
+        Ok((out.len() == names.len()).then_some(out))
+    }
+
+    /// Is `constraints ∧ extra` satisfiable? With `Sat`, also the model's
+    /// rational values of `names` (when they are all rational).
+    pub fn check_with_model(
+        &mut self,
+        constraints: &[String],
+        extra: &str,
+        names: &[String],
+    ) -> Result<(Sat, Option<Vec<BigRational>>), SolverError> {
+        self.sync(constraints)?;
+        self.send(&format!("(push 1)\n(assert {extra})\n"))?;
+        let r = self.check_now();
+        let model = match r {
+            Ok(Sat::Sat) => self.model(names),
+            _ => Ok(None),
+        };
+        self.send("(pop 1)\n")?;
+        Ok((r?, model?))
+    }
+
     /// An exact rational point satisfying `constraints` (the variables
     /// `names`, in order), or `None`. The solver's model may hold algebraic
     /// numbers; the variables are then fixed one at a time to a rational
@@ -271,6 +316,73 @@ impl Drop for Solver {
     }
 }
 
+/// An s-expression of the solver's output.
+#[derive(Debug, Clone, PartialEq)]
+enum Sexp {
+    Atom(String),
+    List(Vec<Sexp>),
+}
+
+fn parse_sexp(text: &str) -> Option<Sexp> {
+    let mut tokens: Vec<String> = Vec::new();
+    let mut cur = String::new();
+    for c in text.chars() {
+        match c {
+            '(' | ')' => {
+                if !cur.is_empty() {
+                    tokens.push(std::mem::take(&mut cur));
+                }
+                tokens.push(c.to_string());
+            }
+            c if c.is_whitespace() => {
+                if !cur.is_empty() {
+                    tokens.push(std::mem::take(&mut cur));
+                }
+            }
+            c => cur.push(c),
+        }
+    }
+    if !cur.is_empty() {
+        tokens.push(cur);
+    }
+    let mut pos = 0;
+    let e = sexp_at(&tokens, &mut pos)?;
+    (pos == tokens.len()).then_some(e)
+}
+
+fn sexp_at(tokens: &[String], pos: &mut usize) -> Option<Sexp> {
+    let t = tokens.get(*pos)?;
+    *pos += 1;
+    match t.as_str() {
+        "(" => {
+            let mut items = Vec::new();
+            loop {
+                if tokens.get(*pos)? == ")" {
+                    *pos += 1;
+                    return Some(Sexp::List(items));
+                }
+                items.push(sexp_at(tokens, pos)?);
+            }
+        }
+        ")" => None,
+        _ => Some(Sexp::Atom(t.clone())),
+    }
+}
+
+fn sexp_value(e: &Sexp) -> Option<BigRational> {
+    match e {
+        Sexp::Atom(a) => parse_decimal(a),
+        Sexp::List(items) => match items.as_slice() {
+            [Sexp::Atom(op), x] if op == "-" => sexp_value(x).map(|q| -q),
+            [Sexp::Atom(op), a, b] if op == "/" => {
+                let b = sexp_value(b)?;
+                (!b.is_zero()).then(|| sexp_value(a).map(|a| a / b))?
+            }
+            _ => None,
+        },
+    }
+}
+
 /// Parses a model value: `2.0`, `(- 2.0)`, `(/ 3.0 4.0)`, `(- (/ 3.0 4.0))`
 /// (`None` for an algebraic number, `root-obj`).
 pub fn parse_value(text: &str) -> Option<BigRational> {
@@ -335,5 +447,9 @@ mod tests {
         assert_eq!(parse_value("(- (/ 3.0 4.0))"), Some(q(-3, 4)));
         assert_eq!(parse_value("(root-obj (+ (^ x 2) (- 2)) 1)"), None);
         assert_eq!(parse_decimal("-1.25"), Some(q(-5, 4)));
+        let e = parse_sexp("((x1 (- (/ 1.0 2.0)))\n (t 3.0))").unwrap();
+        let Sexp::List(pairs) = e else { panic!() };
+        let Sexp::List(kv) = &pairs[0] else { panic!() };
+        assert_eq!(sexp_value(&kv[1]), Some(q(-1, 2)));
     }
 }
