@@ -248,6 +248,34 @@ impl PathState {
     }
 }
 
+/// `Some(true)` when the path condition is known (without asking the
+/// solver) to make `p > 0`, `Some(false)` for `p < 0`, `None` otherwise.
+pub fn known_strict_sign(p: &Poly) -> Option<bool> {
+    if let Some(c) = p.as_constant() {
+        return match sign_bit(&c) {
+            POS => Some(true),
+            NEG => Some(false),
+            _ => None,
+        };
+    }
+    let (np, lead) = p.normalized();
+    STATE.with(|s| {
+        let s = s.borrow();
+        let st = s.as_ref()?;
+        let known = st.masks.get(&np).copied()?;
+        let known = if lead.is_negative() {
+            flip(known)
+        } else {
+            known
+        };
+        match known {
+            POS => Some(true),
+            NEG => Some(false),
+            _ => None,
+        }
+    })
+}
+
 /// Which of `outcomes` (sign conditions covering every sign of `p`) holds:
 /// the path oracle behind every comparison of the symbolic scalar. Without
 /// an exploration running, a non-constant comparison answers the first

@@ -4,7 +4,7 @@
 //!
 //! * [`sym::Sym`] — a rational function of the inputs `x⁰ᵢ`, `u⁰ᵢ` and the
 //!   times `t`, `s` with exact rational coefficients (`2r = 1/N` fixed);
-//! * [`explore`] — the path oracle (every comparison of the engine or the
+//! * [`mod@explore`] — the path oracle (every comparison of the engine or the
 //!   checker is a branch point unless the path condition decides it) and
 //!   the depth-first explorer that replays the program from the start for
 //!   every feasible decision sequence;
@@ -24,7 +24,7 @@
 //! merge [`crate::trajectory::Trajectory::new`] and [`Trajectory::at`], the
 //! projection [`crate::projection::state_at`] (PAVA with its
 //! right-derivative tie-break) and the claim's checker from
-//! [`crate::claims::registry`] — unchanged. The fast integer engines are
+//! [`crate::claims::registry()`] — unchanged. The fast integer engines are
 //! not run symbolically: they are tied to these two by the oracle battery
 //! (exact equality on every test input).
 //!

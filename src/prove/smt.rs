@@ -6,6 +6,8 @@
 //! by z3's complete `nlsat` procedure (`check-sat-using qfnra-nlsat`). The
 //! path condition is kept on z3's assertion stack, one `push` per
 //! constraint, and re-synchronised lazily when the explorer backtracks.
+//! `STICKY_Z3_TACTIC` replaces the tactic (for experiments: on these
+//! queries `qfnra-nlsat` alone was the fastest of those tried).
 
 use std::io::{BufRead, BufReader, Write};
 use std::process::{Child, ChildStdin, ChildStdout, Command, Stdio};
@@ -166,10 +168,13 @@ impl Solver {
     }
 
     fn check_now(&mut self) -> Result<Sat, SolverError> {
-        let cmd = format!(
-            "(check-sat-using (try-for qfnra-nlsat {}))\n",
-            self.timeout_ms
-        );
+        let cmd = match std::env::var("STICKY_Z3_TACTIC") {
+            Ok(t) if !t.is_empty() => format!("(check-sat-using {t})\n"),
+            _ => format!(
+                "(check-sat-using (try-for qfnra-nlsat {}))\n",
+                self.timeout_ms
+            ),
+        };
         self.send(&cmd)?;
         let answer = self.read_sexp()?;
         Ok(match answer.as_str() {

@@ -4,7 +4,7 @@
 //! Arithmetic builds the expression (in a normal form: polynomials as
 //! coefficient maps, constant denominators folded into the numerator, equal
 //! denominators kept once). Every comparison — `==`, `<`, `total_cmp`,
-//! `is_zero` … — is sent to the path oracle of [`super::explore`]: a
+//! `is_zero` … — is sent to the path oracle of [`mod@super::explore`]: a
 //! comparison of constants is answered at once; one whose outcome the path
 //! condition decides is answered from it; any other is a branch point of
 //! the exploration. A division by an expression that may vanish is also a
@@ -108,7 +108,14 @@ impl Sym {
         let p = if d.den.as_constant().is_some() {
             d.num.clone()
         } else {
-            d.num.mul(&d.den)
+            // sign(num/den) = sign(num) when the path condition already
+            // fixes den > 0 (a collision time's closing speed, say): a
+            // lower degree for the solver. Otherwise sign(num · den).
+            match super::explore::known_strict_sign(&d.den) {
+                Some(true) => d.num.clone(),
+                Some(false) => d.num.neg(),
+                None => d.num.mul(&d.den),
+            }
         };
         (d, p)
     }
