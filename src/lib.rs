@@ -27,7 +27,9 @@
 //!    owner of every error metric.
 //! 4. [`limit`] — the hydrodynamic limit (section 3, Appendix C).
 //! 5. [`claims`] — one checker per claim of the paper, the ledger.
-//! 6. [`report`] — JSON output, and (feature `report`) charts, atlas, bench.
+//! 6. [`prove`] — the symbolic prover: the engine and the checkers on a
+//!    symbolic scalar, every comparison decided by an SMT solver (z3).
+//! 7. [`report`] — JSON output, and (feature `report`) charts, atlas, bench.
 //!
 //! The `sticky` command line (feature `cli`, on by default) sits above all
 //! of them, in `src/bin/sticky/`, one module per command.
@@ -82,10 +84,11 @@ pub mod text;
 pub mod trajectory;
 pub mod violation;
 
-// 2–6. The layers above it.
+// 2–7. The layers above it.
 pub mod claims;
 pub mod fast;
 pub mod limit;
+pub mod prove;
 pub mod reference;
 pub mod report;
 

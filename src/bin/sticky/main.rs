@@ -9,6 +9,8 @@
 //! * `sticky compare SCENE SOLUTION [--json]` — another solver's answer
 //!   against the exact one; `sticky export SCENE --format json|csv|npy` — the
 //!   scene as a peer solver reads it.
+//! * `sticky prove [--n N] [--claim ID] [--json]` — claims proved for all
+//!   real data at N = 1 … N, or refuted with a replayed counterexample.
 //! * `sticky generate`, `claims`, `bench`, `converge`, `plot`, `atlas` — see
 //!   `sticky help COMMAND`.
 //!
@@ -24,6 +26,7 @@ mod events;
 mod export;
 mod generate;
 mod plot;
+mod prove;
 mod run;
 mod table;
 
@@ -84,6 +87,10 @@ enum Command {
     /// The scene's data as a peer solver reads it: nearest doubles, their
     /// exact rounding errors, exact values (JSON, CSV or NPY).
     Export(export::Args),
+    /// Proves every per-case claim of section 2 for all real initial data
+    /// at N = 1 … N (symbolic execution of the engine and the checkers, z3),
+    /// or refutes it with an exact, replayed counterexample.
+    Prove(prove::Args),
 }
 
 fn parse_time(s: &str) -> Result<BigRational, String> {
@@ -146,6 +153,7 @@ fn main() -> ExitCode {
         Some(Command::Claims(args)) => claims::exec(args, &mut out),
         Some(Command::Compare(args)) => compare::exec(args, &mut out),
         Some(Command::Export(args)) => export::exec(args, &mut out),
+        Some(Command::Prove(args)) => prove::exec(args, &mut out),
     };
     let flushed = out.flush();
     match result {

@@ -1,0 +1,423 @@
+//! Proofs for all real data at a fixed N: the same generic engine and the
+//! same claim checkers, run on a symbolic scalar and discharged by an SMT
+//! solver (`sticky prove`, issue 11).
+//!
+//! * [`sym::Sym`] — a rational function of the inputs `x⁰ᵢ`, `u⁰ᵢ` and the
+//!   times `t`, `s` with exact rational coefficients (`2r = 1/N` fixed);
+//! * [`mod@explore`] — the path oracle (every comparison of the engine or the
+//!   checker is a branch point unless the path condition decides it) and
+//!   the depth-first explorer that replays the program from the start for
+//!   every feasible decision sequence;
+//! * [`smt`] — z3 over SMT-LIB through a pipe (`z3 -in`, nonlinear real
+//!   arithmetic by `nlsat`).
+//!
+//! A claim is **proved** at N when every feasible path was run to the end
+//! and the checker passed on each: then every real input satisfying the
+//! hypotheses (they are printed with the result) passes the checker, since
+//! every input follows exactly one of the paths. It is **refuted** when a
+//! feasible path ends in a violation: the solver's model becomes an exact
+//! rational scene that is replayed through the ordinary `BigRational`
+//! checker, which must fail too. Anything else (solver time-outs, limits)
+//! is **unknown**, with the reason.
+//!
+//! What runs symbolically: `InitialData::new` (the validation), the event
+//! merge [`crate::trajectory::Trajectory::new`] and [`Trajectory::at`], the
+//! projection [`crate::projection::state_at`] (PAVA with its
+//! right-derivative tie-break) and the claim's checker from
+//! [`crate::claims::registry()`] — unchanged. The fast integer engines are
+//! not run symbolically: they are tied to these two by the oracle battery
+//! (exact equality on every test input).
+//!
+//! [`Trajectory::at`]: crate::trajectory::Trajectory::at
+
+pub mod explore;
+pub mod poly;
+pub mod smt;
+pub mod sym;
+
+use num_rational::BigRational;
+use num_traits::{One, Zero};
+
+use crate::claims::{registry, Case, Claim, Kind};
+use crate::initial::InitialData;
+use crate::scalar::Scalar;
+use crate::trajectory::Trajectory;
+
+use explore::{explore, Hypothesis, Limits, PathEnd, Rel, Verdict};
+use poly::{Poly, Var};
+use sym::Sym;
+
+pub use explore::Limits as ProofLimits;
+pub use smt::available as solver_available;
+
+/// The inputs of one run: initial data and the probe times.
+#[derive(Debug, Clone)]
+pub struct Input<S> {
+    /// `x⁰`.
+    pub positions: Vec<S>,
+    /// `u⁰`.
+    pub velocities: Vec<S>,
+    /// `r` (`1/(2N)`).
+    pub radius: S,
+    /// The times at which the claim is checked: `[t]`, or `[s, t]` with
+    /// `0 ≤ s ≤ t` for claims about two times.
+    pub times: Vec<S>,
+}
+
+/// A program to prove: generic over the scalar, deterministic, returning how
+/// the path ended. Run on [`Sym`] for the proof and on [`BigRational`] to
+/// replay a counterexample.
+pub trait Program {
+    /// Runs the program on `input`.
+    fn run<S: Scalar>(&self, input: &Input<S>) -> PathEnd;
+}
+
+/// The status of a claim at one N.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Status {
+    /// Holds for every real input satisfying the hypotheses.
+    Proved,
+    /// A counterexample was found and replayed exactly.
+    Refuted,
+    /// Neither could be established.
+    Unknown,
+}
+
+impl Status {
+    /// `"proved"`, `"refuted"` or `"unknown"`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Status::Proved => "proved",
+            Status::Refuted => "refuted",
+            Status::Unknown => "unknown",
+        }
+    }
+}
+
+/// The result of one proof attempt (one claim, one N).
+#[derive(Debug, Clone)]
+pub struct ProofResult {
+    /// Claim id (`\label`, `#step`, ` (corrected)` for a correction).
+    pub id: String,
+    /// N.
+    pub n: usize,
+    /// The status.
+    pub status: Status,
+    /// Paths explored.
+    pub paths: usize,
+    /// Solver queries.
+    pub queries: usize,
+    /// Wall-clock seconds.
+    pub seconds: f64,
+    /// The hypotheses, in words.
+    pub hypotheses: String,
+    /// The counterexample as a scene (TOML), replayed exactly.
+    pub witness: Option<String>,
+    /// Why the status is `unknown`, or the checker's message on the
+    /// counterexample.
+    pub note: Option<String>,
+}
+
+/// The variable names for N particles: `x1 … xN`, `u1 … uN`, `t`, `s`.
+pub fn variable_names(n: usize, two_times: bool) -> Vec<String> {
+    let mut names: Vec<String> = (1..=n).map(|i| format!("x{i}")).collect();
+    names.extend((1..=n).map(|i| format!("u{i}")));
+    names.push("t".into());
+    if two_times {
+        names.push("s".into());
+    }
+    names
+}
+
+fn var(i: usize) -> Var {
+    Var::try_from(i).unwrap_or(Var::MAX)
+}
+
+/// The hypotheses of section 2 at N: `x⁰ ∈ K^N`, `u⁰ ∈ C_{x⁰}`, `2r = 1/N`,
+/// `t ≥ 0` (and `0 ≤ s ≤ t`).
+fn hypotheses(n: usize, two_times: bool) -> (Vec<Hypothesis>, String) {
+    let two_r = BigRational::new(1.into(), (n as i64).into());
+    let names = variable_names(n, two_times);
+    let mut hs = Vec::new();
+    for i in 0..n.saturating_sub(1) {
+        // gap − 2r ≥ 0, and gap = 2r ⇒ u_i ≤ u_{i+1}.
+        let gap = Poly::var(var(i + 1))
+            .sub(&Poly::var(var(i)))
+            .sub(&Poly::constant(two_r.clone()));
+        let closing = Poly::var(var(n + i)).sub(&Poly::var(var(n + i + 1)));
+        hs.push(Hypothesis::Sign(gap.clone(), Rel::Ge));
+        hs.push(Hypothesis::Formula(format!(
+            "(or {} {})",
+            Rel::Gt.smt(&gap.smt(&names)),
+            Rel::Le.smt(&closing.smt(&names))
+        )));
+    }
+    let t = Poly::var(var(2 * n));
+    if two_times {
+        let s = Poly::var(var(2 * n + 1));
+        hs.push(Hypothesis::Sign(s.clone(), Rel::Ge));
+        hs.push(Hypothesis::Sign(t.sub(&s), Rel::Ge));
+    }
+    hs.push(Hypothesis::Sign(t, Rel::Ge));
+    let times = if two_times {
+        "all real 0 ≤ s ≤ t (checked at the times [s, t])"
+    } else {
+        "all real t ≥ 0"
+    };
+    let text = format!(
+        "N = {n}, 2r = 1/N; all real x⁰ ∈ K^N (x⁰_(i+1) − x⁰_i ≥ 2r) and u⁰ ∈ C_x⁰ (u⁰_i ≤ u⁰_(i+1) where x⁰_(i+1) − x⁰_i = 2r); {times}"
+    );
+    (hs, text)
+}
+
+fn symbolic_input(n: usize, two_times: bool) -> Input<Sym> {
+    let radius = Sym::constant(BigRational::new(1.into(), (2 * n as i64).into()));
+    let t = Sym::var(var(2 * n));
+    Input {
+        positions: (0..n).map(|i| Sym::var(var(i))).collect(),
+        velocities: (0..n).map(|i| Sym::var(var(n + i))).collect(),
+        radius,
+        times: if two_times {
+            vec![Sym::var(var(2 * n + 1)), t]
+        } else {
+            vec![t]
+        },
+    }
+}
+
+fn concrete_input(n: usize, two_times: bool, point: &[BigRational]) -> Input<BigRational> {
+    let at = |i: usize| {
+        point
+            .get(i)
+            .cloned()
+            .unwrap_or_else(<BigRational as Zero>::zero)
+    };
+    Input {
+        positions: (0..n).map(at).collect(),
+        velocities: (0..n).map(|i| at(n + i)).collect(),
+        radius: <BigRational as One>::one() / BigRational::from_integer((2 * n as i64).into()),
+        times: if two_times {
+            vec![at(2 * n + 1), at(2 * n)]
+        } else {
+            vec![at(2 * n)]
+        },
+    }
+}
+
+/// The counterexample as a scene file: the particles, and the times in
+/// `t_end` and a comment.
+fn witness_toml(id: &str, input: &Input<BigRational>) -> String {
+    use crate::rational::render_exact;
+    let data = InitialData::new(
+        input.radius.clone(),
+        input.positions.clone(),
+        input.velocities.clone(),
+    );
+    let times: Vec<String> = input.times.iter().map(render_exact).collect();
+    let body = match data {
+        Ok(d) => crate::scene::particles_toml(&d, Some(&format!("counterexample to {id}"))),
+        Err(e) => format!("# not admissible: {e}\n"),
+    };
+    let (head, tail) = body.split_once("\n[particles]").unwrap_or((&body, ""));
+    let t_end = input.times.last().map(render_exact).unwrap_or_default();
+    format!(
+        "{head}\ndescription = \"symbolic prover witness: the checker fails at the times [{}]\"\nt_end = \"{t_end}\"\n\n[particles]{tail}",
+        times.join(", ")
+    )
+}
+
+/// Proves `program` for N particles (see the module documentation).
+pub fn prove_program<P: Program>(
+    id: &str,
+    n: usize,
+    two_times: bool,
+    program: &P,
+    limits: Limits,
+) -> ProofResult {
+    let names = variable_names(n, two_times);
+    let (hyps, hyp_text) = hypotheses(n, two_times);
+    let sym = symbolic_input(n, two_times);
+    let run = || program.run(&sym);
+    let mut result = ProofResult {
+        id: id.to_string(),
+        n,
+        status: Status::Unknown,
+        paths: 0,
+        queries: 0,
+        seconds: 0.0,
+        hypotheses: hyp_text,
+        witness: None,
+        note: None,
+    };
+    let exploration = match explore(&names, &hyps, limits, &run) {
+        Ok(e) => e,
+        Err(e) => {
+            result.note = Some(e.0);
+            return result;
+        }
+    };
+    result.paths = exploration.paths;
+    result.queries = exploration.queries;
+    result.seconds = exploration.seconds;
+    match exploration.verdict {
+        Verdict::Proved => {
+            result.status = Status::Proved;
+            if exploration.excluded > 0 {
+                result.note = Some(format!(
+                    "{} paths refused by the input validation",
+                    exploration.excluded
+                ));
+            }
+        }
+        Verdict::Unknown(why) => result.note = Some(why),
+        Verdict::Counterexample { message, point } => {
+            let input = concrete_input(n, two_times, &point);
+            match program.run(&input) {
+                PathEnd::Violated(exact) => {
+                    result.status = Status::Refuted;
+                    result.witness = Some(witness_toml(id, &input));
+                    result.note = Some(exact);
+                }
+                other => {
+                    result.note = Some(format!(
+                        "the solver's point did not reproduce the violation exactly ({other:?}); symbolic message: {message}"
+                    ));
+                }
+            }
+        }
+    }
+    result
+}
+
+/// Which checker of a registry entry: the claim as printed or its
+/// correction.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Which {
+    /// The claim as printed.
+    Printed,
+    /// Its corrected statement.
+    Corrected,
+}
+
+/// A claim of the registry that the prover handles.
+#[derive(Debug, Clone)]
+pub struct Target {
+    /// The id reported: the registry id, plus ` (corrected)`.
+    pub id: String,
+    /// The registry id.
+    pub registry_id: &'static str,
+    /// Printed or corrected.
+    pub which: Which,
+    /// `true` when the ledger reports the printed claim false (so the
+    /// prover is expected to refute it at some N).
+    pub erratum: bool,
+    /// Checked at two times `0 ≤ s ≤ t` rather than one `t ≥ 0`.
+    pub two_times: bool,
+}
+
+impl Program for Target {
+    fn run<S: Scalar>(&self, input: &Input<S>) -> PathEnd {
+        let data = match InitialData::new(
+            input.radius.clone(),
+            input.positions.clone(),
+            input.velocities.clone(),
+        ) {
+            Ok(d) => d,
+            Err(e) => return PathEnd::Excluded(e.to_string()),
+        };
+        let case = Case {
+            traj: Trajectory::new(data),
+            times: input.times.clone(),
+        };
+        let claims: Vec<Claim<S>> = registry();
+        let Some(claim) = claims.iter().find(|c| c.id == self.registry_id) else {
+            return PathEnd::Excluded(format!("no claim {}", self.registry_id));
+        };
+        if !(claim.applies)(&case) {
+            return PathEnd::Holds;
+        }
+        let kind = match self.which {
+            Which::Printed => Some(&claim.kind),
+            Which::Corrected => claim.correction.as_ref().map(|c| &c.check),
+        };
+        match kind {
+            Some(Kind::Case(check)) => match check(&case) {
+                Ok(()) => PathEnd::Holds,
+                Err(v) => PathEnd::Violated(v.to_string()),
+            },
+            _ => PathEnd::Excluded("not a per-case claim".into()),
+        }
+    }
+}
+
+/// Claims checked at two times (`Ω` grows, the semigroup identities).
+const TWO_TIMES: [&str; 3] = [
+    "eq:semigroup",
+    "eq:projortho-sg",
+    "df:H-micro#contacts-grow",
+];
+
+/// Every per-case claim of the registry (section 2, Appendix A, the
+/// discrete claims of section 3), printed and corrected, in registry order.
+pub fn targets() -> Vec<Target> {
+    let mut out = Vec::new();
+    for c in registry::<BigRational>() {
+        if !matches!(c.kind, Kind::Case(_)) {
+            continue;
+        }
+        let two_times = TWO_TIMES.contains(&c.id);
+        match &c.correction {
+            None => out.push(Target {
+                id: c.id.to_string(),
+                registry_id: c.id,
+                which: Which::Printed,
+                erratum: false,
+                two_times,
+            }),
+            Some(corr) => {
+                out.push(Target {
+                    id: c.id.to_string(),
+                    registry_id: c.id,
+                    which: Which::Printed,
+                    erratum: true,
+                    two_times,
+                });
+                if matches!(corr.check, Kind::Case(_)) {
+                    out.push(Target {
+                        id: format!("{} (corrected)", c.id),
+                        registry_id: c.id,
+                        which: Which::Corrected,
+                        erratum: false,
+                        two_times,
+                    });
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Proves one registry target at N.
+pub fn prove_target(target: &Target, n: usize, limits: Limits) -> ProofResult {
+    prove_program(&target.id, n, target.two_times, target, limits)
+}
+
+/// One JSON object (DESIGN.md §3): `{"id", "n", "status", "paths",
+/// "queries", "seconds", "hypotheses", "witness"}`, plus `"erratum"` (the
+/// ledger reports the printed claim false) and `"note"` (why `unknown`, or
+/// the exact checker's message on the witness).
+pub fn json(r: &ProofResult, erratum: bool) -> String {
+    use crate::text::string;
+    format!(
+        "{{\"id\": {}, \"n\": {}, \"status\": \"{}\", \"paths\": {}, \"queries\": {}, \"seconds\": {:.3}, \"hypotheses\": {}, \"witness\": {}, \"erratum\": {erratum}, \"note\": {}}}",
+        string(&r.id),
+        r.n,
+        r.status.as_str(),
+        r.paths,
+        r.queries,
+        r.seconds,
+        string(&r.hypotheses),
+        r.witness.as_deref().map_or_else(|| "null".to_string(), string),
+        r.note.as_deref().map_or_else(|| "null".to_string(), string),
+    )
+}
