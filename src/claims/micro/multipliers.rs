@@ -146,47 +146,38 @@ pub fn lambda_cs<S: Scalar>(case: &Case<S>) -> R {
 /// `prop:bound-micro#multiplier-relation`: the proofs of `prop:bound-micro`
 /// and `prop:Linf-micro` use `N(λ_i(t) − λ_{i−1}(t)) = u_i(t) − u⁰_i`.
 pub fn multiplier_relation_printed<S: Scalar>(case: &Case<S>) -> R {
-    const ID: &str = "prop:bound-micro#multiplier-relation";
-    let n = S::from_usize(case.n());
-    for t in &case.times {
-        let s = state(case, t, ID)?;
-        let (dl, _) = delta_l(case.data(), &s);
-        for i in 0..case.n() {
-            let lhs = n.clone() * &dl[i];
-            let rhs = s.velocities[i].clone() - &case.data().velocities()[i];
-            if lhs != rhs {
-                return Err(Violation::new(
-                    ID,
-                    format!(
-                        "t = {}, i = {}: N(λ_i − λ_{{i−1}}) = {} but u_i − u⁰_i = {}",
-                        t.render(),
-                        i + 1,
-                        lhs.render(),
-                        rhs.render()
-                    ),
-                ));
-            }
-        }
-    }
-    Ok(())
+    multiplier_relation(case, "prop:bound-micro#multiplier-relation", true)
 }
 
 /// The relation with the sign of `eq:dyn-micro`:
 /// `N(λ_i − λ_{i−1}) = u⁰_i − u_i`.
 pub fn multiplier_relation_corrected<S: Scalar>(case: &Case<S>) -> R {
-    const ID: &str = "prop:bound-micro#multiplier-relation (corrected)";
+    multiplier_relation(
+        case,
+        "prop:bound-micro#multiplier-relation (corrected)",
+        false,
+    )
+}
+
+/// `N(λ_i − λ_{i−1})` against `u_i − u⁰_i` (`as_printed`) or `u⁰_i − u_i`.
+fn multiplier_relation<S: Scalar>(case: &Case<S>, id: &'static str, as_printed: bool) -> R {
     let n = S::from_usize(case.n());
     for t in &case.times {
-        let s = state(case, t, ID)?;
+        let s = state(case, t, id)?;
         let (dl, _) = delta_l(case.data(), &s);
         for i in 0..case.n() {
             let lhs = n.clone() * &dl[i];
-            let rhs = case.data().velocities()[i].clone() - &s.velocities[i];
+            let (u, u0) = (&s.velocities[i], &case.data().velocities()[i]);
+            let (rhs, name) = if as_printed {
+                (u.clone() - u0, "u_i − u⁰_i")
+            } else {
+                (u0.clone() - u, "u⁰_i − u_i")
+            };
             if lhs != rhs {
                 return Err(Violation::new(
-                    ID,
+                    id,
                     format!(
-                        "t = {}, i = {}: {} ≠ {}",
+                        "t = {}, i = {}: N(λ_i − λ_{{i−1}}) = {} but {name} = {}",
                         t.render(),
                         i + 1,
                         lhs.render(),
