@@ -19,7 +19,8 @@
 //!    event-driven cluster merge), [`contact`] (the multipliers `λ` of
 //!    `eq:dyn-micro`, Appendix A's KKT multipliers, the pressure of
 //!    `prop:micro-pressure`), [`scene`] and [`quantile`] (scene files and
-//!    quantile sampling), [`generate`], [`rate`] (log-log slopes), [`violation`], [`text`],
+//!    quantile sampling), [`columns`] (exact CSV/NPY particle files),
+//!    [`generate`], [`rate`] (log-log slopes), [`violation`], [`text`],
 //!    [`error`].
 //! 2. [`fast`] — the exact integer engines (kernel, adaptive, integer merge).
 //! 3. [`reference`](mod@reference) — the `f64` solvers, and
