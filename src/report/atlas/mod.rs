@@ -30,9 +30,12 @@
 //! `riemann-compression`, at their `t_end`.
 //!
 //! **Methods and parameters** (the full grid; `--quick` takes three values
-//! per sweep and `Δt = 2^-4, 2^-6, 2^-8`): the exact engines (`exact-pava`:
-//! `projection::state_at` on `BigRational`; `exact-events`:
-//! `Trajectory::new` then `at`), `pava-f64`, `events-f64` over its contact
+//! per sweep and `Δt = 2^-4, 2^-6, 2^-8`): the exact engines, each the
+//! fastest exact one for its task (`exact-pava`: the integer kernel's exact
+//! answer at `t`, its data scaled to integers untimed as the f64 methods'
+//! data are converted to f64 untimed; `exact-events`: the integer merge's
+//! whole history from the exact data), each measured against the other
+//! generic `BigRational` oracle, `pava-f64`, `events-f64` over its contact
 //! tolerance (`1e-4 … 1e-16`), `moreau-jean` and `catching-up` over
 //! `Δt = 2^-k` (`k = 2 … 14`, inner tolerance `1e-12`, cap `10⁵`), over the
 //! inner tolerance at `Δt = 2^-8` and over the iteration cap at `Δt = 2^-8`,
