@@ -27,7 +27,7 @@ use crate::{io_err, load, print_paths, Failure};
 /// Another solver's answer against the exact one, exactly.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Scene file (TOML, see DESIGN.md §2).
+    /// Scene file (TOML; README, "Scenes").
     scene: PathBuf,
     /// The other solver's answer: JSON in the `run --json` shape (one object
     /// per line or an array; JSON numbers read as the doubles they denote)

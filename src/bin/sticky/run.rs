@@ -19,12 +19,12 @@ use crate::{io_err, load, parse_time, Failure};
 /// The state x(t), u(t), λ(t) and the contact clusters at each requested time.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Scene file (TOML, see DESIGN.md §2).
+    /// Scene file (TOML; README, "Scenes").
     scene: PathBuf,
     /// A time t ≥ 0, exact: "3/2", "0.125", "1e-3" (repeat for several).
     #[arg(long = "at", required = true, allow_hyphen_values = true, value_parser = parse_time)]
     at: Vec<BigRational>,
-    /// One JSON object per time (the interop contract, DESIGN.md §3).
+    /// One JSON object per time (the interop contract: README, "JSON output").
     #[arg(long)]
     json: bool,
     /// Which exact engine answers (every one gives the same exact state):
