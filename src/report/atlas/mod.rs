@@ -91,17 +91,20 @@ mod charts;
 mod csv;
 mod failure;
 mod jobs;
+mod peers;
 mod solve;
 mod stability;
 mod suite;
 
 pub use failure::{Failure, LARGE_ERROR, OVERLAP_TOLERANCE, SIGN_TOLERANCE, VELOCITY_TOLERANCE};
 pub use jobs::STABILITY_STEP_CAP;
+pub use peers::PEER_MAX_N;
 
 use charts::{cost_chart, dt_chart, pareto_chart};
 use csv::write_csv;
 use failure::classify;
 use jobs::{jobs, stability_jobs, Job};
+use peers::PeerRunner;
 use solve::{run_case, Row};
 use stability::{stability_grid, stability_markdown};
 use suite::{stability_suite, suite};
@@ -114,6 +117,13 @@ pub struct AtlasOptions {
     pub quick: bool,
     /// The output folder (created if needed).
     pub out: PathBuf,
+    /// Also run the real peer solvers ([`crate::report::peers`]) on every
+    /// scene with `N ≤` [`PEER_MAX_N`], as rows `peer:<name>` of the CSV,
+    /// the Pareto charts and the stability table.
+    pub peers: bool,
+    /// Only the scenes (of the suite and of the stability section) with
+    /// these names; empty: every scene.
+    pub scenes: Vec<String>,
 }
 
 impl Default for AtlasOptions {
@@ -122,6 +132,8 @@ impl Default for AtlasOptions {
         AtlasOptions {
             quick: false,
             out: PathBuf::from("out/atlas"),
+            peers: false,
+            scenes: Vec::new(),
         }
     }
 }
@@ -265,8 +277,11 @@ pub fn run(opts: &AtlasOptions, progress: bool) -> Result<Vec<PathBuf>, AtlasErr
         ProgressBar::hidden()
     };
     bar.set_message("building scenes");
-    let suite = suite(opts.quick)?;
-    let stability = stability_suite(opts.quick)?;
+    let keep = |c: &suite::Case| opts.scenes.is_empty() || opts.scenes.contains(&c.name);
+    let mut suite = suite(opts.quick)?;
+    suite.retain(keep);
+    let mut stability = stability_suite(opts.quick)?;
+    stability.retain(keep);
     let main_jobs: Vec<Vec<Job>> = suite.iter().map(|c| jobs(c, opts.quick)).collect();
     let stab_jobs: Vec<Vec<Job>> = stability.iter().map(stability_jobs).collect();
     // Each job counts twice: solved, then measured.
@@ -282,6 +297,18 @@ pub fn run(opts: &AtlasOptions, progress: bool) -> Result<Vec<PathBuf>, AtlasErr
     for (case, jobs) in stability.iter().zip(&stab_jobs) {
         stab_rows.extend(run_case(case, jobs, false, min_time, &bar)?);
     }
+    if opts.peers {
+        let mut runner = PeerRunner::new();
+        let work = out_dir.join("peers");
+        for case in &suite {
+            bar.set_message(format!("{}: peers", case.name));
+            rows.extend(runner.rows(case, &work.join("suite"), true));
+        }
+        for case in &stability {
+            bar.set_message(format!("{}: peers", case.name));
+            stab_rows.extend(runner.rows(case, &work.join("stability"), false));
+        }
+    }
     bar.set_message("writing files");
     let failures: Vec<Vec<Failure>> = stab_rows.iter().map(classify).collect();
 
@@ -294,6 +321,24 @@ pub fn run(opts: &AtlasOptions, progress: bool) -> Result<Vec<PathBuf>, AtlasErr
     written.push(stab_csv);
     let stab_md = out_dir.join("stability.md");
     let mut md = stability_markdown(&stability, &stab_rows, &failures);
+    if opts.peers {
+        let large: Vec<&str> = stability
+            .iter()
+            .filter(|c| c.n > PEER_MAX_N)
+            .map(|c| c.name.as_str())
+            .collect();
+        md.push_str(&format!(
+            "\nPeers (`--peers`): run once per scene with N ≤ {PEER_MAX_N} (wall time of the \
+             whole call, interpreter and setup included; errors exact, \
+             `reference::measure::compare`); not run on {}. A peer that is not installed \
+             has no column.\n",
+            if large.is_empty() {
+                "any scene here".to_string()
+            } else {
+                large.join(", ")
+            }
+        ));
+    }
     if let PngSupport::Skipped(why) = png_support() {
         md.push_str(&format!("\nCharts: {why}.\n"));
     }
@@ -317,12 +362,14 @@ pub fn run(opts: &AtlasOptions, progress: bool) -> Result<Vec<PathBuf>, AtlasErr
     }
     let w = write_chart(&cost_chart(&rows), out_dir, "cost-vs-n")?;
     written.extend(w.paths());
-    let w = write_grid(
-        &stability_grid(&stability, &stab_rows, &failures),
-        out_dir,
-        "stability",
-    )?;
-    written.extend(w.paths());
+    if !stability.is_empty() {
+        let w = write_grid(
+            &stability_grid(&stability, &stab_rows, &failures),
+            out_dir,
+            "stability",
+        )?;
+        written.extend(w.paths());
+    }
     bar.finish_and_clear();
     Ok(written)
 }
