@@ -3,7 +3,8 @@
 //! scenes, timed and measured *exactly* against the exact engine; and a
 //! stability section of scenes built to break the methods.
 //!
-//! `sticky atlas [--quick] [--out DIR]` calls [`run`]. It writes, under the
+//! `sticky atlas [--quick] [--peers] [--scene NAME]… [--out DIR]` calls
+//! [`run`]. It writes, under the
 //! output folder (each file whole: temporary name, then rename):
 //!
 //! * `atlas.csv` — one row per (scene, method, parameter), columns
@@ -69,11 +70,29 @@
 //! averaged over repeated solves for fast runs (at least 20 ms of work in
 //! total, 2 ms with `--quick`; the `repeats` column).
 //!
+//! **Peers** (`--peers`, [`AtlasOptions::peers`]): every peer solver of
+//! [`crate::report::peers`] that is installed runs once per scene with
+//! `N ≤` [`PEER_MAX_N`] at the scene's time (suite and stability section),
+//! as rows `method = peer:<name>` (`parameter`: the driver's options), in
+//! the same CSV, Pareto charts (a colour and marker per peer) and stability
+//! table (a column per peer, classified as ours). Its wall time is that of
+//! the whole call (interpreter, imports, its own setup and solve), once;
+//! its errors are those of [`crate::reference::measure::compare`], exact,
+//! against the exact solution of the original rational scene; without the
+//! peer's own contact set, gaps within [`OVERLAP_TOLERANCE`]`·2r` of
+//! contact count as its contacts. `kkt_err`, `min_pressure_jump` and the
+//! work counters stay empty. Larger suite scenes get one `skipped: N > …`
+//! row per peer, and so do time-stepping peers beyond [`PEER_MAX_STEPS`]
+//! particle-steps; `stability.md` names the stability scenes not run. A peer
+//! that is not installed is named once on standard error and left out.
+//! `--scene NAME` ([`AtlasOptions::scenes`]) keeps only the named scenes.
+//!
 //! **Files.** This one: options, errors, the CSV columns and the driver
 //! ([`run`]); `suite.rs`: the scenes; `jobs.rs`: the grid of methods and
 //! parameters; `solve.rs`: timing and exact measurement; `failure.rs`: the
 //! failure kinds ([`Failure`]) and their classification; `csv.rs`,
-//! `charts.rs`, `stability.rs`: the files written.
+//! `charts.rs`, `stability.rs`: the files written; `peers.rs`: the peers'
+//! rows.
 
 use std::fmt;
 use std::fs;
@@ -98,7 +117,7 @@ mod suite;
 
 pub use failure::{Failure, LARGE_ERROR, OVERLAP_TOLERANCE, SIGN_TOLERANCE, VELOCITY_TOLERANCE};
 pub use jobs::STABILITY_STEP_CAP;
-pub use peers::PEER_MAX_N;
+pub use peers::{PEER_MAX_N, PEER_MAX_STEPS};
 
 use charts::{cost_chart, dt_chart, pareto_chart};
 use csv::write_csv;
@@ -330,7 +349,8 @@ pub fn run(opts: &AtlasOptions, progress: bool) -> Result<Vec<PathBuf>, AtlasErr
         md.push_str(&format!(
             "\nPeers (`--peers`): run once per scene with N ≤ {PEER_MAX_N} (wall time of the \
              whole call, interpreter and setup included; errors exact, \
-             `reference::measure::compare`); not run on {}. A peer that is not installed \
+             `reference::measure::compare`); not run on {}, nor the time-steppers where \
+             N·t/h > {PEER_MAX_STEPS:e} particle-steps (—). A peer that is not installed \
              has no column.\n",
             if large.is_empty() {
                 "any scene here".to_string()

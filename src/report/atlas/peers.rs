@@ -26,6 +26,27 @@ use super::suite::Case;
 /// dense QPs, small time steps); larger scenes get a `skipped` row per peer.
 pub const PEER_MAX_N: usize = 1000;
 
+/// The largest work `N · t / h` (particle-steps) a time-stepping peer
+/// (one with a `--h` step) is run with: Siconos's Moreau–Jean at
+/// `h = 10⁻⁴` on `N = 1000` up to `t ≈ 1` takes about two minutes.
+pub const PEER_MAX_STEPS: f64 = 1e7;
+
+/// Why `peer` is not run on `case`, if it is not.
+fn too_large(peer: &Peer, case: &Case) -> Option<String> {
+    if case.n > PEER_MAX_N {
+        return Some(format!("N = {} > {PEER_MAX_N}, peers not run", case.n));
+    }
+    let h: f64 = peer
+        .args
+        .iter()
+        .position(|a| *a == "--h")
+        .and_then(|i| peer.args.get(i + 1))
+        .and_then(|h| h.parse().ok())?;
+    let work = case.n as f64 * (case.t / h).ceil();
+    (work > PEER_MAX_STEPS)
+        .then(|| format!("N·t/h = {work:e} > {PEER_MAX_STEPS:e} particle-steps, peer not run"))
+}
+
 /// The `method` of a peer's rows: `peer:<name>`.
 pub(super) fn peer_method(peer: &Peer) -> String {
     format!("peer:{}", peer.name)
@@ -50,8 +71,9 @@ impl PeerRunner {
     }
 
     /// One row per installed peer on `case` (scratch files under `work`).
-    /// A scene larger than [`PEER_MAX_N`] gets, when `note_large`, one
-    /// `skipped` row per peer not known to be missing, else none.
+    /// A scene larger than [`PEER_MAX_N`] (or, for a time-stepper, more
+    /// than [`PEER_MAX_STEPS`] particle-steps) gets, when `note_large`, a
+    /// `skipped` row for each peer not known to be missing, else none.
     pub(super) fn rows(&mut self, case: &Case, work: &Path, note_large: bool) -> Vec<Row> {
         let mut out = Vec::new();
         let scripts = default_scripts_dir();
@@ -94,10 +116,9 @@ impl PeerRunner {
                 converged: None,
                 residual: None,
             };
-            if large {
+            if let Some(why) = too_large(&peer, case) {
                 if note_large {
-                    row.status =
-                        Status::Skipped(format!("N = {} > {PEER_MAX_N}, peers not run", case.n));
+                    row.status = Status::Skipped(why);
                     out.push(row);
                 }
                 continue;
