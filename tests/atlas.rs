@@ -28,6 +28,7 @@ fn atlas() -> &'static (PathBuf, Vec<PathBuf>) {
         let opts = AtlasOptions {
             quick: true,
             out: dir.clone(),
+            ..AtlasOptions::default()
         };
         let written = run(&opts, false).unwrap_or_else(|e| panic!("atlas --quick: {e}"));
         (dir, written)
@@ -293,6 +294,7 @@ fn unwritable_output_is_an_error() {
     let opts = AtlasOptions {
         quick: true,
         out: file.join("sub"),
+        ..AtlasOptions::default()
     };
     let res = run(&opts, false);
     let _ = fs::remove_file(&file);

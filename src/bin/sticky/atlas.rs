@@ -1,4 +1,4 @@
-//! `sticky atlas [--quick]`: the speed-vs-accuracy atlas.
+//! `sticky atlas [--quick] [--peers] [--scene NAME]…`: the speed-vs-accuracy atlas.
 
 use std::io::{self, Write};
 use std::path::PathBuf;
@@ -12,6 +12,13 @@ pub struct Args {
     /// The small suite (well under a minute).
     #[arg(long)]
     quick: bool,
+    /// Also run the real peer solvers (scripts/peers/, N ≤ 1000) as rows
+    /// `peer:<name>`; a peer that is not installed is skipped with a message.
+    #[arg(long)]
+    peers: bool,
+    /// Only this scene (of the suite or the stability section); repeatable.
+    #[arg(long = "scene", value_name = "NAME")]
+    scenes: Vec<String>,
     /// Output folder (default ./out/atlas/).
     #[arg(long)]
     out: Option<PathBuf>,
@@ -22,6 +29,8 @@ pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
     let opts = sticky::report::atlas::AtlasOptions {
         quick: args.quick,
         out: args.out.unwrap_or_else(|| PathBuf::from("out/atlas")),
+        peers: args.peers,
+        scenes: args.scenes,
     };
     let tty = io::IsTerminal::is_terminal(&io::stderr());
     sticky::report::atlas::run(&opts, tty)

@@ -2,10 +2,11 @@
 //! `Δt`, and cost against `N`.
 
 use crate::reference::ErrorsF64;
-use crate::report::plot::{palette, Axis, Chart, Marker, Rgb, Series, BLACK_RGB};
+use crate::report::plot::{palette, series_style, Axis, Chart, Marker, Rgb, Series, BLACK_RGB};
 
 use super::csv::short;
 use super::jobs::{EVENTS_TOL, ITERATIVE_TOL, SWEEP_DT};
+use super::peers::peer_methods;
 use super::solve::{Row, Status};
 use super::{EXACT_METHODS, METHODS};
 
@@ -18,7 +19,14 @@ pub(super) fn style(method: &str) -> (Rgb, Marker) {
         "moreau-jean" => (palette(2), Marker::Circle),
         "catching-up" => (palette(3), Marker::Square),
         "iterative-projection" => (palette(4), Marker::Cross),
-        _ => (palette(7), Marker::Ring),
+        peer => match peer_methods().iter().position(|m| m == peer) {
+            // The peers: a colour and marker each, after our five.
+            Some(i) => {
+                let s = series_style(i + 5);
+                (s.color, s.marker)
+            }
+            None => (palette(7), Marker::Ring),
+        },
     }
 }
 
@@ -38,6 +46,17 @@ fn floor_for(values: impl Iterator<Item = f64>) -> f64 {
 
 fn all_methods() -> impl Iterator<Item = &'static str> {
     EXACT_METHODS.iter().chain(METHODS.iter()).copied()
+}
+
+/// Our methods, then the peers that have a row in `rows`.
+pub(super) fn methods_with_peers(rows: &[&Row]) -> Vec<String> {
+    let mut out: Vec<String> = all_methods().map(str::to_string).collect();
+    out.extend(
+        peer_methods()
+            .into_iter()
+            .filter(|m| rows.iter().any(|r| &r.setting.method == m)),
+    );
+    out
 }
 
 pub(super) fn pareto_chart(case: &str, rows: &[&Row], velocity: bool) -> Option<Chart> {
@@ -79,7 +98,8 @@ pub(super) fn pareto_chart(case: &str, rows: &[&Row], velocity: bool) -> Option<
         Axis::log(what),
     );
     let mut points_all = Vec::new();
-    for method in all_methods() {
+    for method in methods_with_peers(&usable) {
+        let method = method.as_str();
         let pts: Vec<(f64, f64)> = usable
             .iter()
             .filter(|r| r.setting.method == method)
@@ -125,7 +145,9 @@ pub(super) fn dt_chart(case: &str, rows: &[&Row]) -> Option<Chart> {
         .iter()
         .copied()
         .filter(|r| {
-            steppers.contains(&r.setting.method) && r.setting.sweep == "dt" && r.errors.is_some()
+            steppers.contains(&r.setting.method.as_str())
+                && r.setting.sweep == "dt"
+                && r.errors.is_some()
         })
         .collect();
     if sel.is_empty() {
@@ -192,8 +214,8 @@ fn zero_errors() -> ErrorsF64 {
 
 /// The representative row of each method in `cost-vs-n`, and its legend.
 pub(super) fn representative(r: &Row) -> Option<String> {
-    match r.setting.method {
-        "exact-pava" | "exact-events" | "pava-f64" => Some(r.setting.method.to_string()),
+    match r.setting.method.as_str() {
+        "exact-pava" | "exact-events" | "pava-f64" => Some(r.setting.method.clone()),
         "events-f64" if r.setting.tol == Some(EVENTS_TOL) => {
             Some(format!("events-f64 (tol {EVENTS_TOL:e})"))
         }

@@ -16,8 +16,9 @@ pub(super) enum Engine {
 /// settings.
 #[derive(Debug, Clone)]
 pub(super) struct Setting {
-    /// One of [`super::EXACT_METHODS`] or [`super::METHODS`].
-    pub(super) method: &'static str,
+    /// One of [`super::EXACT_METHODS`] or [`super::METHODS`], or
+    /// `peer:<name>` for a peer solver ([`crate::report::peers`]).
+    pub(super) method: String,
     /// The solver's own [`Solver::parameters`] string (empty for the exact
     /// engines).
     pub(super) parameter: String,
@@ -40,7 +41,7 @@ impl Job {
     fn exact(pava: bool) -> Job {
         Job {
             setting: Setting {
-                method: if pava { "exact-pava" } else { "exact-events" },
+                method: if pava { "exact-pava" } else { "exact-events" }.to_string(),
                 parameter: String::new(),
                 sweep: "",
                 dt: None,
@@ -64,7 +65,7 @@ impl Job {
     ) -> Job {
         Job {
             setting: Setting {
-                method: solver.method(),
+                method: solver.method().to_string(),
                 parameter: solver.parameters(),
                 sweep,
                 dt,

@@ -3,7 +3,8 @@
 //! scenes, timed and measured *exactly* against the exact engine; and a
 //! stability section of scenes built to break the methods.
 //!
-//! `sticky atlas [--quick] [--out DIR]` calls [`run`]. It writes, under the
+//! `sticky atlas [--quick] [--peers] [--scene NAME]… [--out DIR]` calls
+//! [`run`]. It writes, under the
 //! output folder (each file whole: temporary name, then rename):
 //!
 //! * `atlas.csv` — one row per (scene, method, parameter), columns
@@ -69,11 +70,29 @@
 //! averaged over repeated solves for fast runs (at least 20 ms of work in
 //! total, 2 ms with `--quick`; the `repeats` column).
 //!
+//! **Peers** (`--peers`, [`AtlasOptions::peers`]): every peer solver of
+//! [`crate::report::peers`] that is installed runs once per scene with
+//! `N ≤` [`PEER_MAX_N`] at the scene's time (suite and stability section),
+//! as rows `method = peer:<name>` (`parameter`: the driver's options), in
+//! the same CSV, Pareto charts (a colour and marker per peer) and stability
+//! table (a column per peer, classified as ours). Its wall time is that of
+//! the whole call (interpreter, imports, its own setup and solve), once;
+//! its errors are those of [`crate::reference::measure::compare`], exact,
+//! against the exact solution of the original rational scene; without the
+//! peer's own contact set, gaps within [`OVERLAP_TOLERANCE`]`·2r` of
+//! contact count as its contacts. `kkt_err`, `min_pressure_jump` and the
+//! work counters stay empty. Larger suite scenes get one `skipped: N > …`
+//! row per peer, and so do time-stepping peers beyond [`PEER_MAX_STEPS`]
+//! particle-steps; `stability.md` names the stability scenes not run. A peer
+//! that is not installed is named once on standard error and left out.
+//! `--scene NAME` ([`AtlasOptions::scenes`]) keeps only the named scenes.
+//!
 //! **Files.** This one: options, errors, the CSV columns and the driver
 //! ([`run`]); `suite.rs`: the scenes; `jobs.rs`: the grid of methods and
 //! parameters; `solve.rs`: timing and exact measurement; `failure.rs`: the
 //! failure kinds ([`Failure`]) and their classification; `csv.rs`,
-//! `charts.rs`, `stability.rs`: the files written.
+//! `charts.rs`, `stability.rs`: the files written; `peers.rs`: the peers'
+//! rows.
 
 use std::fmt;
 use std::fs;
@@ -91,17 +110,20 @@ mod charts;
 mod csv;
 mod failure;
 mod jobs;
+mod peers;
 mod solve;
 mod stability;
 mod suite;
 
 pub use failure::{Failure, LARGE_ERROR, OVERLAP_TOLERANCE, SIGN_TOLERANCE, VELOCITY_TOLERANCE};
 pub use jobs::STABILITY_STEP_CAP;
+pub use peers::{PEER_MAX_N, PEER_MAX_STEPS};
 
 use charts::{cost_chart, dt_chart, pareto_chart};
 use csv::write_csv;
 use failure::classify;
 use jobs::{jobs, stability_jobs, Job};
+use peers::PeerRunner;
 use solve::{run_case, Row};
 use stability::{stability_grid, stability_markdown};
 use suite::{stability_suite, suite};
@@ -114,6 +136,13 @@ pub struct AtlasOptions {
     pub quick: bool,
     /// The output folder (created if needed).
     pub out: PathBuf,
+    /// Also run the real peer solvers ([`crate::report::peers`]) on every
+    /// scene with `N ≤` [`PEER_MAX_N`], as rows `peer:<name>` of the CSV,
+    /// the Pareto charts and the stability table.
+    pub peers: bool,
+    /// Only the scenes (of the suite and of the stability section) with
+    /// these names; empty: every scene.
+    pub scenes: Vec<String>,
 }
 
 impl Default for AtlasOptions {
@@ -122,6 +151,8 @@ impl Default for AtlasOptions {
         AtlasOptions {
             quick: false,
             out: PathBuf::from("out/atlas"),
+            peers: false,
+            scenes: Vec::new(),
         }
     }
 }
@@ -265,8 +296,11 @@ pub fn run(opts: &AtlasOptions, progress: bool) -> Result<Vec<PathBuf>, AtlasErr
         ProgressBar::hidden()
     };
     bar.set_message("building scenes");
-    let suite = suite(opts.quick)?;
-    let stability = stability_suite(opts.quick)?;
+    let keep = |c: &suite::Case| opts.scenes.is_empty() || opts.scenes.contains(&c.name);
+    let mut suite = suite(opts.quick)?;
+    suite.retain(keep);
+    let mut stability = stability_suite(opts.quick)?;
+    stability.retain(keep);
     let main_jobs: Vec<Vec<Job>> = suite.iter().map(|c| jobs(c, opts.quick)).collect();
     let stab_jobs: Vec<Vec<Job>> = stability.iter().map(stability_jobs).collect();
     // Each job counts twice: solved, then measured.
@@ -282,6 +316,18 @@ pub fn run(opts: &AtlasOptions, progress: bool) -> Result<Vec<PathBuf>, AtlasErr
     for (case, jobs) in stability.iter().zip(&stab_jobs) {
         stab_rows.extend(run_case(case, jobs, false, min_time, &bar)?);
     }
+    if opts.peers {
+        let mut runner = PeerRunner::new();
+        let work = out_dir.join("peers");
+        for case in &suite {
+            bar.set_message(format!("{}: peers", case.name));
+            rows.extend(runner.rows(case, &work.join("suite"), true));
+        }
+        for case in &stability {
+            bar.set_message(format!("{}: peers", case.name));
+            stab_rows.extend(runner.rows(case, &work.join("stability"), false));
+        }
+    }
     bar.set_message("writing files");
     let failures: Vec<Vec<Failure>> = stab_rows.iter().map(classify).collect();
 
@@ -294,6 +340,25 @@ pub fn run(opts: &AtlasOptions, progress: bool) -> Result<Vec<PathBuf>, AtlasErr
     written.push(stab_csv);
     let stab_md = out_dir.join("stability.md");
     let mut md = stability_markdown(&stability, &stab_rows, &failures);
+    if opts.peers {
+        let large: Vec<&str> = stability
+            .iter()
+            .filter(|c| c.n > PEER_MAX_N)
+            .map(|c| c.name.as_str())
+            .collect();
+        md.push_str(&format!(
+            "\nPeers (`--peers`): run once per scene with N ≤ {PEER_MAX_N} (wall time of the \
+             whole call, interpreter and setup included; errors exact, \
+             `reference::measure::compare`); not run on {}, nor the time-steppers where \
+             N·t/h > {PEER_MAX_STEPS:e} particle-steps (—). A peer that is not installed \
+             has no column.\n",
+            if large.is_empty() {
+                "any scene here".to_string()
+            } else {
+                large.join(", ")
+            }
+        ));
+    }
     if let PngSupport::Skipped(why) = png_support() {
         md.push_str(&format!("\nCharts: {why}.\n"));
     }
@@ -317,12 +382,14 @@ pub fn run(opts: &AtlasOptions, progress: bool) -> Result<Vec<PathBuf>, AtlasErr
     }
     let w = write_chart(&cost_chart(&rows), out_dir, "cost-vs-n")?;
     written.extend(w.paths());
-    let w = write_grid(
-        &stability_grid(&stability, &stab_rows, &failures),
-        out_dir,
-        "stability",
-    )?;
-    written.extend(w.paths());
+    if !stability.is_empty() {
+        let w = write_grid(
+            &stability_grid(&stability, &stab_rows, &failures),
+            out_dir,
+            "stability",
+        )?;
+        written.extend(w.paths());
+    }
     bar.finish_and_clear();
     Ok(written)
 }

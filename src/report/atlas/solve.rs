@@ -26,6 +26,8 @@ pub(super) enum Status {
     Ok,
     NoConvergence,
     Refused(String),
+    /// Not run (a peer on a scene larger than it is run on): why.
+    Skipped(String),
 }
 
 impl fmt::Display for Status {
@@ -34,6 +36,7 @@ impl fmt::Display for Status {
             Status::Ok => write!(f, "ok"),
             Status::NoConvergence => write!(f, "no-convergence"),
             Status::Refused(m) => write!(f, "refused: {m}"),
+            Status::Skipped(m) => write!(f, "skipped: {m}"),
         }
     }
 }

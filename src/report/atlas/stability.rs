@@ -2,6 +2,7 @@
 
 use crate::report::plot::{Cell, Grid};
 
+use super::charts::methods_with_peers;
 use super::csv::short;
 use super::failure::{
     Failure, FAILURE_COLORS, FAILURE_NAMES, OK_COLOR, OVERLAP_TOLERANCE, SIGN_TOLERANCE,
@@ -9,12 +10,24 @@ use super::failure::{
 };
 use super::solve::Row;
 use super::suite::Case;
-use super::METHODS;
+use super::{EXACT_METHODS, METHODS};
+
+/// The columns of the table and grid: our methods, then the peers that
+/// have a row.
+fn columns(rows: &[Row]) -> Vec<String> {
+    let refs: Vec<&Row> = rows.iter().collect();
+    methods_with_peers(&refs)
+        .into_iter()
+        .filter(|m| !EXACT_METHODS.contains(&m.as_str()))
+        .filter(|m| METHODS.contains(&m.as_str()) || m.starts_with("peer:"))
+        .collect()
+}
 
 pub(super) fn stability_grid(cases: &[Case], rows: &[Row], failures: &[Vec<Failure>]) -> Grid {
     let mut cells = Vec::new();
+    let methods = columns(rows);
     for (i, case) in cases.iter().enumerate() {
-        for (j, method) in METHODS.iter().enumerate() {
+        for (j, method) in methods.iter().enumerate() {
             let found = rows
                 .iter()
                 .zip(failures)
@@ -45,7 +58,7 @@ pub(super) fn stability_grid(cases: &[Case], rows: &[Row], failures: &[Vec<Failu
     Grid {
         title: "Where methods fail: one square per failure kind (stability scenes)".to_string(),
         rows: cases.iter().map(|c| c.name.clone()).collect(),
-        columns: METHODS.iter().map(|m| m.to_string()).collect(),
+        columns: methods,
         cells,
         legend,
     }
@@ -64,22 +77,23 @@ pub(super) fn stability_markdown(
          below. Errors are measured exactly against the exact solution of the rational scene \
          (`reference::measure`); `stability.csv` has every number.\n\n",
     );
+    let methods = columns(rows);
     md.push_str("| scene |");
-    for m in METHODS {
+    for m in &methods {
         md.push_str(&format!(" {m} |"));
     }
     md.push_str("\n|---|");
-    for _ in METHODS {
+    for _ in &methods {
         md.push_str("---|");
     }
     md.push('\n');
     for case in cases {
         md.push_str(&format!("| {} |", case.name));
-        for m in METHODS {
+        for m in &methods {
             let found = rows
                 .iter()
                 .zip(failures)
-                .find(|(r, _)| r.scene == case.name && r.setting.method == m);
+                .find(|(r, _)| r.scene == case.name && &r.setting.method == m);
             let cell = match found {
                 None => "—".to_string(),
                 Some((_, fs)) if fs.is_empty() => "OK".to_string(),

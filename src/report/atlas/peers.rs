@@ -1,0 +1,205 @@
+//! The peers in the atlas (`--peers`): every peer solver of
+//! [`crate::report::peers`] run once per scene (up to [`PEER_MAX_N`]
+//! particles) at the scene's time, its answer scored exactly by
+//! [`crate::reference::measure::compare`] against the exact solution of the
+//! original rational scene, as a [`Row`] like our methods' rows.
+
+use std::collections::BTreeSet;
+use std::path::Path;
+
+use num_rational::BigRational;
+use num_traits::Zero;
+
+use crate::fast::kernel::{self, IntegerData};
+use crate::reference::measure::{compare, Candidate};
+use crate::reference::ErrorsF64;
+use crate::report::peers::{default_scripts_dir, peers, run_peer, Peer, PeerOutcome};
+use crate::scalar::Scalar;
+use crate::scene::{Scene, SceneKind};
+
+use super::failure::OVERLAP_TOLERANCE;
+use super::jobs::Setting;
+use super::solve::{Row, Status};
+use super::suite::Case;
+
+/// The largest `N` the peers are run on (they are slow: interpreters,
+/// dense QPs, small time steps); larger scenes get a `skipped` row per peer.
+pub const PEER_MAX_N: usize = 1000;
+
+/// The largest work `N · t / h` (particle-steps) a time-stepping peer
+/// (one with a `--h` step) is run with: Siconos's Moreau–Jean at
+/// `h = 10⁻⁴` on `N = 1000` up to `t ≈ 1` takes about two minutes.
+pub const PEER_MAX_STEPS: f64 = 1e7;
+
+/// Why `peer` is not run on `case`, if it is not.
+fn too_large(peer: &Peer, case: &Case) -> Option<String> {
+    if case.n > PEER_MAX_N {
+        return Some(format!("N = {} > {PEER_MAX_N}, peers not run", case.n));
+    }
+    let h: f64 = peer
+        .args
+        .iter()
+        .position(|a| *a == "--h")
+        .and_then(|i| peer.args.get(i + 1))
+        .and_then(|h| h.parse().ok())?;
+    let work = case.n as f64 * (case.t / h).ceil();
+    (work > PEER_MAX_STEPS)
+        .then(|| format!("N·t/h = {work:e} > {PEER_MAX_STEPS:e} particle-steps, peer not run"))
+}
+
+/// The `method` of a peer's rows: `peer:<name>`.
+pub(super) fn peer_method(peer: &Peer) -> String {
+    format!("peer:{}", peer.name)
+}
+
+/// The peers' methods in the order of [`peers`].
+pub(super) fn peer_methods() -> Vec<String> {
+    peers().iter().map(peer_method).collect()
+}
+
+/// Runs the peers on scenes; a peer found not installed is reported once on
+/// standard error and not run again.
+pub(super) struct PeerRunner {
+    skipped: BTreeSet<&'static str>,
+}
+
+impl PeerRunner {
+    pub(super) fn new() -> PeerRunner {
+        PeerRunner {
+            skipped: BTreeSet::new(),
+        }
+    }
+
+    /// One row per installed peer on `case` (scratch files under `work`).
+    /// A scene larger than [`PEER_MAX_N`] (or, for a time-stepper, more
+    /// than [`PEER_MAX_STEPS`] particle-steps) gets, when `note_large`, a
+    /// `skipped` row for each peer not known to be missing, else none.
+    pub(super) fn rows(&mut self, case: &Case, work: &Path, note_large: bool) -> Vec<Row> {
+        let mut out = Vec::new();
+        let scripts = default_scripts_dir();
+        let large = case.n > PEER_MAX_N;
+        let scene = Scene {
+            name: Some(case.name.clone()),
+            description: None,
+            t_end: None,
+            kind: SceneKind::Particles,
+            data: case.exact.clone(),
+        };
+        let exact = if large {
+            None
+        } else {
+            kernel::state_at(&IntegerData::new(&case.exact), &case.tq).ok()
+        };
+        for peer in peers() {
+            if self.skipped.contains(peer.name) {
+                continue;
+            }
+            let mut row = Row {
+                scene: case.name.clone(),
+                n: case.n,
+                t: case.t,
+                two_r: case.two_r,
+                v: case.v,
+                setting: Setting {
+                    method: peer_method(&peer),
+                    parameter: peer.args.join(" "),
+                    sweep: "",
+                    dt: None,
+                    tol: None,
+                    cap: None,
+                },
+                status: Status::Ok,
+                wall: 0.0,
+                repeats: 0,
+                errors: None,
+                work: None,
+                converged: None,
+                residual: None,
+            };
+            if let Some(why) = too_large(&peer, case) {
+                if note_large {
+                    row.status = Status::Skipped(why);
+                    out.push(row);
+                }
+                continue;
+            }
+            let dir = work.join(super::file_stem(&case.name));
+            match run_peer(
+                &peer,
+                &scene,
+                std::slice::from_ref(&case.tq),
+                &scripts,
+                &dir,
+            ) {
+                Ok(PeerOutcome::Skipped(msg)) => {
+                    eprintln!("atlas --peers: {msg}");
+                    self.skipped.insert(peer.name);
+                    continue;
+                }
+                Err(e) => row.status = Status::Refused(e.message),
+                Ok(PeerOutcome::Ran(run)) => {
+                    row.wall = run.wall_seconds;
+                    row.repeats = 1;
+                    match (&exact, run.frames.first()) {
+                        (None, _) => {
+                            row.status = Status::Refused("no exact state at t".to_string())
+                        }
+                        (_, None) => row.status = Status::Refused("no frame".to_string()),
+                        (Some(state), Some(f)) => match score(case, state, f) {
+                            Ok(e) => row.errors = Some(e),
+                            Err(m) => row.status = Status::Refused(format!("compare: {m}")),
+                        },
+                    }
+                }
+            }
+            out.push(row);
+        }
+        out
+    }
+}
+
+/// A peer's frame scored exactly, rounded to the atlas's `f64` columns.
+/// Without the solver's own contact set, pairs with a gap within
+/// [`OVERLAP_TOLERANCE`]`·2r` of contact count as its contacts.
+fn score(
+    case: &Case,
+    state: &crate::state::State<BigRational>,
+    f: &crate::report::solution::Frame,
+) -> Result<ErrorsF64, String> {
+    let two_r = case.exact.two_r();
+    let tol = OVERLAP_TOLERANCE
+        .to_big_rational()
+        .map(|t| t * &two_r)
+        .unwrap_or_else(<BigRational as Zero>::zero);
+    let cand = Candidate {
+        positions: &f.positions,
+        velocities: f.velocities.as_deref(),
+        multipliers: f.multipliers.as_deref(),
+        contacts: f.contacts.as_deref(),
+    };
+    let c = compare(&cand, state, &two_r, &tol).map_err(|e| e.to_string())?;
+    let lossy = |q: &BigRational| q.to_f64_lossy();
+    let min_gap = f
+        .positions
+        .windows(2)
+        .map(|w| &w[1] - &w[0] - &two_r)
+        .min()
+        .map(|g| lossy(&g));
+    let min_lambda = f
+        .multipliers
+        .as_ref()
+        .and_then(|l| l.iter().min().cloned())
+        .map(|m| lossy(&m));
+    Ok(ErrorsF64 {
+        position: lossy(&c.position_max.value),
+        velocity: c.velocity_max.as_ref().map(|m| lossy(&m.value)),
+        lambda: c.multiplier_max.as_ref().map(|m| lossy(&m.value)),
+        kkt: None,
+        missed_contacts: c.missed_contacts,
+        spurious_contacts: c.spurious_contacts,
+        min_gap,
+        min_lambda,
+        min_pressure_jump: None,
+        oleinik_violations: c.oleinik.as_ref().map(Vec::len),
+    })
+}
