@@ -94,13 +94,9 @@ impl PeerRunner {
             if self.skipped.contains(peer.name) {
                 continue;
             }
-            let mut row = Row {
-                scene: case.name.clone(),
-                n: case.n,
-                t: case.t,
-                two_r: case.two_r,
-                v: case.v,
-                setting: Setting {
+            let mut row = Row::blank(
+                case,
+                Setting {
                     method: peer_method(&peer),
                     parameter: peer.args.join(" "),
                     sweep: "",
@@ -108,14 +104,7 @@ impl PeerRunner {
                     tol: None,
                     cap: None,
                 },
-                status: Status::Ok,
-                wall: 0.0,
-                repeats: 0,
-                errors: None,
-                work: None,
-                converged: None,
-                residual: None,
-            };
+            );
             if let Some(why) = too_large(&peer, case) {
                 if note_large {
                     row.status = Status::Skipped(why);

@@ -59,6 +59,28 @@ pub(super) struct Row {
     pub(super) residual: Option<f64>,
 }
 
+impl Row {
+    /// A row of `case` for `setting`, not yet run: status `Ok`, no time,
+    /// no errors.
+    pub(super) fn blank(case: &Case, setting: Setting) -> Row {
+        Row {
+            scene: case.name.clone(),
+            n: case.n,
+            t: case.t,
+            two_r: case.two_r,
+            v: case.v,
+            setting,
+            status: Status::Ok,
+            wall: 0.0,
+            repeats: 0,
+            errors: None,
+            work: None,
+            converged: None,
+            residual: None,
+        }
+    }
+}
+
 /// Runs `f` once, then again until `min` has passed in total (at most
 /// `max_reps` runs); returns the first result, the mean time per run and
 /// the number of runs.
@@ -111,21 +133,7 @@ fn solve_job(
     job: &Job,
     min_time: Duration,
 ) -> (Row, Option<Output>) {
-    let mut row = Row {
-        scene: case.name.clone(),
-        n: case.n,
-        t: case.t,
-        two_r: case.two_r,
-        v: case.v,
-        setting: job.setting.clone(),
-        status: Status::Ok,
-        wall: 0.0,
-        repeats: 0,
-        errors: None,
-        work: None,
-        converged: None,
-        residual: None,
-    };
+    let mut row = Row::blank(case, job.setting.clone());
     match &job.engine {
         Engine::ExactPava => {
             // The fastest exact engine for one time: the integer kernel. As
