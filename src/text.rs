@@ -24,3 +24,59 @@ pub fn string(s: &str) -> String {
     out.push('"');
     out
 }
+
+/// Reads the JSON string literal at the start of `s` (the inverse of
+/// [`string`]); returns its value and the rest of `s`, or `None` when `s`
+/// does not start with a well-formed literal.
+pub fn unstring(s: &str) -> Option<(String, &str)> {
+    let body = s.strip_prefix('"')?;
+    let mut out = String::new();
+    let mut chars = body.char_indices();
+    while let Some((i, ch)) = chars.next() {
+        match ch {
+            '"' => return Some((out, &body[i + 1..])),
+            '\\' => {
+                let (_, e) = chars.next()?;
+                match e {
+                    '"' | '\\' | '/' => out.push(e),
+                    'n' => out.push('\n'),
+                    'r' => out.push('\r'),
+                    't' => out.push('\t'),
+                    'u' => {
+                        let hex: String =
+                            (0..4).filter_map(|_| chars.next().map(|c| c.1)).collect();
+                        let code = u32::from_str_radix(&hex, 16).ok()?;
+                        out.push(char::from_u32(code)?);
+                    }
+                    _ => return None,
+                }
+            }
+            c => out.push(c),
+        }
+    }
+    None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn unstring_inverts_string() {
+        for s in [
+            "",
+            "plain",
+            "q\"uo\\te",
+            "line\nbreak\ttab\r",
+            "\u{1}\u{7f}",
+            "x⁰ ∈ K^N",
+        ] {
+            let lit = string(s);
+            let rest = format!("{lit}, \"next\"");
+            assert_eq!(unstring(&rest), Some((s.to_string(), ", \"next\"")));
+        }
+        for bad in ["", "x", "\"open", "\"bad \\q escape\"", "\"\\u12\""] {
+            assert_eq!(unstring(bad), None, "{bad:?}");
+        }
+    }
+}

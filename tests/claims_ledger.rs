@@ -11,7 +11,8 @@ use sticky::claims::ledger::{self, Budget, Status};
 fn claims_md_is_current() {
     let budget = Budget::default();
     let entries = ledger::run(budget, |_| {});
-    let md = ledger::markdown(&entries, budget);
+    let proofs = sticky::prove::record::ledger_proofs().expect("the committed proof record");
+    let md = ledger::markdown(&entries, budget, &proofs);
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("CLAIMS.md");
     if std::env::var("STICKY_BLESS").is_ok_and(|v| v == "1") {
         std::fs::write(&path, &md).expect("write CLAIMS.md");

@@ -61,6 +61,16 @@ fn claims_proved_and_errata_refuted_up_to_n3() {
         // build; `STICKY_PROVE_N` overrides.
         .unwrap_or(if cfg!(debug_assertions) { 2 } else { 3 });
     let mut problems = Vec::new();
+    // The committed record (docs/prove-*.jsonl, the ledger's column "proved
+    // for all real data") must say what this run finds.
+    let record = prove::record::committed().expect("the committed proof record");
+    let recorded = |id: &str, n: usize| -> Vec<Status> {
+        record
+            .iter()
+            .filter(|l| l.id == id && l.n == n)
+            .map(|l| l.status)
+            .collect()
+    };
     for target in prove::targets() {
         let mut refuted_at = None;
         for n in 1..=max_n {
@@ -73,6 +83,15 @@ fn claims_proved_and_errata_refuted_up_to_n3() {
                 r.queries,
                 r.seconds
             );
+            let was = recorded(&r.id, n);
+            if !was.contains(&r.status) {
+                problems.push(format!(
+                    "{} N={n}: {} now, but the committed record says {:?}: re-run `sticky prove --n 3 --json > docs/prove-n1-3.jsonl`",
+                    r.id,
+                    r.status.as_str(),
+                    was
+                ));
+            }
             match (target.erratum, r.status) {
                 (_, Status::Unknown) => {
                     problems.push(format!("{} N={n}: unknown: {:?}", r.id, r.note))

@@ -98,6 +98,20 @@ pub struct Entry {
     pub correction: Option<(&'static str, Outcome, &'static str)>,
 }
 
+/// What the symbolic prover established for one claim (`sticky prove`;
+/// the caller fills these from `prove::record`, since the ledger sits below
+/// the prover).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Proof {
+    /// The ledger cell: `N ≤ 3`, `N ≤ 3 (N = 4: unknown)`, `refuted at N = 2`.
+    pub cell: String,
+    /// The hypotheses of the largest N proved, in words.
+    pub hypotheses: Option<String>,
+}
+
+/// Proofs by claim id (` (corrected)` suffix for a corrected statement).
+pub type Proofs = std::collections::BTreeMap<String, Proof>;
+
 /// A random case from `seed`, with the generator bytes (for shrinking).
 fn random_bytes(rng: &mut SplitMix64, max_n: usize) -> (Vec<u8>, Limits) {
     let n = 1 + (rng.next_u64() % max_n.max(1) as u64) as usize;
@@ -435,7 +449,8 @@ pub fn json(entries: &[Entry]) -> String {
 
 /// The ledger as a Markdown document (`CLAIMS.md`). It contains no
 /// timings, so it is reproducible for a given budget.
-pub fn markdown(entries: &[Entry], budget: Budget) -> String {
+/// `proofs` fills the column "proved for all real data" (empty: `—`).
+pub fn markdown(entries: &[Entry], budget: Budget, proofs: &Proofs) -> String {
     let mut out = String::new();
     let (h, c, n) = counts(entries);
     out.push_str("# Claims ledger\n\n");
@@ -448,17 +463,29 @@ pub fn markdown(entries: &[Entry], budget: Budget) -> String {
         "**{} claims: {h} hold, {c} counterexamples, {n} not checkable.** Every status below is computed by running the checkers; \"holds\" means no counterexample in the cases run, not a proof.\n\n",
         entries.len()
     ));
-    out.push_str("| id | status | cases | corrected statement |\n|---|---|---|---|\n");
+    out.push_str("\"Proved for all real data\" is the symbolic prover's record (`sticky prove`, committed in `docs/prove-n1-3.jsonl` and `docs/prove-n4.jsonl`, re-checked at N ≤ 3 by `tests/prove.rs`): for every real datum with that N satisfying the hypotheses printed with the claim, the checker passes.\n\n");
+    let corrected = |id: &str| format!("{id} (corrected)");
+    let cell = |id: &str| proofs.get(id).map_or("—".to_string(), |p| p.cell.clone());
+    out.push_str("| id | status | cases | proved for all real data | corrected statement |\n|---|---|---|---|---|\n");
     for e in entries {
         let corr = match &e.correction {
-            Some((_, o, _)) => format!("{} ({} cases)", o.status.label(), o.cases),
+            Some((_, o, _)) => match proofs.get(&corrected(e.id)) {
+                Some(p) => format!(
+                    "{} ({} cases); proved {}",
+                    o.status.label(),
+                    o.cases,
+                    p.cell
+                ),
+                None => format!("{} ({} cases)", o.status.label(), o.cases),
+            },
             None => "—".to_string(),
         };
         out.push_str(&format!(
-            "| `{}` | {} | {} | {} |\n",
+            "| `{}` | {} | {} | {} | {} |\n",
             e.id,
             e.outcome.status.label(),
             e.outcome.cases,
+            cell(e.id),
             corr
         ));
     }
@@ -484,6 +511,9 @@ pub fn markdown(entries: &[Entry], budget: Budget) -> String {
                 e.engines.join(", ")
             }
         ));
+        if let Some(p) = proofs.get(e.id) {
+            out.push_str(&proof_line(p));
+        }
         if let Status::NotCheckable(r) = &e.outcome.status {
             out.push_str(&format!("Not checkable: {r}\n\n"));
         }
@@ -512,10 +542,27 @@ pub fn markdown(entries: &[Entry], budget: Budget) -> String {
             if let Some(note) = &o.note {
                 out.push_str(&format!("Measured: {note}\n\n"));
             }
+            if let Some(p) = proofs.get(&corrected(e.id)) {
+                out.push_str(&proof_line(p));
+            }
             out.push_str(&format!("Conclusion of the enclosing result: {concl}\n\n"));
         }
     }
     out
+}
+
+/// The symbolic prover's line under a claim.
+fn proof_line(p: &Proof) -> String {
+    match &p.hypotheses {
+        Some(h) => format!(
+            "Symbolic prover: proved for all real data, {}; hypotheses at the largest N: {h}.\n\n",
+            p.cell
+        ),
+        None => format!(
+            "Symbolic prover: {} (a solver-built witness, replayed by the exact checker).\n\n",
+            p.cell
+        ),
+    }
 }
 
 /// The README's summary of the ledger: counts by status and each

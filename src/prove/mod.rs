@@ -32,6 +32,7 @@
 
 pub mod explore;
 pub mod poly;
+pub mod record;
 pub mod smt;
 pub mod sym;
 

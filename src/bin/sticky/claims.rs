@@ -56,7 +56,8 @@ fn claims(
     let text = if as_json {
         ledger::json(&entries)
     } else if as_markdown {
-        ledger::markdown(&entries, budget)
+        let proofs = sticky::prove::record::ledger_proofs().map_err(Failure)?;
+        ledger::markdown(&entries, budget, &proofs)
     } else {
         ledger::table(&entries)
     };
