@@ -184,8 +184,13 @@ fn compare_peer(
 
 /// The atlas's `random-N` scene (`report::atlas`'s suite: the same seed).
 fn random_scene(n: usize) -> Scene {
-    let mut rng = SplitMix64::new(0x5EED_0000 + n as u64);
-    let bytes = rng.bytes(32 * n + 64);
+    generated(0x5EED_0000 + n as u64, 32 * n + 64, n)
+}
+
+/// `generate::initial_data` of `len` bytes from the seed, up to `n` particles.
+fn generated(seed: u64, len: usize, n: usize) -> Scene {
+    let mut rng = SplitMix64::new(seed);
+    let bytes = rng.bytes(len);
     let data = initial_data(
         &bytes,
         Limits {
@@ -230,14 +235,13 @@ fn resting_contacts_are_contacts() {
         match compare_peer(p.name, &scene, "1", "resting") {
             None => {}
             Some(Err(e)) => failures.push(e),
-            Some(Ok(c)) => {
-                if c.missed_contacts + c.spurious_contacts > 0 {
-                    failures.push(format!(
-                        "{}: {} missed, {} spurious",
-                        p.name, c.missed_contacts, c.spurious_contacts
-                    ));
-                }
+            Some(Ok(c)) if c.missed_contacts + c.spurious_contacts > 0 => {
+                failures.push(format!(
+                    "{}: {} missed, {} spurious",
+                    p.name, c.missed_contacts, c.spurious_contacts
+                ));
             }
+            Some(Ok(_)) => {}
         }
     }
     assert!(failures.is_empty(), "{failures:#?}");
@@ -273,6 +277,20 @@ fn a_failed_lcp_solve_is_an_error_not_an_answer() {
         None => {}
         Some(Ok(c)) => panic!("an answer: max |x − x(t)| {}", c.position_max.value),
         Some(Err(e)) => assert!(e.contains("info = 1"), "{e}"),
+    }
+}
+
+/// A QP solve whose status is not "solved" gives no answer: Clarabel calls
+/// the (always feasible) projection of the atlas's long-horizon scene
+/// (20 particles at t = 10⁶) primal infeasible, and its iterate (an
+/// overlap of 2.6·10⁸ diameters) was once written as its answer.
+#[test]
+fn a_failed_qp_solve_is_an_error_not_an_answer() {
+    let scene = generated(0x10C6, 1000, 20);
+    match compare_peer("clarabel", &scene, "1000000", "qp-status") {
+        None => {}
+        Some(Ok(c)) => panic!("an answer: max |x − x(t)| {}", c.position_max.value),
+        Some(Err(e)) => assert!(e.contains("the solver failed (status"), "{e}"),
     }
 }
 

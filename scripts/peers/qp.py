@@ -20,7 +20,10 @@ projection, same solver"): u(t) is the same solver's answer to
 min 1/2 |v - u0|^2 s.t. v_{i+1} = v_i on those pairs (eq:proj-u-micro:
 u(t) = P_H(u0)); for scipy-isotonic the cluster means of u0 are taken
 directly. No multipliers: the QP duals are Appendix A's KKT multipliers (the
-time integral of lambda), not lambda.
+time integral of lambda), not lambda. A solve whose status is not "solved"
+(OSQP at its iteration cap, Clarabel declaring the projection infeasible,
+CVXOPT "unknown") gives no answer: the driver exits with an error
+(quadprog raises its own).
 """
 import sys
 
@@ -40,6 +43,14 @@ def diff_matrix(np, n, rows):
         D[k, j] = -1.0
         D[k, j + 1] = 1.0
     return D
+
+
+def check(name, status, ok):
+    """A solver that reports failure gives no answer: the driver exits with
+    an error naming the solver's status (the projection is always feasible,
+    so any status but "solved" is the solver's failure)."""
+    if not ok:
+        raise SystemExit("%s: the solver failed (status %s)" % (name, status))
 
 
 def solve(name, np, y, D, lo, E):
@@ -65,7 +76,9 @@ def solve0(name, np, n, D, lo, E, be):
         if name == "osqp-tight":
             settings.update(eps_abs=1e-12, eps_rel=1e-12, max_iter=1000000, polishing=True)
         prob.setup(sp.identity(n, format="csc"), np.zeros(n), A, l, u, **settings)
-        return np.array(prob.solve().x)
+        res = prob.solve()
+        check(name, res.info.status, res.info.status == "solved")
+        return np.array(res.x)
     if name == "clarabel":
         import clarabel
         import scipy.sparse as sp
@@ -80,6 +93,7 @@ def solve0(name, np, n, D, lo, E, be):
         s.verbose = False
         sol = clarabel.DefaultSolver(sp.identity(n, format="csc"), np.zeros(n), A, b, cones,
                                      s).solve()
+        check(name, sol.status, str(sol.status) == "Solved")
         return np.array(sol.x)
     if name == "proxsuite":
         import proxsuite
@@ -88,6 +102,8 @@ def solve0(name, np, n, D, lo, E, be):
         qp.init(np.identity(n), np.zeros(n), E if me else None, be if me else None,
                 D if mi else None, lo if mi else None, np.full(mi, 1e30) if mi else None)
         qp.solve()
+        status = qp.results.info.status
+        check(name, status, status == proxsuite.proxqp.QPSolverOutput.PROXQP_SOLVED)
         return np.array(qp.results.x)
     if name == "quadprog":
         import quadprog
@@ -105,6 +121,7 @@ def solve0(name, np, n, D, lo, E, be):
             kw["A"] = cvxopt.matrix(E)
             kw["b"] = cvxopt.matrix(be)
         sol = cvxopt.solvers.qp(cvxopt.spdiag([1.0] * n), cvxopt.matrix(np.zeros(n)), **kw)
+        check(name, sol["status"], sol["status"] == "optimal")
         return np.array(sol["x"]).ravel()
     raise ValueError(name)
 
