@@ -55,6 +55,22 @@ def time_of(text):
     return float(q)
 
 
+# The one contact rule of every driver: the pair (j, j+1) of an answer is in
+# contact when its gap x_{j+1} - x_j - 2r is at most CONTACT_TOL * 2r. A
+# contact is a gap of zero (df:Omega-micro), whatever the force: a resting
+# contact has a zero multiplier. A double cannot hold x_j + 2r exactly, so
+# "zero" is "within a millionth of a diameter", the threshold below which the
+# atlas counts an overlap as rounding (report::atlas::OVERLAP_TOLERANCE) and
+# with which it classifies the gaps of an answer without a contact set.
+CONTACT_TOL = 1e-6
+
+
+def contacts(x, two_r):
+    """[gap_j <= CONTACT_TOL * 2r for each pair j] of positions x."""
+    tol = CONTACT_TOL * two_r
+    return [bool(x[j + 1] - x[j] - two_r <= tol) for j in range(len(x) - 1)]
+
+
 def clusters_from(contacts):
     """[[first, size], ...] from a list of booleans for the pairs."""
     out, first = [], 0

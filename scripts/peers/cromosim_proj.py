@@ -11,7 +11,7 @@ feastol = 1e-12) or uzawa.
 
 Each requested time runs from 0 with dt = t / ceil(t / h).
 Velocities ("velocity_method": "solver's own dynamics"): the last projected
-velocity. Contacts: pairs with gap - 2r <= --contact-tol (1e-9).
+velocity. Contacts: pairs with gap <= 1e-6 * 2r (common.contacts).
 """
 import math
 
@@ -22,7 +22,6 @@ def extra(p):
     p.add_argument("--h", type=float, default=1e-2, help="time step")
     p.add_argument("--method", default="cvxopt", choices=["cvxopt", "uzawa"])
     p.add_argument("--tight", action="store_true")
-    p.add_argument("--contact-tol", type=float, default=1e-9)
 
 
 def main():
@@ -62,9 +61,8 @@ def main():
                 U = np.asarray(out[2], dtype=float).ravel()
                 u = U[0::2] if U.size == 2 * n else U.reshape(n, 2)[:, 0]
                 x = x + dt * u
-            gaps = x[1:] - x[:-1] - 2.0 * r
             frames.append({"t": ts, "positions": x, "velocities": u,
-                           "clusters": common.clusters_from([bool(g <= a.contact_tol) for g in gaps])})
+                           "clusters": common.clusters_from(common.contacts(x, 2.0 * r))})
     setting = "method=%s h=%g%s" % (a.method, a.h, " tight" if a.tight else "")
     common.write(a.out, frames, peer, setting, "solver's own dynamics", tm.seconds)
 

@@ -7,13 +7,23 @@ solved by --solver osqp | osqp-tight | clarabel | proxsuite | quadprog | cvxopt,
 or, for --solver scipy-isotonic, by scipy.optimize.isotonic_regression in the
 shifted coordinates x~_i = x_i - 2r i (df:translat-x).
 
-Velocities ("velocity_method": "active-set projection, same solver"): the
-solver's contact set is the pairs with gap - 2r <= --contact-tol (default
-1e-9); u(t) is then the same solver's answer to min 1/2 |v - u0|^2 s.t.
-v_{i+1} = v_i on those pairs (eq:proj-u-micro: u(t) = P_H(u0)); for
-scipy-isotonic the cluster means of u0 are taken directly. The contact set is
-written as the solution's `clusters`. No multipliers: the QP duals are
-Appendix A's KKT multipliers (the time integral of lambda), not lambda.
+Every QP is solved in the displacement d = x - y (x = y + d: min 1/2 |d|^2
+s.t. D d >= 2r - D y), the form whose objective has the scale of the answer's
+displacement: with the constant 1/2 |y|^2 dropped (min 1/2 |x|^2 - y.x), the
+objective is of order N |y|^2 and the interior-point solvers' relative
+duality-gap tolerance (Clarabel, CVXOPT: 1e-8) left positions a whole
+diameter off on random-1000 (every contact missed).
+
+Contacts: the pairs with gap <= 1e-6 * 2r (common.contacts), written as the
+solution's `clusters`. Velocities ("velocity_method": "active-set
+projection, same solver"): u(t) is the same solver's answer to
+min 1/2 |v - u0|^2 s.t. v_{i+1} = v_i on those pairs (eq:proj-u-micro:
+u(t) = P_H(u0)); for scipy-isotonic the cluster means of u0 are taken
+directly. No multipliers: the QP duals are Appendix A's KKT multipliers (the
+time integral of lambda), not lambda. A solve whose status is not "solved"
+(OSQP at its iteration cap, Clarabel declaring the projection infeasible,
+CVXOPT "unknown") gives no answer: the driver exits with an error
+(quadprog raises its own).
 """
 import sys
 
@@ -24,7 +34,6 @@ def extra(p):
     p.add_argument("--solver", required=True,
                    choices=["osqp", "osqp-tight", "clarabel", "proxsuite", "quadprog", "cvxopt",
                             "scipy-isotonic"])
-    p.add_argument("--contact-tol", type=float, default=1e-9)
 
 
 def diff_matrix(np, n, rows):
@@ -36,29 +45,45 @@ def diff_matrix(np, n, rows):
     return D
 
 
+def check(name, status, ok):
+    """A solver that reports failure gives no answer: the driver exits with
+    an error naming the solver's status (the projection is always feasible,
+    so any status but "solved" is the solver's failure)."""
+    if not ok:
+        raise SystemExit("%s: the solver failed (status %s)" % (name, status))
+
+
 def solve(name, np, y, D, lo, E):
-    """argmin 1/2|x - y|^2 s.t. D x >= lo, E x = 0 (D, E dense; may be empty)."""
-    n = len(y)
-    mi, me = D.shape[0], E.shape[0]
-    if mi == 0 and me == 0:
+    """argmin 1/2|x - y|^2 s.t. D x >= lo, E x = 0 (D, E dense; may be
+    empty), solved in the displacement: y + argmin 1/2|d|^2 s.t.
+    D d >= lo - D y, E d = -E y."""
+    if D.shape[0] == 0 and E.shape[0] == 0:
         return y.copy()
+    return y + solve0(name, np, len(y), D, lo - D @ y, E, -(E @ y))
+
+
+def solve0(name, np, n, D, lo, E, be):
+    """argmin 1/2|d|^2 s.t. D d >= lo, E d = be."""
+    mi, me = D.shape[0], E.shape[0]
     if name.startswith("osqp"):
         import osqp
         import scipy.sparse as sp
         A = sp.csc_matrix(np.vstack([D, E]))
-        l = np.concatenate([lo, np.zeros(me)])
-        u = np.concatenate([np.full(mi, np.inf), np.zeros(me)])
+        l = np.concatenate([lo, be])
+        u = np.concatenate([np.full(mi, np.inf), be])
         prob = osqp.OSQP()
         settings = dict(verbose=False)
         if name == "osqp-tight":
             settings.update(eps_abs=1e-12, eps_rel=1e-12, max_iter=1000000, polishing=True)
-        prob.setup(sp.identity(n, format="csc"), -y, A, l, u, **settings)
-        return np.array(prob.solve().x)
+        prob.setup(sp.identity(n, format="csc"), np.zeros(n), A, l, u, **settings)
+        res = prob.solve()
+        check(name, res.info.status, res.info.status == "solved")
+        return np.array(res.x)
     if name == "clarabel":
         import clarabel
         import scipy.sparse as sp
         A = sp.csc_matrix(np.vstack([E, -D]))
-        b = np.concatenate([np.zeros(me), -lo])
+        b = np.concatenate([be, -lo])
         cones = []
         if me:
             cones.append(clarabel.ZeroConeT(me))
@@ -66,21 +91,25 @@ def solve(name, np, y, D, lo, E):
             cones.append(clarabel.NonnegativeConeT(mi))
         s = clarabel.DefaultSettings()
         s.verbose = False
-        sol = clarabel.DefaultSolver(sp.identity(n, format="csc"), -y, A, b, cones, s).solve()
+        sol = clarabel.DefaultSolver(sp.identity(n, format="csc"), np.zeros(n), A, b, cones,
+                                     s).solve()
+        check(name, sol.status, str(sol.status) == "Solved")
         return np.array(sol.x)
     if name == "proxsuite":
         import proxsuite
         qp = proxsuite.proxqp.dense.QP(n, me, mi)
         qp.settings.verbose = False
-        qp.init(np.identity(n), -y, E if me else None, np.zeros(me) if me else None,
+        qp.init(np.identity(n), np.zeros(n), E if me else None, be if me else None,
                 D if mi else None, lo if mi else None, np.full(mi, 1e30) if mi else None)
         qp.solve()
+        status = qp.results.info.status
+        check(name, status, status == proxsuite.proxqp.QPSolverOutput.PROXQP_SOLVED)
         return np.array(qp.results.x)
     if name == "quadprog":
         import quadprog
         C = np.vstack([E, D]).T
-        b = np.concatenate([np.zeros(me), lo])
-        return np.array(quadprog.solve_qp(np.identity(n), y, C, b, me)[0])
+        b = np.concatenate([be, lo])
+        return np.array(quadprog.solve_qp(np.identity(n), np.zeros(n), C, b, me)[0])
     if name == "cvxopt":
         import cvxopt
         cvxopt.solvers.options["show_progress"] = False
@@ -90,8 +119,9 @@ def solve(name, np, y, D, lo, E):
             kw["h"] = cvxopt.matrix(-lo)
         if me:
             kw["A"] = cvxopt.matrix(E)
-            kw["b"] = cvxopt.matrix(np.zeros(me))
-        sol = cvxopt.solvers.qp(cvxopt.spdiag([1.0] * n), cvxopt.matrix(-y), **kw)
+            kw["b"] = cvxopt.matrix(be)
+        sol = cvxopt.solvers.qp(cvxopt.spdiag([1.0] * n), cvxopt.matrix(np.zeros(n)), **kw)
+        check(name, sol["status"], sol["status"] == "optimal")
         return np.array(sol["x"]).ravel()
     raise ValueError(name)
 
@@ -125,7 +155,7 @@ def main():
             else:
                 x = solve(peer, np, y, diff_matrix(np, n, list(range(n - 1))),
                           np.full(n - 1, two_r), np.zeros((0, n)))
-            contacts = [bool(x[j + 1] - x[j] - two_r <= a.contact_tol) for j in range(n - 1)]
+            contacts = common.contacts(x, two_r)
             clusters = common.clusters_from(contacts)
             if peer == "scipy-isotonic":
                 v = np.empty(n)

@@ -4,10 +4,14 @@ of x(t) = P_K(y), y = x0 + t u0 (Appendix A): x = y + D^T mu, and with
 w = D x - 2r: w = M mu + q >= 0, mu >= 0, w.mu = 0, M = D D^T,
 q = D y - 2r (D the (N-1) x N difference matrix). Run with /usr/bin/python3.
 
-Velocities ("velocity_method": "active-set projection"): u(t) = cluster means
-of u0 over the solver's contacts {mu_i > 0} (eq:proj-u-micro), which are
-also written as `clusters`. No multipliers: mu is Appendix A's KKT
-multiplier (the time integral of lambda), not lambda.
+Contacts: the pairs with gap <= 1e-6 * 2r (common.contacts), not {mu_i > 0}:
+a resting contact (gap 0, mu_i = 0, e.g. particles touching with equal
+velocities) is a contact (df:Omega-micro). Velocities ("velocity_method":
+"active-set projection"): u(t) = cluster means of u0 over those contacts
+(eq:proj-u-micro); the contacts are written as `clusters`. No multipliers:
+mu is Appendix A's KKT multiplier (the time integral of lambda), not lambda.
+A solver that reports failure (info != 0; ENUM gives up beyond a few dozen
+pairs) gives no answer: the driver exits with an error.
 """
 import common
 
@@ -47,10 +51,9 @@ def main():
             w = np.zeros(n - 1)
             info = sn.linearComplementarity_driver(lcp, z, w, sn.SolverOptions(sid))
             if info != 0:
-                print("warning: %s returned info = %d at t = %s" % (peer, info, ts))
+                raise SystemExit("%s: the solver failed (info = %d) at t = %s" % (peer, info, ts))
             x = y + D.T @ z
-            contacts = [bool(v > 0.0) for v in z]
-            clusters = common.clusters_from(contacts)
+            clusters = common.clusters_from(common.contacts(x, 2.0 * r))
             v = np.empty(n)
             for first, size in clusters:
                 v[first:first + size] = u0[first:first + size].mean()

@@ -11,7 +11,7 @@ Velocities ("velocity_method": "solver's own dynamics"): Siconos's
 velocities after the last step. Multipliers: lambda_i = P_i / N, P_i the
 sum over the steps of the impulse of contact i (eq:dyn-micro with unit
 masses: u_i - u0_i = -(P_i - P_{i-1})). The solver's contacts: the pairs
-whose interaction had a non-zero impulse in the last step.
+with gap <= 1e-6 * 2r (common.contacts; a resting contact has no impulse).
 """
 import math
 
@@ -58,13 +58,11 @@ def main():
             sim = sk.TimeStepping(nsds, sk.TimeDiscretisation(0.0, h), sk.MoreauJeanOSI(0.5),
                                   sk.LCP())
             P = [0.0] * (n - 1)
-            last = [0.0] * (n - 1)
             k = 0
             while sim.hasNextEvent() and k < steps:
                 sim.computeOneStep()
                 for i, it in enumerate(inters):
-                    last[i] = float(it.lambda_(1)[0])
-                    P[i] += last[i]
+                    P[i] += float(it.lambda_(1)[0])
                 sim.nextStep()
                 k += 1
             frames.append({
@@ -72,7 +70,8 @@ def main():
                 "positions": [float(d.q()[0]) for d in ds],
                 "velocities": [float(d.velocity()[0]) for d in ds],
                 "multipliers": [p / n for p in P],
-                "clusters": common.clusters_from([v != 0.0 for v in last]),
+                "clusters": common.clusters_from(common.contacts([float(d.q()[0]) for d in ds],
+                                                                 2.0 * r)),
             })
     common.write(a.out, frames, peer, "h=%g" % a.h, "solver's own dynamics", tm.seconds)
 

@@ -524,6 +524,18 @@ fn check_len(what: &'static str, v: &[impl Sized], expected: usize) -> Result<()
 /// whose `2r` is `two_r`. `tol ≥ 0` is the contact tolerance used when the
 /// candidate gives no contact set of its own (`0`: a contact is an exact
 /// `x_{j+1} − x_j ≤ 2r`).
+///
+/// **Contacts.** The exact contact set is exact: the pairs with gap `0` in
+/// `x(t)` (`df:Omega-micro`), whatever the force (a resting contact has
+/// `λ = μ = 0` and is a contact). A floating-point answer cannot hold a
+/// gap of exactly `0` unless the coordinates are dyadic, so its contact set
+/// is its own report when it gives one (`contacts`: our `f64` methods each
+/// document their rule, [`crate::reference::Output::contacts`]; every peer
+/// driver of `scripts/peers/` reports the pairs with gap `≤ 10⁻⁶·2r`), and
+/// otherwise the pairs with gap `≤ tol` (the atlas passes `10⁻⁶·2r`, its
+/// overlap threshold; `sticky compare` `--contact-tol`, default `0`). An
+/// answer `10⁻¹³` from touching is thus in contact for the atlas and for
+/// every peer; with `tol = 0` only if it touches or overlaps.
 pub fn compare(
     cand: &Candidate<'_>,
     exact: &crate::state::State<BigRational>,

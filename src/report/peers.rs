@@ -16,8 +16,8 @@
 //! installs both kinds.
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
-use std::time::Instant;
+use std::process::{Command, Output, Stdio};
+use std::time::{Duration, Instant};
 
 use num_rational::BigRational;
 
@@ -36,7 +36,7 @@ pub enum Source {
 }
 
 /// One peer and one setting.
-#[derive(Debug, Clone, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Peer {
     /// Stable name for CSV columns: `<peer>(<setting>)`.
     pub name: &'static str,
@@ -46,7 +46,16 @@ pub struct Peer {
     pub script: &'static str,
     /// The driver's options.
     pub args: &'static [&'static str],
+    /// For a time-stepper (an `--h` option), the measured cost of one
+    /// particle-step in seconds (the atlas predicts `N · ⌈t/h⌉` times this
+    /// and skips a run beyond its budget); `0` for the one-shot solvers.
+    pub step_seconds: f64,
 }
+
+/// The measured start-up cost of a driver in seconds (interpreter start and
+/// imports: 0.3–1.5 s here for the PyPI peers, up to 2.8 s for cromosim,
+/// 0.4 s for Siconos; `sticky atlas --peers` adds it to every prediction).
+pub const STARTUP_SECONDS: f64 = 1.0;
 
 /// Every peer and setting the drivers offer.
 pub fn peers() -> Vec<Peer> {
@@ -55,26 +64,39 @@ pub fn peers() -> Vec<Peer> {
         source,
         script,
         args,
+        step_seconds: 0.0,
+    };
+    // Seconds per particle-step, measured by `sticky atlas --quick --peers`
+    // on random-1000 (N = 1000, 1001 steps of 1e-3 / 101 steps of 1e-2):
+    // Siconos's Moreau–Jean 10 s, cromosim 2 s (CVXOPT) and 5 s (Uzawa).
+    // Stiff scenes cost more (velocities-12-decades: 16×, 160× for
+    // cromosim); the atlas's time limit stops those.
+    let stepper = |name, source, script, args, step_seconds| Peer {
+        step_seconds,
+        ..p(name, source, script, args)
     };
     use Source::{Debian, PyPi};
     vec![
-        p(
+        stepper(
             "siconos-mj(h=1e-2)",
             Debian,
             "siconos_mj.py",
             &["--h", "1e-2"],
+            1e-5,
         ),
-        p(
+        stepper(
             "siconos-mj(h=1e-3)",
             Debian,
             "siconos_mj.py",
             &["--h", "1e-3"],
+            1e-5,
         ),
-        p(
+        stepper(
             "siconos-mj(h=1e-4)",
             Debian,
             "siconos_mj.py",
             &["--h", "1e-4"],
+            1e-5,
         ),
         p(
             "siconos-lcp(lemke)",
@@ -106,23 +128,26 @@ pub fn peers() -> Vec<Peer> {
             "qp.py",
             &["--solver", "scipy-isotonic"],
         ),
-        p(
+        stepper(
             "cromosim(cvxopt,h=1e-2)",
             PyPi,
             "cromosim_proj.py",
             &["--h", "1e-2"],
+            2e-5,
         ),
-        p(
+        stepper(
             "cromosim(cvxopt,h=1e-2,tight)",
             PyPi,
             "cromosim_proj.py",
             &["--h", "1e-2", "--tight"],
+            2e-5,
         ),
-        p(
+        stepper(
             "cromosim(uzawa,h=1e-2)",
             PyPi,
             "cromosim_proj.py",
             &["--h", "1e-2", "--method", "uzawa"],
+            5e-5,
         ),
     ]
 }
@@ -162,6 +187,9 @@ pub enum PeerOutcome {
     Ran(PeerRun),
     /// Not installed: the driver's message.
     Skipped(String),
+    /// Stopped (killed) at the time limit of [`run_peer_within`]: the
+    /// limit in seconds.
+    OverTime(f64),
 }
 
 /// Why a peer run failed (an installed peer that crashed, or wrote a
@@ -203,6 +231,20 @@ pub fn run_peer(
     scripts: &Path,
     work: &Path,
 ) -> Result<PeerOutcome, PeerError> {
+    run_peer_within(peer, scene, times, scripts, work, None)
+}
+
+/// [`run_peer`] with a time limit: a driver still running after `limit` is
+/// killed (its process, started here) and the outcome is
+/// [`PeerOutcome::OverTime`].
+pub fn run_peer_within(
+    peer: &Peer,
+    scene: &Scene,
+    times: &[BigRational],
+    scripts: &Path,
+    work: &Path,
+    limit: Option<Duration>,
+) -> Result<PeerOutcome, PeerError> {
     let fail = |message: String| PeerError {
         peer: peer.name.to_string(),
         message,
@@ -226,8 +268,13 @@ pub fn run_peer(
     }
     cmd.arg("--out").arg(&out).args(peer.args);
     let start = Instant::now();
-    let o = match cmd.output() {
-        Ok(o) => o,
+    let o = match output_within(&mut cmd, work, &stem, limit) {
+        Ok(Some(o)) => o,
+        Ok(None) => {
+            return Ok(PeerOutcome::OverTime(
+                limit.map_or(0.0, |l| l.as_secs_f64()),
+            ))
+        }
         // No interpreter at all: the peer is not installed either.
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
             return Ok(PeerOutcome::Skipped(format!(
@@ -271,5 +318,40 @@ pub fn run_peer(
         wall_seconds,
         solver_seconds,
         solution: out,
+    }))
+}
+
+/// Runs `cmd` to completion, its standard output and error captured in
+/// files `work/<stem>.stdout|stderr`; `None` when it was still running after
+/// `limit` (then killed and reaped).
+fn output_within(
+    cmd: &mut Command,
+    work: &Path,
+    stem: &str,
+    limit: Option<Duration>,
+) -> std::io::Result<Option<Output>> {
+    let out_path = work.join(format!("{stem}.stdout"));
+    let err_path = work.join(format!("{stem}.stderr"));
+    cmd.stdin(Stdio::null())
+        .stdout(std::fs::File::create(&out_path)?)
+        .stderr(std::fs::File::create(&err_path)?);
+    let start = Instant::now();
+    let mut child = cmd.spawn()?;
+    let status = loop {
+        if let Some(status) = child.try_wait()? {
+            break status;
+        }
+        if limit.is_some_and(|l| start.elapsed() >= l) {
+            // Our own child, by its handle (its pid).
+            let _ = child.kill();
+            let _ = child.wait();
+            return Ok(None);
+        }
+        std::thread::sleep(Duration::from_millis(5));
+    };
+    Ok(Some(Output {
+        status,
+        stdout: std::fs::read(&out_path)?,
+        stderr: std::fs::read(&err_path)?,
     }))
 }

@@ -7,7 +7,7 @@ use crate::report::io::csv_field;
 use crate::report::plot::write_whole;
 
 use super::failure::Failure;
-use super::solve::Row;
+use super::solve::{Row, Status};
 use super::{AtlasError, CSV_COLUMNS};
 
 /// A time or step for text: plain decimals in `[10⁻³, 10⁷)`, else
@@ -81,7 +81,9 @@ pub(super) fn write_csv(
     for (i, row) in rows.iter().enumerate() {
         let mut fields = csv_row(row);
         if let Some(f) = failures {
-            let cell = f.get(i).map_or(String::new(), |fs| {
+            // A skipped row has no failures and is not OK: empty.
+            let skipped = matches!(row.status, Status::Skipped(_));
+            let cell = f.get(i).filter(|_| !skipped).map_or(String::new(), |fs| {
                 if fs.is_empty() {
                     "OK".to_string()
                 } else {

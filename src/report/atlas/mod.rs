@@ -82,8 +82,10 @@
 //! peer's own contact set, gaps within [`OVERLAP_TOLERANCE`]`·2r` of
 //! contact count as its contacts. `kkt_err`, `min_pressure_jump` and the
 //! work counters stay empty. Larger suite scenes get one `skipped: N > …`
-//! row per peer, and so do time-stepping peers beyond [`PEER_MAX_STEPS`]
-//! particle-steps; `stability.md` names the stability scenes not run. A peer
+//! row per peer, and so does a run beyond its cost budget
+//! ([`PEER_BUDGET_QUICK`] / [`PEER_BUDGET`] seconds: predicted from `N` and
+//! the number of steps, or stopped at the budget); `stability.md` shows
+//! them as `—` with the reason. A peer
 //! that is not installed is named once on standard error and left out.
 //! `--scene NAME` ([`AtlasOptions::scenes`]) keeps only the named scenes.
 //!
@@ -102,6 +104,7 @@ use std::time::Duration;
 
 use indicatif::{ProgressBar, ProgressStyle};
 
+use crate::report::peers::STARTUP_SECONDS;
 use crate::report::plot::{
     png_support, write_chart, write_grid, write_whole, PlotError, PngSupport,
 };
@@ -117,7 +120,7 @@ mod suite;
 
 pub use failure::{Failure, LARGE_ERROR, OVERLAP_TOLERANCE, SIGN_TOLERANCE, VELOCITY_TOLERANCE};
 pub use jobs::STABILITY_STEP_CAP;
-pub use peers::{PEER_MAX_N, PEER_MAX_STEPS};
+pub use peers::{PEER_BUDGET, PEER_BUDGET_QUICK, PEER_MAX_N};
 
 use charts::{cost_chart, dt_chart, pareto_chart};
 use csv::write_csv;
@@ -261,6 +264,15 @@ pub const METHODS: [&str; 5] = [
 /// The exact engines' method names.
 pub const EXACT_METHODS: [&str; 2] = ["exact-pava", "exact-events"];
 
+/// The wall-time budget of one peer run.
+fn peer_budget(quick: bool) -> f64 {
+    if quick {
+        PEER_BUDGET_QUICK
+    } else {
+        PEER_BUDGET
+    }
+}
+
 fn file_stem(scene: &str) -> String {
     scene
         .chars()
@@ -317,15 +329,15 @@ pub fn run(opts: &AtlasOptions, progress: bool) -> Result<Vec<PathBuf>, AtlasErr
         stab_rows.extend(run_case(case, jobs, false, min_time, &bar)?);
     }
     if opts.peers {
-        let mut runner = PeerRunner::new();
+        let mut runner = PeerRunner::new(peer_budget(opts.quick));
         let work = out_dir.join("peers");
         for case in &suite {
             bar.set_message(format!("{}: peers", case.name));
-            rows.extend(runner.rows(case, &work.join("suite"), true));
+            rows.extend(runner.rows(case, &work.join("suite")));
         }
         for case in &stability {
             bar.set_message(format!("{}: peers", case.name));
-            stab_rows.extend(runner.rows(case, &work.join("stability"), false));
+            stab_rows.extend(runner.rows(case, &work.join("stability")));
         }
     }
     bar.set_message("writing files");
@@ -341,22 +353,15 @@ pub fn run(opts: &AtlasOptions, progress: bool) -> Result<Vec<PathBuf>, AtlasErr
     let stab_md = out_dir.join("stability.md");
     let mut md = stability_markdown(&stability, &stab_rows, &failures);
     if opts.peers {
-        let large: Vec<&str> = stability
-            .iter()
-            .filter(|c| c.n > PEER_MAX_N)
-            .map(|c| c.name.as_str())
-            .collect();
         md.push_str(&format!(
             "\nPeers (`--peers`): run once per scene with N ≤ {PEER_MAX_N} (wall time of the \
              whole call, interpreter and setup included; errors exact, \
-             `reference::measure::compare`); not run on {}, nor the time-steppers where \
-             N·t/h > {PEER_MAX_STEPS:e} particle-steps (—). A peer that is not installed \
-             has no column.\n",
-            if large.is_empty() {
-                "any scene here".to_string()
-            } else {
-                large.join(", ")
-            }
+             `reference::measure::compare`), each run within a budget of {} s: a run \
+             predicted beyond it (start-up {STARTUP_SECONDS} s plus N·⌈t/h⌉ particle-steps \
+             at the peer's measured cost) is not started, a run still going at the budget \
+             is stopped; both are `—` with the reason. A peer that is not installed has no \
+             column.\n",
+            peer_budget(opts.quick)
         ));
     }
     if let PngSupport::Skipped(why) = png_support() {

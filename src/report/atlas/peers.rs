@@ -3,9 +3,18 @@
 //! particles) at the scene's time, its answer scored exactly by
 //! [`crate::reference::measure::compare`] against the exact solution of the
 //! original rational scene, as a [`Row`] like our methods' rows.
+//!
+//! **Cost budget.** Each (peer, scene) run has a budget of wall time
+//! ([`PEER_BUDGET_QUICK`] seconds with `--quick`, [`PEER_BUDGET`] without).
+//! A run whose predicted cost exceeds it is not started: the prediction is
+//! the driver's start-up ([`STARTUP_SECONDS`]) plus, for a time-stepper,
+//! `N · ⌈t/h⌉` particle-steps at its measured [`Peer::step_seconds`]. A run
+//! still going at the budget is stopped. Both get a `skipped` row with the
+//! reason (`—` and the reason in `stability.md`).
 
 use std::collections::BTreeSet;
 use std::path::Path;
+use std::time::Duration;
 
 use num_rational::BigRational;
 use num_traits::Zero;
@@ -13,7 +22,9 @@ use num_traits::Zero;
 use crate::fast::kernel::{self, IntegerData};
 use crate::reference::measure::{compare, Candidate};
 use crate::reference::ErrorsF64;
-use crate::report::peers::{default_scripts_dir, peers, run_peer, Peer, PeerOutcome};
+use crate::report::peers::{
+    default_scripts_dir, peers, run_peer_within, Peer, PeerOutcome, STARTUP_SECONDS,
+};
 use crate::scalar::Scalar;
 use crate::scene::{Scene, SceneKind};
 
@@ -26,25 +37,32 @@ use super::suite::Case;
 /// dense QPs, small time steps); larger scenes get a `skipped` row per peer.
 pub const PEER_MAX_N: usize = 1000;
 
-/// The largest work `N · t / h` (particle-steps) a time-stepping peer
-/// (one with a `--h` step) is run with: Siconos's Moreau–Jean at
-/// `h = 10⁻⁴` on `N = 1000` up to `t ≈ 1` takes about two minutes.
-pub const PEER_MAX_STEPS: f64 = 1e7;
+/// The wall-time budget of one peer run with `--quick`, in seconds.
+pub const PEER_BUDGET_QUICK: f64 = 10.0;
 
-/// Why `peer` is not run on `case`, if it is not.
-fn too_large(peer: &Peer, case: &Case) -> Option<String> {
-    if case.n > PEER_MAX_N {
-        return Some(format!("N = {} > {PEER_MAX_N}, peers not run", case.n));
-    }
-    let h: f64 = peer
+/// The wall-time budget of one peer run without `--quick`, in seconds.
+pub const PEER_BUDGET: f64 = 300.0;
+
+/// The predicted wall time of `peer` on `case`: start-up plus, for a
+/// time-stepper, `N · ⌈t/h⌉` particle-steps at [`Peer::step_seconds`].
+pub(super) fn predicted_seconds(peer: &Peer, case: &Case) -> f64 {
+    let h: Option<f64> = peer
         .args
         .iter()
         .position(|a| *a == "--h")
         .and_then(|i| peer.args.get(i + 1))
-        .and_then(|h| h.parse().ok())?;
-    let work = case.n as f64 * (case.t / h).ceil();
-    (work > PEER_MAX_STEPS)
-        .then(|| format!("N·t/h = {work:e} > {PEER_MAX_STEPS:e} particle-steps, peer not run"))
+        .and_then(|h| h.parse().ok());
+    let steps = h.map_or(0.0, |h| (case.t / h).ceil());
+    STARTUP_SECONDS + peer.step_seconds * case.n as f64 * steps
+}
+
+/// Why `peer` is not run on `case` within `budget` seconds, if it is not.
+fn not_run(peer: &Peer, case: &Case, budget: f64) -> Option<String> {
+    if case.n > PEER_MAX_N {
+        return Some(format!("N = {} > {PEER_MAX_N}", case.n));
+    }
+    let p = predicted_seconds(peer, case);
+    (p > budget).then(|| format!("predicted {p:.0} s > {budget} s budget"))
 }
 
 /// The `method` of a peer's rows: `peer:<name>`.
@@ -61,20 +79,23 @@ pub(super) fn peer_methods() -> Vec<String> {
 /// standard error and not run again.
 pub(super) struct PeerRunner {
     skipped: BTreeSet<&'static str>,
+    budget: f64,
 }
 
 impl PeerRunner {
-    pub(super) fn new() -> PeerRunner {
+    /// A runner with a budget of `budget` seconds per run.
+    pub(super) fn new(budget: f64) -> PeerRunner {
         PeerRunner {
             skipped: BTreeSet::new(),
+            budget,
         }
     }
 
     /// One row per installed peer on `case` (scratch files under `work`).
-    /// A scene larger than [`PEER_MAX_N`] (or, for a time-stepper, more
-    /// than [`PEER_MAX_STEPS`] particle-steps) gets, when `note_large`, a
-    /// `skipped` row for each peer not known to be missing, else none.
-    pub(super) fn rows(&mut self, case: &Case, work: &Path, note_large: bool) -> Vec<Row> {
+    /// A scene larger than [`PEER_MAX_N`], a run predicted beyond the
+    /// budget and a run stopped at the budget get a `skipped` row with the
+    /// reason (each peer not known to be missing).
+    pub(super) fn rows(&mut self, case: &Case, work: &Path) -> Vec<Row> {
         let mut out = Vec::new();
         let scripts = default_scripts_dir();
         let large = case.n > PEER_MAX_N;
@@ -105,21 +126,23 @@ impl PeerRunner {
                     cap: None,
                 },
             );
-            if let Some(why) = too_large(&peer, case) {
-                if note_large {
-                    row.status = Status::Skipped(why);
-                    out.push(row);
-                }
+            if let Some(why) = not_run(&peer, case, self.budget) {
+                row.status = Status::Skipped(why);
+                out.push(row);
                 continue;
             }
             let dir = work.join(super::file_stem(&case.name));
-            match run_peer(
+            match run_peer_within(
                 &peer,
                 &scene,
                 std::slice::from_ref(&case.tq),
                 &scripts,
                 &dir,
+                Some(Duration::from_secs_f64(self.budget)),
             ) {
+                Ok(PeerOutcome::OverTime(s)) => {
+                    row.status = Status::Skipped(format!("stopped at the {s} s budget"));
+                }
                 Ok(PeerOutcome::Skipped(msg)) => {
                     eprintln!("atlas --peers: {msg}");
                     self.skipped.insert(peer.name);

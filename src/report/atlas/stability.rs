@@ -8,7 +8,7 @@ use super::failure::{
     Failure, FAILURE_COLORS, FAILURE_NAMES, OK_COLOR, OVERLAP_TOLERANCE, SIGN_TOLERANCE,
     VELOCITY_TOLERANCE,
 };
-use super::solve::Row;
+use super::solve::{Row, Status};
 use super::suite::Case;
 use super::{EXACT_METHODS, METHODS};
 
@@ -32,9 +32,12 @@ pub(super) fn stability_grid(cases: &[Case], rows: &[Row], failures: &[Vec<Failu
                 .iter()
                 .zip(failures)
                 .find(|(r, _)| r.scene == case.name && r.setting.method == *method);
-            let Some((_, fs)) = found else {
+            let Some((r, fs)) = found else {
                 continue;
             };
+            if matches!(r.status, Status::Skipped(_)) {
+                continue;
+            }
             let colors = if fs.is_empty() {
                 vec![OK_COLOR]
             } else {
@@ -96,12 +99,15 @@ pub(super) fn stability_markdown(
                 .find(|(r, _)| r.scene == case.name && &r.setting.method == m);
             let cell = match found {
                 None => "—".to_string(),
-                Some((_, fs)) if fs.is_empty() => "OK".to_string(),
-                Some((_, fs)) => fs
-                    .iter()
-                    .map(|f| f.to_string().replace('|', "\\|"))
-                    .collect::<Vec<_>>()
-                    .join("; "),
+                Some((r, fs)) => match &r.status {
+                    Status::Skipped(why) => format!("— ({})", why.replace('|', "\\|")),
+                    _ if fs.is_empty() => "OK".to_string(),
+                    _ => fs
+                        .iter()
+                        .map(|f| f.to_string().replace('|', "\\|"))
+                        .collect::<Vec<_>>()
+                        .join("; "),
+                },
             };
             md.push_str(&format!(" {cell} |"));
         }
