@@ -54,6 +54,42 @@ pub fn state<S: Scalar>(s: &State<S>, radius: &S) -> String {
     )
 }
 
+/// [`state`] written straight from the streaming path's blocks
+/// ([`crate::fast::stream`]), value by value, with no string per value:
+/// the same bytes (the tests compare them), and a final newline.
+pub fn write_lean_state(
+    out: &mut impl std::io::Write,
+    b: &crate::fast::stream::LeanBlocks<'_>,
+    radius: &num_rational::BigRational,
+) -> std::io::Result<()> {
+    write!(
+        out,
+        "{{\"n\": {}, \"radius\": {}, \"t\": {}, \"positions\": [",
+        b.n(),
+        string(&radius.render()),
+        string(&b.t().render()),
+    )?;
+    fn item<W: std::io::Write>(
+        out: &mut W,
+        first: &mut bool,
+        v: &crate::fast::stream::Exact,
+    ) -> std::io::Result<()> {
+        out.write_all(if *first { b"\"" } else { b", \"" })?;
+        *first = false;
+        v.write(out)?;
+        out.write_all(b"\"")
+    }
+    let mut first = true;
+    b.positions(|v| item(out, &mut first, v))?;
+    out.write_all(b"], \"velocities\": [")?;
+    first = true;
+    b.velocities(|v| item(out, &mut first, v))?;
+    out.write_all(b"], \"multipliers\": [")?;
+    first = true;
+    b.multipliers(|v| item(out, &mut first, v))?;
+    writeln!(out, "], \"clusters\": {}}}", cluster_array(&b.clusters()))
+}
+
 /// The collision history as `{"events": [...]}` (one line).
 pub fn events<S: Scalar>(impulses: &[Impulse<S>]) -> String {
     let items: Vec<String> = impulses

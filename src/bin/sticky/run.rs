@@ -62,6 +62,29 @@ fn engine_names() -> PossibleValuesParser {
 
 /// Runs `sticky run`.
 pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
+    if args.json && args.engine == "auto" && args.model == Model::Particles {
+        // The streaming path for a column file on machine words
+        // (`fast::stream`): the same bytes; anything it does not cover
+        // (another scene, a value off words, a time beyond its bound)
+        // goes the general way below.
+        if let Some(lean) = sticky::fast::stream::Lean::load(&args.scene) {
+            let mut general = None;
+            for t in &args.at {
+                match lean.blocks_at(t) {
+                    Some(b) => json::write_lean_state(out, &b, lean.radius()).map_err(io_err)?,
+                    None => {
+                        if general.is_none() {
+                            general = Some(load(&args.scene)?);
+                        }
+                        if let Some(scene) = &general {
+                            run(out, scene, std::slice::from_ref(t), true, "auto")?;
+                        }
+                    }
+                }
+            }
+            return Ok(());
+        }
+    }
     let scene = load(&args.scene)?;
     match args.model {
         Model::Particles => run(out, &scene, &args.at, args.json, &args.engine),
