@@ -342,6 +342,9 @@ fn digits_u64(s: &[u8]) -> Option<u64> {
 /// value is [`Small`] (then [`parse_exact`] reads it, or says what is wrong).
 /// No white space is trimmed.
 pub fn parse_small(text: &[u8]) -> Option<Small> {
+    if text.len() > crate::rational::max_digits() {
+        return None;
+    }
     let (negative, body) = match text.first()? {
         b'-' => (true, &text[1..]),
         b'+' => (false, &text[1..]),

@@ -87,7 +87,12 @@ fn text(v: &BigRational, style: u64) -> String {
     }
 }
 
-fn write_csv_scene(dir: &Path, name: &str, radius: Option<&str>, rows: &[(String, String)]) -> PathBuf {
+fn write_csv_scene(
+    dir: &Path,
+    name: &str,
+    radius: Option<&str>,
+    rows: &[(String, String)],
+) -> PathBuf {
     let mut csv = format!("{CSV_HEADER}\n");
     for (x, u) in rows {
         csv.push_str(&format!("{x},{u}\n"));
@@ -118,7 +123,10 @@ fn csv_scenes_give_the_same_bytes() {
             },
         );
         // Shift every position by a negative offset (negative values).
-        let offset = q(-((rng.next_u64() % 1000) as i64), 1 + (rng.next_u64() % 50) as i64);
+        let offset = q(
+            -((rng.next_u64() % 1000) as i64),
+            1 + (rng.next_u64() % 50) as i64,
+        );
         let rows: Vec<(String, String)> = data
             .positions()
             .iter()
@@ -152,11 +160,19 @@ fn off_words_the_streaming_path_declines_or_agrees() {
     // with exponents, a default radius.
     let primes = [1009i64, 1013, 1019, 1021, 1031];
     let rows: Vec<(String, String)> = (0..5)
-        .map(|i| (format!("{}/{}", 3 * i, 1), format!("1/{}", primes[i as usize])))
+        .map(|i| {
+            (
+                format!("{}/{}", 3 * i, 1),
+                format!("1/{}", primes[i as usize]),
+            )
+        })
         .collect();
     let a = write_csv_scene(&d, "lcm", Some("1/4"), &rows);
     let rows = vec![
-        ("-123456789012345678901234567890".to_string(), "1".to_string()),
+        (
+            "-123456789012345678901234567890".to_string(),
+            "1".to_string(),
+        ),
         ("0".to_string(), "-1".to_string()),
     ];
     let b = write_csv_scene(&d, "long", Some("1/4"), &rows);
@@ -182,7 +198,10 @@ fn off_words_the_streaming_path_declines_or_agrees() {
     assert!(streamed(&c, &big_t).is_none(), "t = 2^100 is off words");
     // An invalid scene: the streaming path declines (the general path
     // names the error).
-    let rows = vec![("1".to_string(), "0".to_string()), ("1".to_string(), "0".to_string())];
+    let rows = vec![
+        ("1".to_string(), "0".to_string()),
+        ("1".to_string(), "0".to_string()),
+    ];
     let e = write_csv_scene(&d, "overlap", Some("1/4"), &rows);
     assert!(Lean::load(&e).is_none());
     assert!(sticky::scene::load(&e).is_err());

@@ -21,6 +21,8 @@ pub struct Args {
 /// Runs `sticky events`.
 pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
     let scene = load(&args.scene)?;
+    sticky::fast::engine::check_work(&scene.data)
+        .map_err(|e| Failure(format!("{}: {e}", args.scene.display())))?;
     let traj = sticky::fast::merge::trajectory(&scene.data);
     if args.json {
         writeln!(out, "{}", json::events(traj.impulses())).map_err(io_err)?;

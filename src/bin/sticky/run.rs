@@ -86,6 +86,10 @@ pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
         }
     }
     let scene = load(&args.scene)?;
+    if args.model == Model::Particles {
+        sticky::fast::engine::check_work(&scene.data)
+            .map_err(|e| Failure(format!("{}: {e}", args.scene.display())))?;
+    }
     match args.model {
         Model::Particles => run(out, &scene, &args.at, args.json, &args.engine),
         Model::Continuum => run_continuum(out, &scene, &args.scene, &args.at, args.json),
