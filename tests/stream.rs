@@ -43,6 +43,22 @@ fn streamed(path: &Path, t: &BigRational) -> Option<String> {
     Some(String::from_utf8(out).unwrap())
 }
 
+/// The events JSON both ways; `false` when the streaming path declined.
+fn events_agree(path: &Path) -> bool {
+    let scene = sticky::scene::load(path).unwrap_or_else(|e| panic!("{e}"));
+    let want = format!(
+        "{}\n",
+        json::events(sticky::fast::merge::trajectory(&scene.data).impulses())
+    );
+    let Some(h) = Lean::load(path).and_then(|l| l.history()) else {
+        return false;
+    };
+    let mut out = Vec::new();
+    json::write_word_events(&mut out, &h).unwrap();
+    assert_eq!(String::from_utf8(out).unwrap(), want, "{}", path.display());
+    true
+}
+
 fn q(n: i64, d: i64) -> BigRational {
     BigRational::new(BigInt::from(n), BigInt::from(d))
 }
@@ -113,6 +129,7 @@ fn csv_scenes_give_the_same_bytes() {
     let d = dir("csv");
     let mut rng = SplitMix64::new(1313);
     let mut taken = 0;
+    let mut events_taken = 0;
     for case in 0..120 {
         let data = initial_data(
             &rng.bytes(300),
@@ -140,6 +157,7 @@ fn csv_scenes_give_the_same_bytes() {
             .collect();
         let radius = sticky::rational::render_exact(data.radius());
         let path = write_csv_scene(&d, &format!("c{case}"), Some(&radius), &rows);
+        events_taken += usize::from(events_agree(&path));
         for t in [q(0, 1), q(1, 3), q(5, 2), q(7, 1), q(1, 1_000_003)] {
             let want = general(&path, &t);
             if let Some(got) = streamed(&path, &t) {
@@ -150,6 +168,10 @@ fn csv_scenes_give_the_same_bytes() {
     }
     // The streaming path must take (nearly) all of these small scenes.
     assert!(taken >= 400, "streaming path taken {taken} times of 600");
+    assert!(
+        events_taken >= 80,
+        "streaming events taken {events_taken} times of 120"
+    );
     std::fs::remove_dir_all(&d).unwrap();
 }
 
@@ -243,6 +265,7 @@ fn npy_scenes_give_the_same_bytes() {
             format!("[particles]\nradius = \"1/64\"\ndata = \"{name}.npy\"\n"),
         )
         .unwrap();
+        events_agree(&path);
         for t in [q(0, 1), q(1, 3), q(3, 1)] {
             let want = general(&path, &t);
             if let Some(got) = streamed(&path, &t) {

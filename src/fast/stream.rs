@@ -70,7 +70,7 @@ pub enum Exact {
 
 impl Exact {
     /// `num / den` (`den > 0`) in lowest terms.
-    fn ratio(num: i128, den: i128) -> Exact {
+    pub(crate) fn ratio(num: i128, den: i128) -> Exact {
         let g = gcd(num.unsigned_abs(), den.unsigned_abs());
         if g <= 1 {
             return if num == 0 {
@@ -170,6 +170,12 @@ impl Lean {
     /// N.
     pub fn n(&self) -> usize {
         self.x.len()
+    }
+
+    /// The whole collision history on the integer event merge
+    /// ([`crate::fast::merge`]); `None` when its bound does not hold.
+    pub fn history(&self) -> Option<crate::fast::merge::WordHistory> {
+        crate::fast::merge::history_words(&self.x, &self.u, self.dx, self.du)
     }
 
     /// The radius r.

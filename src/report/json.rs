@@ -90,6 +90,38 @@ pub fn write_lean_state(
     writeln!(out, "], \"clusters\": {}}}", cluster_array(&b.clusters()))
 }
 
+/// [`events`] written straight from the streaming path's history
+/// ([`crate::fast::merge::WordHistory`]), event by event: the same bytes,
+/// and a final newline.
+pub fn write_word_events(
+    out: &mut impl std::io::Write,
+    h: &crate::fast::merge::WordHistory,
+) -> std::io::Result<()> {
+    out.write_all(b"{\"events\": [")?;
+    let mut first_event = true;
+    h.for_each_event(|t, first, size, parts| {
+        out.write_all(if first_event {
+            b"{\"t\": \""
+        } else {
+            b", {\"t\": \""
+        })?;
+        first_event = false;
+        t.write(out)?;
+        write!(
+            out,
+            "\", \"first\": {first}, \"size\": {size}, \"parts\": ["
+        )?;
+        for (k, p) in parts.iter().enumerate() {
+            if k > 0 {
+                out.write_all(b", ")?;
+            }
+            write!(out, "{p}")?;
+        }
+        out.write_all(b"]}")
+    })?;
+    out.write_all(b"]}\n")
+}
+
 /// The collision history as `{"events": [...]}` (one line).
 pub fn events<S: Scalar>(impulses: &[Impulse<S>]) -> String {
     let items: Vec<String> = impulses
