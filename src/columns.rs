@@ -502,17 +502,20 @@ pub fn read_npy_small(bytes: &[u8]) -> Option<SmallColumns> {
     Some((positions, velocities))
 }
 
-/// Writes doubles as an `(N, 2)` `<f8` `.npy` file (C order).
-pub fn write_npy(rows: &[(f64, f64)]) -> Vec<u8> {
-    let mut header = format!(
-        "{{'descr': '<f8', 'fortran_order': False, 'shape': ({}, 2), }}",
-        rows.len()
-    );
+/// The header of a `.npy` file of little-endian doubles (`<f8`, C order)
+/// of the given shape (version 1.0, padded to 64 bytes).
+pub fn npy_header(shape: &[usize]) -> Vec<u8> {
+    let dims: Vec<String> = shape.iter().map(ToString::to_string).collect();
+    let shape = match dims.len() {
+        1 => format!("({},)", dims[0]),
+        _ => format!("({})", dims.join(", ")),
+    };
+    let mut header = format!("{{'descr': '<f8', 'fortran_order': False, 'shape': {shape}, }}");
     // Magic (6) + version (2) + length (2) + header + '\n', padded to 64.
     let unpadded = 10 + header.len() + 1;
     header.push_str(&" ".repeat((64 - unpadded % 64) % 64));
     header.push('\n');
-    let mut out = Vec::with_capacity(10 + header.len() + 16 * rows.len());
+    let mut out = Vec::with_capacity(10 + header.len());
     out.extend_from_slice(b"\x93NUMPY\x01\x00");
     out.extend_from_slice(
         &u16::try_from(header.len())
@@ -520,6 +523,13 @@ pub fn write_npy(rows: &[(f64, f64)]) -> Vec<u8> {
             .to_le_bytes(),
     );
     out.extend_from_slice(header.as_bytes());
+    out
+}
+
+/// Writes doubles as an `(N, 2)` `<f8` `.npy` file (C order).
+pub fn write_npy(rows: &[(f64, f64)]) -> Vec<u8> {
+    let mut out = npy_header(&[rows.len(), 2]);
+    out.reserve(16 * rows.len());
     for (x, u) in rows {
         out.extend_from_slice(&x.to_le_bytes());
         out.extend_from_slice(&u.to_le_bytes());

@@ -277,3 +277,118 @@ fn npy_scenes_give_the_same_bytes() {
     assert!(taken >= 150, "streaming path taken {taken} times of 180");
     std::fs::remove_dir_all(&d).unwrap();
 }
+
+const STICKY: &str = env!("CARGO_BIN_EXE_sticky");
+
+fn cli(args: &[&str]) -> Vec<u8> {
+    let o = std::process::Command::new(STICKY)
+        .args(args)
+        .output()
+        .unwrap();
+    assert!(
+        o.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    o.stdout
+}
+
+/// `run --format csv|npy`: the streaming and the general path write the
+/// same bytes; the CSV holds the JSON's exact strings; NPY needs `--lossy`
+/// and holds their nearest doubles, shape (T, N, 3).
+#[test]
+fn csv_and_npy_output() {
+    let d = dir("format");
+    let mut rng = SplitMix64::new(4242);
+    for case in 0..6 {
+        let data = initial_data(&rng.bytes(400), Limits::default());
+        let rows: Vec<(String, String)> = data
+            .positions()
+            .iter()
+            .zip(data.velocities())
+            .map(|(x, u)| (text(x, rng.next_u64()), text(u, rng.next_u64())))
+            .collect();
+        let radius = sticky::rational::render_exact(data.radius());
+        let path = write_csv_scene(&d, &format!("f{case}"), Some(&radius), &rows);
+        let p = path.to_str().unwrap();
+        let at = ["--at", "0", "--at", "7/3"];
+        let with = |extra: &[&str]| {
+            let mut a = vec!["run", p];
+            a.extend_from_slice(&at);
+            a.extend_from_slice(extra);
+            cli(&a)
+        };
+        let csv = with(&["--format", "csv"]);
+        assert_eq!(csv, with(&["--format", "csv", "--engine", "kernel"]));
+        let npy = with(&["--format", "npy", "--lossy"]);
+        assert_eq!(
+            npy,
+            with(&["--format", "npy", "--lossy", "--engine", "kernel"])
+        );
+        let json = String::from_utf8(with(&["--json"])).unwrap();
+        // Every CSV row against the JSON line of its time.
+        let csv = String::from_utf8(csv).unwrap();
+        let mut lines = csv.lines();
+        assert_eq!(lines.next(), Some("t,i,position,velocity,multiplier"));
+        let n = data.n();
+        let mut doubles = Vec::new();
+        for (k, obj) in json.lines().enumerate() {
+            let field = |key: &str| -> Vec<String> {
+                let start = obj.find(&format!("\"{key}\": [")).unwrap() + key.len() + 5;
+                let end = start + obj[start..].find(']').unwrap();
+                obj[start..end]
+                    .split(", ")
+                    .filter(|s| !s.is_empty())
+                    .map(|s| s.trim_matches('"').to_string())
+                    .collect()
+            };
+            let (x, u, l) = (
+                field("positions"),
+                field("velocities"),
+                field("multipliers"),
+            );
+            for i in 0..n {
+                let lam = l.get(i).cloned().unwrap_or_default();
+                let t = ["0", "7/3"][k];
+                assert_eq!(
+                    lines.next().unwrap(),
+                    format!("{t},{i},{},{},{lam}", x[i], u[i])
+                );
+                for v in [
+                    &x[i],
+                    &u[i],
+                    &if lam.is_empty() {
+                        "0".to_string()
+                    } else {
+                        lam.clone()
+                    },
+                ] {
+                    let q = sticky::rational::parse_exact(v).unwrap();
+                    doubles.push(sticky::Scalar::to_f64_lossy(&q));
+                }
+            }
+        }
+        assert_eq!(lines.next(), None);
+        let header = sticky::columns::npy_header(&[2, n, 3]);
+        assert_eq!(&npy[..header.len()], &header[..]);
+        let body: Vec<f64> = npy[header.len()..]
+            .chunks(8)
+            .map(|c| f64::from_le_bytes(c.try_into().unwrap()))
+            .collect();
+        assert_eq!(body, doubles);
+    }
+    let o = std::process::Command::new(STICKY)
+        .args([
+            "run",
+            "scenes/collision-cascade.toml",
+            "--at",
+            "1",
+            "--format",
+            "npy",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--lossy"));
+    std::fs::remove_dir_all(&d).unwrap();
+}

@@ -95,6 +95,19 @@ impl Exact {
             Exact::Big(q) => write!(out, "{}", crate::rational::render_exact(q)),
         }
     }
+    /// The nearest double (ties to even; `±∞` beyond the range): one
+    /// correctly rounded division when both terms are exact doubles,
+    /// `BigRational`'s conversion otherwise.
+    pub fn to_f64_lossy(&self) -> f64 {
+        const EXACT: i128 = 1 << 53;
+        match self {
+            Exact::Small(n, d) if n.abs() <= EXACT && *d <= EXACT => *n as f64 / *d as f64,
+            _ => {
+                let (n, d) = self.numer_denom();
+                crate::scalar::Scalar::to_f64_lossy(&BigRational::new(n, d))
+            }
+        }
+    }
     fn numer_denom(&self) -> (BigInt, BigInt) {
         match self {
             Exact::Small(n, d) => (BigInt::from(*n), BigInt::from(*d)),
@@ -262,9 +275,16 @@ impl LeanBlocks<'_> {
 
     /// Calls `f` on every position `x_i(t)` in order: the block's `x̃` plus
     /// `2r·i`, one fraction in lowest terms.
-    pub fn positions(&self, mut f: impl FnMut(&Exact) -> io::Result<()>) -> io::Result<()> {
+    pub fn positions(&self, f: impl FnMut(&Exact) -> io::Result<()>) -> io::Result<()> {
+        self.positions_from(0, f)
+    }
+
+    fn positions_from(
+        &self,
+        mut i: usize,
+        mut f: impl FnMut(&Exact) -> io::Result<()>,
+    ) -> io::Result<()> {
         let (rn, rd) = self.d.two_r;
-        let mut i = 0usize;
         for r in &self.runs {
             let y = self.mean_y(r);
             for _ in 0..r.k {
@@ -305,10 +325,17 @@ impl LeanBlocks<'_> {
     /// order: on a block of `k` particles with `S = ΣU`, the `m`-th is
     /// `(k Σ_{j ≤ m} U_j − m S) / (k D_u N)`
     /// ([`crate::contact::cluster_multiplier_numerators`]).
-    pub fn multipliers(&self, mut f: impl FnMut(&Exact) -> io::Result<()>) -> io::Result<()> {
-        let n = self.n();
+    pub fn multipliers(&self, f: impl FnMut(&Exact) -> io::Result<()>) -> io::Result<()> {
+        self.multipliers_from(0, self.n(), f)
+    }
+
+    fn multipliers_from(
+        &self,
+        mut first: usize,
+        n: usize,
+        mut f: impl FnMut(&Exact) -> io::Result<()>,
+    ) -> io::Result<()> {
         let big_n = i128::try_from(n).unwrap_or(i128::MAX);
-        let mut first = 0usize;
         for r in &self.runs {
             let k = i128::from(r.k);
             let den = k.checked_mul(self.d.du).and_then(|v| v.checked_mul(big_n));
@@ -342,6 +369,46 @@ impl LeanBlocks<'_> {
                 f(&v)?;
             }
             first += r.k as usize;
+        }
+        Ok(())
+    }
+
+    /// Calls `f(i, x_i, u_i, λ_{i+1})` on every particle in order (0-based
+    /// `i`; `λ` of the pair `(i, i+1)`, `None` for the last particle): the
+    /// values of [`Self::positions`], [`Self::velocities`] and
+    /// [`Self::multipliers`], row by row.
+    pub fn rows(
+        &self,
+        mut f: impl FnMut(usize, &Exact, &Exact, Option<&Exact>) -> io::Result<()>,
+    ) -> io::Result<()> {
+        // The three visitors in step, one block at a time.
+        let n = self.n();
+        let mut i = 0usize;
+        for r in &self.runs {
+            let one = LeanBlocks {
+                d: self.d,
+                runs: vec![r.clone()],
+                t: self.t.clone(),
+                dy: self.dy,
+            };
+            let (mut xs, mut us, mut ls) = (Vec::new(), Vec::new(), Vec::new());
+            let k = r.k as usize;
+            one.positions_from(i, |v| {
+                xs.push(v.clone());
+                Ok(())
+            })?;
+            one.velocities(|v| {
+                us.push(v.clone());
+                Ok(())
+            })?;
+            one.multipliers_from(i, n, |v| {
+                ls.push(v.clone());
+                Ok(())
+            })?;
+            for m in 0..k {
+                f(i + m, &xs[m], &us[m], ls.get(m))?;
+            }
+            i += k;
         }
         Ok(())
     }
