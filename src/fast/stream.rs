@@ -7,7 +7,7 @@
 //! pair of machine words ([`crate::columns::parse_small`],
 //! [`crate::columns::f64_small`]), scales the columns to common
 //! denominators on words (`df:translat-x`, the same scaling as the kernel,
-//! [`crate::fast::scaling`]), validates them on the scaled integers
+//! `fast::scaling`), validates them on the scaled integers
 //! (`df:KN`: `X̃_{i+1} ≥ X̃_i`; `def:velcone`: `U_{i+1} ≥ U_i` across a
 //! contact) and keeps them as `i64` columns: 16 bytes per particle.
 //! [`Lean::blocks_at`] runs the kernel's PAVA on `i128` sums

@@ -170,6 +170,10 @@ fn run(
     Ok(())
 }
 
+/// One value of a row: writes its exact text (CSV) and returns its nearest
+/// double (NPY).
+type Cell<'a> = &'a dyn Fn(&mut dyn Write) -> io::Result<f64>;
+
 /// `--format csv|npy`: every particle at every time, row by row, from the
 /// streaming path when it applies, else from the general state.
 fn columns(out: &mut impl Write, args: &Args) -> Result<(), Failure> {
@@ -187,9 +191,9 @@ fn columns(out: &mut impl Write, args: &Args) -> Result<(), Failure> {
         let mut row = |out: &mut dyn Write,
                        n: usize,
                        i: usize,
-                       x: &dyn Fn(&mut dyn Write) -> io::Result<f64>,
-                       u: &dyn Fn(&mut dyn Write) -> io::Result<f64>,
-                       l: Option<&dyn Fn(&mut dyn Write) -> io::Result<f64>>|
+                       x: Cell<'_>,
+                       u: Cell<'_>,
+                       l: Option<Cell<'_>>|
          -> io::Result<()> {
             if !header {
                 header = true;
