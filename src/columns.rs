@@ -667,4 +667,88 @@ mod tests {
             let _ = read_npy(&bytes[..cut]); // never panics
         }
     }
+
+    /// The word readers give the values of the exact readers, or decline.
+    #[test]
+    fn small_readers_equal_the_exact_ones() {
+        let mut rng = crate::generate::SplitMix64::new(99);
+        let pieces = [
+            "0",
+            "1",
+            "7",
+            "12",
+            "007",
+            "999999999999",
+            "18446744073709551615",
+            "9223372036854775807",
+            "9223372036854775808",
+            "",
+            "-",
+            "+",
+            ".",
+            "/",
+            "e",
+            "E",
+            "-3",
+            "e-",
+            "e+",
+            "4096",
+            "4097",
+            "19",
+            "20",
+            "x",
+            " ",
+        ];
+        let mut seen = 0;
+        for _ in 0..20000 {
+            let k = 1 + rng.next_u64() % 5;
+            let text: String = (0..k)
+                .map(|_| pieces[(rng.next_u64() % pieces.len() as u64) as usize])
+                .collect();
+            let small = parse_small(text.as_bytes());
+            let exact = parse_exact(&text);
+            if let Some((p, d)) = small {
+                seen += 1;
+                assert_eq!(Ok(BigRational::new(p.into(), d.into())), exact, "{text:?}");
+                assert!(d > 0);
+            }
+        }
+        assert!(seen > 1000, "{seen}");
+        for v in [
+            0.1,
+            -2.5,
+            0.0,
+            -0.0,
+            1e300,
+            1e-300,
+            3.0e18,
+            9.3e18,
+            f64::from_bits(1),
+        ] {
+            match f64_small(v) {
+                Some((p, d)) => {
+                    assert_eq!(Some(BigRational::new(p.into(), d.into())), f64_exact(v))
+                }
+                None => assert!(v.abs() > 9e18 || v.abs() < 1e-18, "{v}"),
+            }
+        }
+        // The CSV reader on words agrees with the exact one, or declines.
+        let text = "position, velocity\r\n 0.125 , 1.5e-3\n\n-7/4,+2\n";
+        let (x, u) = read_csv_small(text.as_bytes()).expect("on words");
+        let c = read_csv(text).unwrap();
+        let big = |v: &[Small]| -> Vec<BigRational> {
+            v.iter()
+                .map(|&(p, d)| BigRational::new(p.into(), d.into()))
+                .collect()
+        };
+        assert_eq!((big(&x), big(&u)), (c.positions, c.velocities));
+        for bad in [
+            "x,u\n1,2\n",
+            "position,velocity\n1,2,3\n",
+            "position,velocity\n1\n",
+            "position,velocity\n1/0,2\n",
+        ] {
+            assert!(read_csv_small(bad.as_bytes()).is_none(), "{bad:?}");
+        }
+    }
 }
