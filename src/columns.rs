@@ -246,6 +246,28 @@ fn npy_layout(bytes: &[u8]) -> Result<(usize, bool, usize), ColumnsError> {
     Ok((n, fortran, end))
 }
 
+/// The two columns of an `(N, 2)` array whose element `k` (in file order)
+/// is `value(k)`: C order `x⁰_1, u⁰_1, x⁰_2, …`, Fortran order all the
+/// positions first; the first failure stops it.
+fn npy_columns<T, E>(
+    n: usize,
+    fortran: bool,
+    value: impl Fn(usize) -> Result<T, E>,
+) -> Result<(Vec<T>, Vec<T>), E> {
+    let mut positions = Vec::with_capacity(n);
+    let mut velocities = Vec::with_capacity(n);
+    for i in 0..n {
+        let (kx, ku) = if fortran {
+            (i, n + i)
+        } else {
+            (2 * i, 2 * i + 1)
+        };
+        positions.push(value(kx)?);
+        velocities.push(value(ku)?);
+    }
+    Ok((positions, velocities))
+}
+
 /// Reads a NumPy `.npy` particle file (see the module documentation).
 pub fn read_npy(bytes: &[u8]) -> Result<Columns, ColumnsError> {
     let (n, fortran, end) = npy_layout(bytes)?;
@@ -271,17 +293,7 @@ pub fn read_npy(bytes: &[u8]) -> Result<Columns, ColumnsError> {
             )
         })
     };
-    let mut positions = Vec::with_capacity(n);
-    let mut velocities = Vec::with_capacity(n);
-    for i in 0..n {
-        let (kx, ku) = if fortran {
-            (i, n + i)
-        } else {
-            (2 * i, 2 * i + 1)
-        };
-        positions.push(value(kx)?);
-        velocities.push(value(ku)?);
-    }
+    let (positions, velocities) = npy_columns(n, fortran, value)?;
     Ok(Columns {
         positions,
         velocities,
@@ -483,23 +495,12 @@ pub fn f64_small(v: f64) -> Option<Small> {
 pub fn read_npy_small(bytes: &[u8]) -> Option<SmallColumns> {
     let (n, fortran, end) = npy_layout(bytes).ok()?;
     let body = &bytes[end..];
-    let value = |k: usize| -> Option<Small> {
+    let value = |k: usize| -> Result<Small, ()> {
         let mut b = [0u8; 8];
-        b.copy_from_slice(body.get(8 * k..8 * k + 8)?);
-        f64_small(f64::from_le_bytes(b))
+        b.copy_from_slice(body.get(8 * k..8 * k + 8).ok_or(())?);
+        f64_small(f64::from_le_bytes(b)).ok_or(())
     };
-    let mut positions = Vec::with_capacity(n);
-    let mut velocities = Vec::with_capacity(n);
-    for i in 0..n {
-        let (kx, ku) = if fortran {
-            (i, n + i)
-        } else {
-            (2 * i, 2 * i + 1)
-        };
-        positions.push(value(kx)?);
-        velocities.push(value(ku)?);
-    }
-    Some((positions, velocities))
+    npy_columns(n, fortran, value).ok()
 }
 
 /// The header of a `.npy` file of little-endian doubles (`<f8`, C order)

@@ -104,6 +104,17 @@ pub const MAX_WORK: u64 = 1 << 29;
 /// The environment variable that sets the cap of [`check_work`].
 pub const WORK_VAR: &str = "STICKY_MAX_WORK";
 
+/// The bits of the largest denominator of the data (radius, positions,
+/// velocities).
+fn largest_denominator_bits(data: &InitialData<BigRational>) -> u64 {
+    std::iter::once(data.radius())
+        .chain(data.positions())
+        .chain(data.velocities())
+        .map(|q| q.denom().bits())
+        .max()
+        .unwrap_or(0)
+}
+
 /// A lower bound on the word operations of the exact engines on `data`:
 /// `N · ⌈b/64⌉²`, `b` the bits of the largest denominator of the data
 /// (radius, positions, velocities). Both fast engines scale the data to
@@ -112,13 +123,7 @@ pub const WORK_VAR: &str = "STICKY_MAX_WORK";
 /// in their length): 20,000 velocities with denominators of 4,000 digits
 /// cost at least ~10⁹ word operations.
 pub fn work_estimate(data: &InitialData<BigRational>) -> u64 {
-    let b = std::iter::once(data.radius())
-        .chain(data.positions())
-        .chain(data.velocities())
-        .map(|q| q.denom().bits())
-        .max()
-        .unwrap_or(0);
-    let words = b.div_ceil(64);
+    let words = largest_denominator_bits(data).div_ceil(64);
     (data.n() as u64).saturating_mul(words.saturating_mul(words))
 }
 
@@ -135,12 +140,7 @@ pub fn check_work(data: &InitialData<BigRational>) -> Result<(), Error> {
     if work <= cap {
         return Ok(());
     }
-    let b = std::iter::once(data.radius())
-        .chain(data.positions())
-        .chain(data.velocities())
-        .map(|q| q.denom().bits())
-        .max()
-        .unwrap_or(0);
+    let b = largest_denominator_bits(data);
     Err(Error::Unsupported {
         message: format!(
             "the exact answer needs at least ~{work:.3e} word operations (N = {} particles over a common denominator of at least {} digits, N·(its 64-bit words)²), more than the cap of {cap:.3e}: this would run for a very long time. Use data with smaller or fewer distinct denominators, or set the environment variable {WORK_VAR} to a larger number of operations to run it anyway",
