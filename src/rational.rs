@@ -7,7 +7,10 @@
 //! * a decimal: `"0.125"`, `"-2.5"`;
 //! * scientific form: `"1.5e-3"`, `"2E+4"` (exponent at most
 //!   [`MAX_EXPONENT`] in absolute value, so that a hostile file cannot ask for
-//!   a number with billions of digits).
+//!   a number with billions of digits);
+//! * at most [`max_digits`] digits in all ([`MAX_DIGITS`] = 100,000 unless
+//!   the environment variable `STICKY_MAX_DIGITS` says otherwise): a
+//!   2,000,000-digit position is refused with a message naming the cap.
 //!
 //! Output is `"p/q"` in lowest terms with the sign on `p`, or `"p"` when
 //! `q = 1`: the JSON contract of DESIGN.md §3.
@@ -33,6 +36,13 @@ pub enum NumberError {
     ZeroDenominator,
     /// A scientific exponent larger than [`MAX_EXPONENT`] in absolute value.
     ExponentTooLarge,
+    /// More digits than the cap ([`max_digits`]).
+    TooManyDigits {
+        /// The digits of the text.
+        digits: usize,
+        /// The cap.
+        cap: usize,
+    },
 }
 
 impl fmt::Display for NumberError {
@@ -47,11 +57,36 @@ impl fmt::Display for NumberError {
             NumberError::ExponentTooLarge => {
                 write!(f, "exponent larger than {MAX_EXPONENT} in absolute value")
             }
+            NumberError::TooManyDigits { digits, cap } => write!(
+                f,
+                "{digits} digits, more than the cap of {cap} digits per number (set the environment variable {DIGITS_VAR} to raise it)"
+            ),
         }
     }
 }
 
 impl std::error::Error for NumberError {}
+
+/// The default cap on the digits of one number ([`max_digits`]): text such
+/// as a position with 2,000,000 digits is refused up front with a message
+/// naming the cap, rather than stalling the exact arithmetic.
+pub const MAX_DIGITS: usize = 100_000;
+
+/// The environment variable that raises (or lowers) the digit cap.
+pub const DIGITS_VAR: &str = "STICKY_MAX_DIGITS";
+
+/// The cap on the digits of one number (numerator and denominator, or
+/// integer and fractional parts, together): `$STICKY_MAX_DIGITS` when it is
+/// set to a number, [`MAX_DIGITS`] otherwise. Read once per process.
+pub fn max_digits() -> usize {
+    static CAP: std::sync::OnceLock<usize> = std::sync::OnceLock::new();
+    *CAP.get_or_init(|| {
+        std::env::var(DIGITS_VAR)
+            .ok()
+            .and_then(|v| v.trim().parse().ok())
+            .unwrap_or(MAX_DIGITS)
+    })
+}
 
 fn is_digits(s: &str) -> bool {
     !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit())
@@ -79,6 +114,13 @@ pub fn parse_exact(text: &str) -> Result<BigRational, NumberError> {
         return Err(NumberError::Empty);
     }
     let (negative, body) = split_sign(s);
+    let cap = max_digits();
+    if body.len() > cap {
+        let digits = body.bytes().filter(u8::is_ascii_digit).count();
+        if digits > cap {
+            return Err(NumberError::TooManyDigits { digits, cap });
+        }
+    }
     let value = if let Some((num, den)) = body.split_once('/') {
         if !is_digits(num) || !is_digits(den) {
             return Err(NumberError::Malformed);

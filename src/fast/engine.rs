@@ -97,6 +97,61 @@ pub fn auto(_data: &InitialData<BigRational>) -> &'static dyn ExactEngine {
     &Kernel
 }
 
+/// The default cap of [`check_work`], in 64-bit word operations: `2^29`
+/// (at the rate of the `BigInt` arithmetic here, minutes of work).
+pub const MAX_WORK: u64 = 1 << 29;
+
+/// The environment variable that sets the cap of [`check_work`].
+pub const WORK_VAR: &str = "STICKY_MAX_WORK";
+
+/// The bits of the largest denominator of the data (radius, positions,
+/// velocities).
+fn largest_denominator_bits(data: &InitialData<BigRational>) -> u64 {
+    std::iter::once(data.radius())
+        .chain(data.positions())
+        .chain(data.velocities())
+        .map(|q| q.denom().bits())
+        .max()
+        .unwrap_or(0)
+}
+
+/// A lower bound on the word operations of the exact engines on `data`:
+/// `N · ⌈b/64⌉²`, `b` the bits of the largest denominator of the data
+/// (radius, positions, velocities). Both fast engines scale the data to
+/// common denominators (`df:translat-x`), which are at least that large, and
+/// reduce each answer to lowest terms (a gcd on numbers of that size, quadratic
+/// in their length): 20,000 velocities with denominators of 4,000 digits
+/// cost at least ~10⁹ word operations.
+pub fn work_estimate(data: &InitialData<BigRational>) -> u64 {
+    let words = largest_denominator_bits(data).div_ceil(64);
+    (data.n() as u64).saturating_mul(words.saturating_mul(words))
+}
+
+/// Refuses, up front, data whose exact answer needs more than the cap of
+/// word operations ([`work_estimate`] against `$STICKY_MAX_WORK`, default
+/// [`MAX_WORK`]) with a message that says why and what to do, instead of
+/// a run that does not end in any reasonable time.
+pub fn check_work(data: &InitialData<BigRational>) -> Result<(), Error> {
+    let cap = std::env::var(WORK_VAR)
+        .ok()
+        .and_then(|v| v.trim().parse::<u64>().ok())
+        .unwrap_or(MAX_WORK);
+    let work = work_estimate(data);
+    if work <= cap {
+        return Ok(());
+    }
+    let b = largest_denominator_bits(data);
+    Err(Error::Unsupported {
+        message: format!(
+            "the exact answer needs at least ~{work:.3e} word operations (N = {} particles over a common denominator of at least {} digits, N·(its 64-bit words)²), more than the cap of {cap:.3e}: this would run for a very long time. Use data with smaller or fewer distinct denominators, or set the environment variable {WORK_VAR} to a larger number of operations to run it anyway",
+            data.n(),
+            (b as f64 * std::f64::consts::LOG10_2).ceil() as u64,
+            work = work as f64,
+            cap = cap as f64,
+        ),
+    })
+}
+
 /// A prepared engine that answers from a closure of `t`.
 struct OneShot<F>(F);
 

@@ -331,7 +331,7 @@ pub(crate) fn pools<W: Word>(a: &Run<W>, b: &Run<W>) -> bool {
 /// order: adjacent blocks are pooled while the left mean is `≥` the right
 /// one, so the blocks returned have strictly increasing means.
 #[inline]
-fn pava_words<W: Word>(n: usize, mut item: impl FnMut(usize) -> (W, W)) -> Vec<Run<W>> {
+pub(crate) fn pava_words<W: Word>(n: usize, mut item: impl FnMut(usize) -> (W, W)) -> Vec<Run<W>> {
     let mut stack: Vec<Run<W>> = Vec::with_capacity(n);
     for i in 0..n {
         // The decision of [`projection::pools`] on loose variables:
@@ -358,7 +358,7 @@ fn pava_words<W: Word>(n: usize, mut item: impl FnMut(usize) -> (W, W)) -> Vec<R
 
 /// `bits(max(N, ⌊N²/4⌋))`: every block size `k ≤ N` and every product of
 /// two adjacent block sizes `k_a k_b ≤ N²/4` is below `2^b_K`.
-fn size_bits(n: usize) -> u64 {
+pub(crate) fn size_bits(n: usize) -> u64 {
     u64::from(128 - pair_bound(n).leading_zeros())
 }
 

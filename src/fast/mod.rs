@@ -11,6 +11,8 @@
 //! * `scaling` — the one scaling to common denominators both use;
 //! * `int` — the integer helpers they share (gcd and reduction, checked
 //!   products, narrowing to the smallest width, the block-size bound);
+//! * [`stream`] — the streaming path from a column file to the answer on
+//!   machine words, value by value, no `BigRational` per value;
 //! * [`engine`] — the one interface every exact engine implements (the
 //!   generic `BigRational` ones of the core included) and the one list of
 //!   them, [`engine::ENGINES`];
@@ -24,4 +26,5 @@ pub(crate) mod int;
 pub mod kernel;
 pub mod merge;
 pub(crate) mod scaling;
+pub mod stream;
 pub mod wide;

@@ -158,29 +158,55 @@ impl ExactDiv {
 
 /// Scales on machine words: `None` when an intermediate value overflows.
 pub(crate) fn scale_words(data: &InitialData<BigRational>) -> Option<Scaled> {
-    let (rn, rd) = small(&data.two_r())?;
-    let read = |v: &[BigRational], den: &mut Denominators| {
-        let mut out = Vec::with_capacity(v.len());
-        for q in v {
-            let (p, d) = small(q)?;
-            den.add(d)?;
-            out.push((p, d));
-        }
-        Some(out)
-    };
+    let read = |v: &[BigRational]| v.iter().map(small).collect::<Option<Vec<_>>>();
+    scale_pairs(
+        small(&data.two_r())?,
+        &read(data.positions())?,
+        &read(data.velocities())?,
+    )
+}
+
+/// A rational as a (numerator, positive denominator) pair of machine words.
+pub(crate) trait Pair: Copy {
+    /// The pair, widened.
+    fn wide(self) -> (i128, u128);
+}
+
+impl Pair for (i128, u128) {
+    #[inline]
+    fn wide(self) -> (i128, u128) {
+        self
+    }
+}
+
+impl Pair for (i64, u64) {
+    #[inline]
+    fn wide(self) -> (i128, u128) {
+        (i128::from(self.0), u128::from(self.1))
+    }
+}
+
+/// [`scale_words`] on the pairs `(p, d)` of `2r`, `x⁰` and `u⁰` (each
+/// `p/d` with `d > 0`, in any terms): the streaming readers of
+/// [`crate::fast::stream`] give their columns this way, with no `BigRational`.
+pub(crate) fn scale_pairs<P: Pair>(two_r: (i128, u128), xs: &[P], us: &[P]) -> Option<Scaled> {
+    let (rn, rd) = two_r;
     // D = lcm(denominators of x⁰, denominator of 2r).
     let mut den = Denominators::new();
     den.add(rd)?;
-    let raw = read(data.positions(), &mut den)?;
+    for q in xs {
+        den.add(q.wide().1)?;
+    }
     den.finish();
     // X'_i = x⁰_i D − i (2r) D, then divided by the gcd g of D and every X'_i:
     // D / g is the least common denominator of the x̃⁰_i.
     let step = rn.checked_mul(i128::try_from(den.factor(rd)).ok()?)?;
-    let mut x = Vec::with_capacity(raw.len());
+    let mut x = Vec::with_capacity(xs.len());
     let mut offset = 0i128;
     let mut g = den.lcm;
     let mut test = Divisibility::new(g);
-    for &(p, d) in &raw {
+    for q in xs {
+        let (p, d) = q.wide();
         let v = p
             .mul_small(i128::try_from(den.factor(d)).ok()?)?
             .checked_sub(offset)?;
@@ -191,7 +217,6 @@ pub(crate) fn scale_words(data: &InitialData<BigRational>) -> Option<Scaled> {
         }
         x.push(v);
     }
-    drop(raw);
     if g > 1 {
         let div = ExactDiv::new(g);
         for v in &mut x {
@@ -199,18 +224,36 @@ pub(crate) fn scale_words(data: &InitialData<BigRational>) -> Option<Scaled> {
         }
     }
     let dx = den.lcm / g;
+    // The same for u⁰, with the gcd step: pairs in any terms give the
+    // least common denominator too.
     let mut den = Denominators::new();
-    let raw = read(data.velocities(), &mut den)?;
+    for q in us {
+        den.add(q.wide().1)?;
+    }
     den.finish();
-    let mut u = Vec::with_capacity(raw.len());
-    for &(p, d) in &raw {
-        u.push(p.mul_small(i128::try_from(den.factor(d)).ok()?)?);
+    let mut u = Vec::with_capacity(us.len());
+    let mut g = den.lcm;
+    let mut test = Divisibility::new(g);
+    for q in us {
+        let (p, d) = q.wide();
+        let v = p.mul_small(i128::try_from(den.factor(d)).ok()?)?;
+        if g != 1 && !test.divides(v.unsigned_abs()) {
+            g = gcd(g, div_rem(v.unsigned_abs(), g).1);
+            test = Divisibility::new(g);
+        }
+        u.push(v);
+    }
+    if g > 1 {
+        let div = ExactDiv::new(g);
+        for v in &mut u {
+            *v = div.apply(*v);
+        }
     }
     Some(Scaled {
         x,
         u,
         dx: BigInt::from(dx),
-        du: BigInt::from(den.lcm),
+        du: BigInt::from(den.lcm / g),
     })
 }
 

@@ -54,6 +54,74 @@ pub fn state<S: Scalar>(s: &State<S>, radius: &S) -> String {
     )
 }
 
+/// [`state`] written straight from the streaming path's blocks
+/// ([`crate::fast::stream`]), value by value, with no string per value:
+/// the same bytes (the tests compare them), and a final newline.
+pub fn write_lean_state(
+    out: &mut impl std::io::Write,
+    b: &crate::fast::stream::LeanBlocks<'_>,
+    radius: &num_rational::BigRational,
+) -> std::io::Result<()> {
+    write!(
+        out,
+        "{{\"n\": {}, \"radius\": {}, \"t\": {}, \"positions\": [",
+        b.n(),
+        string(&radius.render()),
+        string(&b.t().render()),
+    )?;
+    fn item<W: std::io::Write>(
+        out: &mut W,
+        first: &mut bool,
+        v: &crate::fast::stream::Exact,
+    ) -> std::io::Result<()> {
+        out.write_all(if *first { b"\"" } else { b", \"" })?;
+        *first = false;
+        v.write(out)?;
+        out.write_all(b"\"")
+    }
+    let mut first = true;
+    b.positions(|v| item(out, &mut first, v))?;
+    out.write_all(b"], \"velocities\": [")?;
+    first = true;
+    b.velocities(|v| item(out, &mut first, v))?;
+    out.write_all(b"], \"multipliers\": [")?;
+    first = true;
+    b.multipliers(|v| item(out, &mut first, v))?;
+    writeln!(out, "], \"clusters\": {}}}", cluster_array(&b.clusters()))
+}
+
+/// [`events`] written straight from the streaming path's history
+/// ([`crate::fast::merge::WordHistory`]), event by event: the same bytes,
+/// and a final newline.
+pub fn write_word_events(
+    out: &mut impl std::io::Write,
+    h: &crate::fast::merge::WordHistory,
+) -> std::io::Result<()> {
+    out.write_all(b"{\"events\": [")?;
+    let mut first_event = true;
+    h.for_each_event(|t, first, size, parts| {
+        out.write_all(if first_event {
+            b"{\"t\": \""
+        } else {
+            b", {\"t\": \""
+        })?;
+        first_event = false;
+        t.write(out)?;
+        write!(
+            out,
+            "\", \"first\": {first}, \"size\": {size}, \"parts\": ["
+        )?;
+        for (k, p) in parts.iter().enumerate() {
+            if k > 0 {
+                out.write_all(b", ")?;
+            }
+            write!(out, "{p}")?;
+        }
+        out.write_all(b"]}")
+    })?;
+    out.write_all(b"]}\n")
+}
+
 /// The collision history as `{"events": [...]}` (one line).
 pub fn events<S: Scalar>(impulses: &[Impulse<S>]) -> String {
     let items: Vec<String> = impulses

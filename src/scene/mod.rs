@@ -278,6 +278,77 @@ pub fn load(path: &Path) -> Result<Scene, Error> {
     parse_in(&text, path.parent())
 }
 
+/// A `[particles]` scene whose columns live in a file (`data = "…"`), read
+/// up to the columns: what the streaming path of [`crate::fast::stream`]
+/// needs before it reads the file itself.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ColumnScene {
+    /// The `radius` field, if given (else `1/(2N)`, as for [`parse`]).
+    pub radius: Option<BigRational>,
+    /// The column file, relative to the current folder.
+    pub data: std::path::PathBuf,
+    /// The bits [`MAX_NUMBER_BITS`] is charged for before the columns
+    /// (`t_end` and `radius`).
+    pub charged_bits: u64,
+}
+
+/// The scene at `path` as a [`ColumnScene`], when it is a valid
+/// `[particles]` scene with a `data` file of a known kind and nothing in it
+/// before the columns is wrong; `None` otherwise (then [`load`] is the path
+/// that reads it, or says what is wrong, with the message of record).
+pub fn column_scene(path: &Path) -> Option<ColumnScene> {
+    let meta = std::fs::metadata(path).ok()?;
+    if !meta.is_file() || meta.len() > MAX_SCENE_BYTES {
+        return None;
+    }
+    let text = std::fs::read_to_string(path).ok()?;
+    let table: Table = text.parse::<Table>().ok()?;
+    check_keys(
+        &table,
+        "",
+        &["name", "description", "t_end", "particles", "macro"],
+    )
+    .ok()?;
+    if table.contains_key("macro") {
+        return None;
+    }
+    let budget = Budget::new();
+    optional_string(&table, "name").ok()?;
+    optional_string(&table, "description").ok()?;
+    let mut charged_bits = 0;
+    if let Some(v) = table.get("t_end") {
+        let t = exact(v, "t_end", &budget).ok()?;
+        if t.is_negative() {
+            return None;
+        }
+        charged_bits += values::bits(&t) + 64;
+    }
+    let particles = values::as_table(table.get("particles")?, "particles").ok()?;
+    check_keys(particles, "particles", &["radius", "data"]).ok()?;
+    let toml::Value::String(file) = particles.get("data")? else {
+        return None;
+    };
+    let radius = match particles.get("radius") {
+        Some(r) => {
+            let r = exact(r, "particles.radius", &budget).ok()?;
+            charged_bits += values::bits(&r) + 64;
+            Some(r)
+        }
+        None => None,
+    };
+    let data = path.parent()?.join(file);
+    let meta = std::fs::metadata(&data).ok()?;
+    let known = matches!(
+        data.extension().and_then(|e| e.to_str()),
+        Some("csv" | "npy")
+    );
+    (known && meta.len() <= MAX_DATA_BYTES).then_some(ColumnScene {
+        radius,
+        data,
+        charged_bits,
+    })
+}
+
 /// The embedded [`DEFAULT_SCENE`], parsed.
 pub fn default_scene() -> Result<Scene, Error> {
     parse(DEFAULT_SCENE)

@@ -20,7 +20,16 @@ pub struct Args {
 
 /// Runs `sticky events`.
 pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
+    if args.json {
+        // The streaming path (`fast::stream`): the same bytes, or the
+        // general way below.
+        if let Some(h) = sticky::fast::stream::Lean::load(&args.scene).and_then(|l| l.history()) {
+            return json::write_word_events(out, &h).map_err(io_err);
+        }
+    }
     let scene = load(&args.scene)?;
+    sticky::fast::engine::check_work(&scene.data)
+        .map_err(|e| Failure(format!("{}: {e}", args.scene.display())))?;
     let traj = sticky::fast::merge::trajectory(&scene.data);
     if args.json {
         writeln!(out, "{}", json::events(traj.impulses())).map_err(io_err)?;

@@ -24,9 +24,22 @@ pub struct Args {
     /// A time t ≥ 0, exact: "3/2", "0.125", "1e-3" (repeat for several).
     #[arg(long = "at", required = true, allow_hyphen_values = true, value_parser = parse_time)]
     at: Vec<BigRational>,
-    /// One JSON object per time (the interop contract: README, "JSON output").
+    /// One JSON object per time (the interop contract: README, "JSON output");
+    /// the same as `--format json`.
     #[arg(long)]
     json: bool,
+    /// Output for big scenes: `json` (the contract), `csv` (header
+    /// `t,i,position,velocity,multiplier`, one row per particle and time, `i`
+    /// 0-based, exact strings, `multiplier` = λ of the pair (i, i+1), empty
+    /// for the last particle), or `npy` (an `(T, N, 3)` `<f8` array of
+    /// position, velocity, multiplier (0 for the last particle) — ROUNDED to
+    /// the nearest double, so it needs `--lossy`). Default: a table.
+    #[arg(long, value_enum)]
+    format: Option<Format>,
+    /// Accept the rounding of `--format npy` (the exact answer rounded to
+    /// the nearest doubles).
+    #[arg(long)]
+    lossy: bool,
     /// Which exact engine answers (every one gives the same exact state):
     /// `auto` picks the cheapest for the data (the integer kernel's one-shot
     /// projection, O(N) per time); `projection` and `events` name the
@@ -38,6 +51,17 @@ pub struct Args {
     /// block by block, whose cost does not grow with N.
     #[arg(long, value_enum, default_value_t = Model::Particles)]
     model: Model,
+}
+
+/// The output formats of `--format`.
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum Format {
+    /// One JSON object per time (the contract).
+    Json,
+    /// Exact strings, one row per particle and time.
+    Csv,
+    /// `(T, N, 3)` doubles, rounded (needs `--lossy`).
+    Npy,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -61,8 +85,61 @@ fn engine_names() -> PossibleValuesParser {
 }
 
 /// Runs `sticky run`.
-pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
+pub fn exec(mut args: Args, out: &mut impl Write) -> Result<(), Failure> {
+    match (args.json, args.format) {
+        (true, Some(f)) if f != Format::Json => {
+            return Err(Failure(
+                "--json and --format csv|npy ask for two outputs: give one".into(),
+            ))
+        }
+        (true, _) => args.format = Some(Format::Json),
+        (false, Some(Format::Json)) => args.json = true,
+        _ => {}
+    }
+    if args.format == Some(Format::Npy) && !args.lossy {
+        return Err(Failure(
+            "--format npy rounds the exact answer to doubles: add --lossy to accept that (--format csv keeps every value exact)".into(),
+        ));
+    }
+    if args.lossy && args.format != Some(Format::Npy) {
+        return Err(Failure("--lossy only goes with --format npy".into()));
+    }
+    if matches!(args.format, Some(Format::Csv | Format::Npy)) {
+        if args.model != Model::Particles {
+            return Err(Failure(
+                "--format csv|npy writes particles: it does not go with --model continuum".into(),
+            ));
+        }
+        return columns(out, &args);
+    }
+    if args.json && args.engine == "auto" && args.model == Model::Particles {
+        // The streaming path for a column file on machine words
+        // (`fast::stream`): the same bytes; anything it does not cover
+        // (another scene, a value off words, a time beyond its bound)
+        // goes the general way below.
+        if let Some(lean) = sticky::fast::stream::Lean::load(&args.scene) {
+            let mut general = None;
+            for t in &args.at {
+                match lean.blocks_at(t) {
+                    Some(b) => json::write_lean_state(out, &b, lean.radius()).map_err(io_err)?,
+                    None => {
+                        if general.is_none() {
+                            general = Some(load(&args.scene)?);
+                        }
+                        if let Some(scene) = &general {
+                            run(out, scene, std::slice::from_ref(t), true, "auto")?;
+                        }
+                    }
+                }
+            }
+            return Ok(());
+        }
+    }
     let scene = load(&args.scene)?;
+    if args.model == Model::Particles {
+        sticky::fast::engine::check_work(&scene.data)
+            .map_err(|e| Failure(format!("{}: {e}", args.scene.display())))?;
+    }
     match args.model {
         Model::Particles => run(out, &scene, &args.at, args.json, &args.engine),
         Model::Continuum => run_continuum(out, &scene, &args.scene, &args.at, args.json),
@@ -88,6 +165,131 @@ fn run(
             writeln!(out, "{}", json::state(&state, data.radius())).map_err(io_err)?;
         } else {
             write_state_table(out, &state, data.radius()).map_err(io_err)?;
+        }
+    }
+    Ok(())
+}
+
+/// One value of a row: writes its exact text (CSV) and returns its nearest
+/// double (NPY).
+type Cell<'a> = &'a dyn Fn(&mut dyn Write) -> io::Result<f64>;
+
+/// `--format csv|npy`: every particle at every time, row by row, from the
+/// streaming path when it applies, else from the general state.
+fn columns(out: &mut impl Write, args: &Args) -> Result<(), Failure> {
+    let npy = args.format == Some(Format::Npy);
+    let lean = if args.engine == "auto" {
+        sticky::fast::stream::Lean::load(&args.scene)
+    } else {
+        None
+    };
+    let mut general: Option<(Scene, Box<dyn engine::Prepared>)> = None;
+    let mut header = false;
+    let t_count = args.at.len();
+    for t in &args.at {
+        let t_text = t.render();
+        let mut row = |out: &mut dyn Write,
+                       n: usize,
+                       i: usize,
+                       x: Cell<'_>,
+                       u: Cell<'_>,
+                       l: Option<Cell<'_>>|
+         -> io::Result<()> {
+            if !header {
+                header = true;
+                if npy {
+                    out.write_all(&sticky::columns::npy_header(&[t_count, n, 3]))?;
+                } else {
+                    out.write_all(b"t,i,position,velocity,multiplier\n")?;
+                }
+            }
+            if npy {
+                let mut sink = io::sink();
+                for v in [
+                    x(&mut sink)?,
+                    u(&mut sink)?,
+                    l.map_or(Ok(0.0), |l| l(&mut sink))?,
+                ] {
+                    out.write_all(&v.to_le_bytes())?;
+                }
+                return Ok(());
+            }
+            write!(out, "{t_text},{i},")?;
+            x(out)?;
+            out.write_all(b",")?;
+            u(out)?;
+            out.write_all(b",")?;
+            if let Some(l) = l {
+                l(out)?;
+            }
+            out.write_all(b"\n")
+        };
+        if let Some(b) = lean.as_ref().and_then(|l| l.blocks_at(t)) {
+            let n = b.n();
+            let value = |v: &sticky::fast::stream::Exact| {
+                let v = v.clone();
+                move |w: &mut dyn Write| -> io::Result<f64> {
+                    if !npy {
+                        v.write(w)?;
+                    }
+                    Ok(if npy { v.to_f64_lossy() } else { 0.0 })
+                }
+            };
+            b.rows(|i, x, u, l| {
+                let (x, u) = (value(x), value(u));
+                let l = l.map(value);
+                row(
+                    out,
+                    n,
+                    i,
+                    &x,
+                    &u,
+                    l.as_ref()
+                        .map(|l| l as &dyn Fn(&mut dyn Write) -> io::Result<f64>),
+                )
+            })
+            .map_err(io_err)?;
+            continue;
+        }
+        if general.is_none() {
+            let scene = load(&args.scene)?;
+            sticky::fast::engine::check_work(&scene.data)
+                .map_err(|e| Failure(format!("{}: {e}", args.scene.display())))?;
+            let e = match args.engine.as_str() {
+                "auto" => engine::auto(&scene.data),
+                name => engine::by_name(name)
+                    .ok_or_else(|| Failure(format!("unknown engine {name:?}")))?,
+            };
+            let prepared = e.prepare(&scene.data);
+            general = Some((scene, prepared));
+        }
+        let Some((_, prepared)) = &general else {
+            continue;
+        };
+        let state = prepared.state_at(t).map_err(|e| Failure(e.to_string()))?;
+        let n = state.positions.len();
+        let value = |v: &BigRational| {
+            let v = v.clone();
+            move |w: &mut dyn Write| -> io::Result<f64> {
+                if !npy {
+                    w.write_all(v.render().as_bytes())?;
+                }
+                Ok(if npy { v.to_f64_lossy() } else { 0.0 })
+            }
+        };
+        for i in 0..n {
+            let (x, u) = (value(&state.positions[i]), value(&state.velocities[i]));
+            let l = state.multipliers.get(i).map(value);
+            row(
+                out,
+                n,
+                i,
+                &x,
+                &u,
+                l.as_ref()
+                    .map(|l| l as &dyn Fn(&mut dyn Write) -> io::Result<f64>),
+            )
+            .map_err(io_err)?;
         }
     }
     Ok(())

@@ -236,6 +236,81 @@ pub fn trajectory(data: &InitialData<BigRational>) -> Trajectory<BigRational> {
     IntegerTrajectory::new(data).into_trajectory()
 }
 
+/// The collision history of the streaming path's `i64` columns
+/// ([`crate::fast::stream::Lean`]), kept as the integer engine left it: the
+/// events are read one by one ([`WordHistory::for_each_event`]) with no
+/// `BigRational` per event.
+#[derive(Debug, Clone)]
+pub struct WordHistory {
+    hist: History,
+    dx: i128,
+    du: i128,
+}
+
+/// The history of `x̃⁰_i = x[i] / dx`, `u⁰_i = u[i] / du` on the integer
+/// engine; `None` when its bound does not hold (then the general path).
+pub(crate) fn history_words(x: &[i64], u: &[i64], dx: i128, du: i128) -> Option<WordHistory> {
+    let n = x.len();
+    let m = x
+        .iter()
+        .chain(u)
+        .map(|v| u128::from(v.unsigned_abs()))
+        .max()
+        .unwrap_or(0);
+    let bound = crate::fast::int::pair_bound(n).checked_mul(m)?;
+    if n >= MAX_N || bound >= 1u128 << 126 {
+        return None;
+    }
+    let narrow_sums = (n as u128).checked_mul(m).is_some_and(|b| b < 1u128 << 63);
+    let hist = if narrow_sums {
+        run::<i64, i64>(x, u)
+    } else {
+        run::<i64, i128>(x, u)
+    };
+    Some(WordHistory { hist, dx, du })
+}
+
+impl WordHistory {
+    /// Calls `f(t, first, size, parts)` on every cluster formed, in the
+    /// order of [`Trajectory::impulses`] (time, then `first`): `t` in lowest
+    /// terms, `parts` the sizes of the clusters that merged, left to right.
+    pub fn for_each_event(
+        &self,
+        mut f: impl FnMut(&crate::fast::stream::Exact, usize, usize, &[u32]) -> std::io::Result<()>,
+    ) -> std::io::Result<()> {
+        use crate::fast::stream::Exact;
+        let times: Vec<Exact> = self
+            .hist
+            .instants
+            .iter()
+            .map(|&(gap, closing)| {
+                // t = gap D_u / (closing D_x).
+                match (gap.checked_mul(self.du), closing.checked_mul(self.dx)) {
+                    (Some(a), Some(b)) => Exact::ratio(a, b),
+                    _ => Exact::Big(BigRational::new(
+                        BigInt::from(gap) * BigInt::from(self.du),
+                        BigInt::from(closing) * BigInt::from(self.dx),
+                    )),
+                }
+            })
+            .collect();
+        let mut sizes = Vec::new();
+        for (k, &(instant, off)) in self.hist.impulses.iter().enumerate() {
+            let stop = self
+                .hist
+                .impulses
+                .get(k + 1)
+                .map_or(self.hist.parts.len(), |&(_, o)| o as usize);
+            let bounds = &self.hist.parts[off as usize..stop];
+            sizes.clear();
+            sizes.extend(bounds.windows(2).map(|w| w[1] - w[0]));
+            let (first, end) = (bounds[0] as usize, bounds[bounds.len() - 1] as usize);
+            f(&times[instant as usize], first, end - first, &sizes)?;
+        }
+        Ok(())
+    }
+}
+
 impl IntegerHistory {
     fn convert(self) -> Trajectory<BigRational> {
         let IntegerHistory {

@@ -1,0 +1,440 @@
+//! The streaming path from a column file to the answer: bytes to the
+//! integer kernel's representation to output, with no `BigRational` per
+//! value where the data allow (issue 13, part 2).
+//!
+//! For a `[particles]` scene whose columns live in a CSV or NPY file
+//! ([`crate::columns`]), [`Lean::load`] reads every value straight into a
+//! pair of machine words ([`crate::columns::parse_small`],
+//! [`crate::columns::f64_small`]), scales the columns to common
+//! denominators on words (`df:translat-x`, the same scaling as the kernel,
+//! `fast::scaling`), validates them on the scaled integers
+//! (`df:KN`: `X̃_{i+1} ≥ X̃_i`; `def:velcone`: `U_{i+1} ≥ U_i` across a
+//! contact) and keeps them as `i64` columns: 16 bytes per particle.
+//! [`Lean::blocks_at`] runs the kernel's PAVA on `i128` sums
+//! ([`crate::fast::kernel`], `prop:proj-micro`), and [`LeanBlocks`] gives
+//! each value of the state in lowest terms straight from the block sums:
+//! one reduction per block for the block means (`eq:proj-u-micro`), one
+//! machine-word gcd per particle for a position (`x_i = x̃ + 2r·i`) and a
+//! multiplier (`eq:dyn-micro`).
+//!
+//! **Same results.** Everything here answers `None` the moment the data
+//! leave its range (a value not on words, an overflow, an invalid scene, a
+//! width the `i128` bound does not prove): the caller then takes the general
+//! path ([`crate::scene::load`], [`crate::fast::kernel::state_at`]), which
+//! gives the same answer or the error of record. A single value whose
+//! reduction overflows words is reduced on `BigInt` ([`Exact::Big`]). The
+//! tests compare both paths byte for byte.
+
+use std::io::{self, Write};
+use std::path::Path;
+
+use num_bigint::BigInt;
+use num_rational::BigRational;
+use num_traits::{Signed, ToPrimitive, Zero};
+
+use crate::cluster::{runs, Cluster};
+use crate::columns::{read_csv_small, read_npy_small, Small};
+use crate::fast::int::gcd;
+use crate::fast::kernel::{pava_words, size_bits, Run};
+use crate::fast::scaling::scale_pairs;
+use crate::scene::{column_scene, MAX_NUMBER_BITS};
+
+/// Bits of `|v|` (0 for 0).
+fn bits_u(v: u128) -> u64 {
+    u64::from(128 - v.leading_zeros())
+}
+
+/// A `[particles]` scene with a column file, on `i64` columns over common
+/// denominators: `x̃⁰_i = x[i] / dx`, `u⁰_i = u[i] / du` (`df:translat-x`).
+#[derive(Debug, Clone)]
+pub struct Lean {
+    radius: BigRational,
+    two_r: (i128, i128),
+    x: Vec<i64>,
+    u: Vec<i64>,
+    x_bits: u64,
+    u_bits: u64,
+    dx: i128,
+    du: i128,
+}
+
+/// One exact value, in lowest terms: on words, or a `BigRational` when its
+/// reduction did not fit them.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Exact {
+    /// `num / den`, `den > 0`, in lowest terms.
+    Small(i128, i128),
+    /// Any rational.
+    Big(BigRational),
+}
+
+impl Exact {
+    /// `num / den` (`den > 0`) in lowest terms.
+    pub(crate) fn ratio(num: i128, den: i128) -> Exact {
+        let g = gcd(num.unsigned_abs(), den.unsigned_abs());
+        if g <= 1 {
+            return if num == 0 {
+                Exact::Small(0, 1)
+            } else {
+                Exact::Small(num, den)
+            };
+        }
+        let g = g as i128;
+        Exact::Small(num / g, den / g)
+    }
+    /// `num / den` on `BigInt`.
+    fn big(num: BigInt, den: BigInt) -> Exact {
+        Exact::Big(BigRational::new(num, den))
+    }
+    /// Writes the value as the contract does: `p/q`, or `p` when `q = 1`
+    /// ([`crate::rational::render_exact`]).
+    pub fn write<W: Write + ?Sized>(&self, out: &mut W) -> io::Result<()> {
+        match self {
+            Exact::Small(n, 1) => write!(out, "{n}"),
+            Exact::Small(n, d) => write!(out, "{n}/{d}"),
+            Exact::Big(q) => write!(out, "{}", crate::rational::render_exact(q)),
+        }
+    }
+    /// The nearest double (ties to even; `±∞` beyond the range): one
+    /// correctly rounded division when both terms are exact doubles,
+    /// `BigRational`'s conversion otherwise.
+    pub fn to_f64_lossy(&self) -> f64 {
+        const EXACT: i128 = 1 << 53;
+        match self {
+            Exact::Small(n, d) if n.abs() <= EXACT && *d <= EXACT => *n as f64 / *d as f64,
+            _ => {
+                let (n, d) = self.numer_denom();
+                crate::scalar::Scalar::to_f64_lossy(&BigRational::new(n, d))
+            }
+        }
+    }
+    fn numer_denom(&self) -> (BigInt, BigInt) {
+        match self {
+            Exact::Small(n, d) => (BigInt::from(*n), BigInt::from(*d)),
+            Exact::Big(q) => (q.numer().clone(), q.denom().clone()),
+        }
+    }
+}
+
+impl Lean {
+    /// Reads the scene at `path` on the streaming path; `None` when it is
+    /// not a `[particles]` scene with a column file whose values fit words
+    /// and whose data are valid (the module documentation: the general path
+    /// then reads it).
+    pub fn load(path: &Path) -> Option<Lean> {
+        let scene = column_scene(path)?;
+        let (xs, us) = {
+            let bytes = std::fs::read(&scene.data).ok()?;
+            match scene.data.extension().and_then(|e| e.to_str()) {
+                Some("csv") => read_csv_small(&bytes)?,
+                Some("npy") => read_npy_small(&bytes)?,
+                _ => return None,
+            }
+        };
+        let n = xs.len();
+        if n == 0 || us.len() != n {
+            return None;
+        }
+        // The general path's budget on the size of the numbers
+        // (`scene::MAX_NUMBER_BITS`, 64 bits of header per number).
+        let cost = |&(p, d): &Small| bits_u(u128::from(p.unsigned_abs())) + bits_u(d.into()) + 64;
+        let total: u64 = xs.iter().chain(&us).map(cost).sum::<u64>() + scene.charged_bits;
+        if total > MAX_NUMBER_BITS {
+            return None;
+        }
+        let radius = scene
+            .radius
+            .unwrap_or_else(|| BigRational::new(1.into(), BigInt::from(2 * n)));
+        if !radius.is_positive() {
+            return None;
+        }
+        let two_r = &radius + &radius;
+        let two_r = (two_r.numer().to_i128()?, two_r.denom().to_i128()?);
+        let s = scale_pairs((two_r.0, u128::try_from(two_r.1).ok()?), &xs, &us)?;
+        drop((xs, us));
+        // `df:KN` and `def:velcone` on the scaled data, the checks of
+        // `InitialData::new` (the general path names the first failure).
+        for i in 1..n {
+            if s.x[i] < s.x[i - 1] || (s.x[i] == s.x[i - 1] && s.u[i] < s.u[i - 1]) {
+                return None;
+            }
+        }
+        let narrow = |v: &[i128]| v.iter().map(|&a| i64::try_from(a).ok()).collect();
+        let (x, u): (Option<Vec<i64>>, Option<Vec<i64>>) = (narrow(&s.x), narrow(&s.u));
+        let max_bits = |v: &[i64]| {
+            v.iter()
+                .map(|a| bits_u(u128::from(a.unsigned_abs())))
+                .max()
+                .unwrap_or(0)
+        };
+        let (x, u) = (x?, u?);
+        Some(Lean {
+            radius,
+            two_r,
+            x_bits: max_bits(&x),
+            u_bits: max_bits(&u),
+            x,
+            u,
+            dx: s.dx.to_i128()?,
+            du: s.du.to_i128()?,
+        })
+    }
+
+    /// N.
+    pub fn n(&self) -> usize {
+        self.x.len()
+    }
+
+    /// The whole collision history on the integer event merge
+    /// ([`crate::fast::merge`]); `None` when its bound does not hold.
+    pub fn history(&self) -> Option<crate::fast::merge::WordHistory> {
+        crate::fast::merge::history_words(&self.x, &self.u, self.dx, self.du)
+    }
+
+    /// The radius r.
+    pub fn radius(&self) -> &BigRational {
+        &self.radius
+    }
+
+    /// The exact PAVA blocks at `t ≥ 0` on `i128` sums ([`crate::fast::kernel`]),
+    /// `None` when `t < 0` or the `i128` bound of the kernel does not hold at
+    /// `t` (then the general path answers).
+    pub fn blocks_at(&self, t: &BigRational) -> Option<LeanBlocks<'_>> {
+        if t.is_negative() {
+            return None;
+        }
+        let (p, q) = (t.numer().to_i64()?, t.denom().to_i64()?);
+        // Y_i = a X_i + b U_i, a = q D_u, b = p D_x, over D_y = q D_x D_u.
+        let a = i64::try_from(i128::from(q).checked_mul(self.du)?).ok()?;
+        let b = i64::try_from(i128::from(p).checked_mul(self.dx)?).ok()?;
+        let b_k = size_bits(self.n());
+        let b_y = (bits_u(u128::from(a.unsigned_abs())) + self.x_bits)
+            .max(bits_u(u128::from(b.unsigned_abs())) + self.u_bits)
+            + 1;
+        if b_y + b_k >= 128 || self.u_bits + b_k >= 128 {
+            return None;
+        }
+        let (a, b) = (i128::from(a), i128::from(b));
+        let (xs, us) = (&self.x, &self.u);
+        // |a|, |X_i|, |b|, |U_i| < 2^63 and the sums below 2^(b_Y + b_K)
+        // (the kernel's proof): the wrapping operations are exact.
+        let runs = pava_words(self.n(), |i| {
+            let (x, u) = (i128::from(xs[i]), i128::from(us[i]));
+            (a.wrapping_mul(x).wrapping_add(b.wrapping_mul(u)), u)
+        });
+        Some(LeanBlocks {
+            d: self,
+            runs,
+            t: t.clone(),
+            dy: (i128::from(q).checked_mul(self.dx)).and_then(|v| v.checked_mul(self.du)),
+        })
+    }
+}
+
+/// The PAVA blocks of a [`Lean`] scene at one time, and the state they give,
+/// value by value.
+#[derive(Debug)]
+pub struct LeanBlocks<'a> {
+    d: &'a Lean,
+    runs: Vec<Run<i128>>,
+    t: BigRational,
+    dy: Option<i128>,
+}
+
+impl LeanBlocks<'_> {
+    /// The time.
+    pub fn t(&self) -> &BigRational {
+        &self.t
+    }
+
+    /// N.
+    pub fn n(&self) -> usize {
+        self.d.n()
+    }
+
+    /// `s / (k d)` in lowest terms, for a block sum `s` over `k` entries and
+    /// a denominator `d` (on words when `k d` fits).
+    fn mean(&self, s: i128, k: u64, d: Option<i128>, d_big: impl Fn() -> BigInt) -> Exact {
+        match d.and_then(|d| d.checked_mul(i128::from(k))) {
+            Some(den) => Exact::ratio(s, den),
+            None => Exact::big(BigInt::from(s), d_big() * BigInt::from(k)),
+        }
+    }
+
+    fn mean_y(&self, r: &Run<i128>) -> Exact {
+        let (q, dx, du) = (self.t.denom(), self.d.dx, self.d.du);
+        self.mean(r.sy, r.k, self.dy, || {
+            q * BigInt::from(dx) * BigInt::from(du)
+        })
+    }
+
+    fn mean_u(&self, r: &Run<i128>) -> Exact {
+        let du = self.d.du;
+        self.mean(r.su, r.k, Some(du), || BigInt::from(du))
+    }
+
+    /// Calls `f` on every position `x_i(t)` in order: the block's `x̃` plus
+    /// `2r·i`, one fraction in lowest terms.
+    pub fn positions(&self, f: impl FnMut(&Exact) -> io::Result<()>) -> io::Result<()> {
+        self.positions_from(0, f)
+    }
+
+    fn positions_from(
+        &self,
+        mut i: usize,
+        mut f: impl FnMut(&Exact) -> io::Result<()>,
+    ) -> io::Result<()> {
+        let (rn, rd) = self.d.two_r;
+        for r in &self.runs {
+            let y = self.mean_y(r);
+            for _ in 0..r.k {
+                let small = match &y {
+                    Exact::Small(yn, yd) => (|| {
+                        let num = yn.checked_mul(rd)?.checked_add(
+                            rn.checked_mul(*yd)?.checked_mul(i128::try_from(i).ok()?)?,
+                        )?;
+                        Some(Exact::ratio(num, yd.checked_mul(rd)?))
+                    })(),
+                    Exact::Big(_) => None,
+                };
+                let v = small.unwrap_or_else(|| {
+                    let (yn, yd) = y.numer_denom();
+                    let (rn, rd) = (BigInt::from(rn), BigInt::from(rd));
+                    Exact::big(&yn * &rd + rn * &yd * BigInt::from(i), yd * rd)
+                });
+                f(&v)?;
+                i += 1;
+            }
+        }
+        Ok(())
+    }
+
+    /// Calls `f` on every velocity `u_i(t)` in order (the right derivative,
+    /// `eq:proj-u-micro`): one value per block, given `k` times.
+    pub fn velocities(&self, mut f: impl FnMut(&Exact) -> io::Result<()>) -> io::Result<()> {
+        for r in &self.runs {
+            let v = self.mean_u(r);
+            for _ in 0..r.k {
+                f(&v)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Calls `f` on every multiplier `λ_1 … λ_{N−1}` of `eq:dyn-micro` in
+    /// order: on a block of `k` particles with `S = ΣU`, the `m`-th is
+    /// `(k Σ_{j ≤ m} U_j − m S) / (k D_u N)`
+    /// ([`crate::contact::cluster_multiplier_numerators`]).
+    pub fn multipliers(&self, f: impl FnMut(&Exact) -> io::Result<()>) -> io::Result<()> {
+        self.multipliers_from(0, self.n(), f)
+    }
+
+    fn multipliers_from(
+        &self,
+        mut first: usize,
+        n: usize,
+        mut f: impl FnMut(&Exact) -> io::Result<()>,
+    ) -> io::Result<()> {
+        let big_n = i128::try_from(n).unwrap_or(i128::MAX);
+        for r in &self.runs {
+            let k = i128::from(r.k);
+            let den = k.checked_mul(self.d.du).and_then(|v| v.checked_mul(big_n));
+            let mut prefix = 0i128;
+            for m in 1..=r.k as usize {
+                let i = first + m - 1;
+                if i + 1 >= n {
+                    break;
+                }
+                // |prefix| ≤ k 2^u_bits < 2^127 (the kernel's bound).
+                prefix = prefix.wrapping_add(i128::from(self.d.u[i]));
+                let num = k
+                    .checked_mul(prefix)
+                    .and_then(|a| a.checked_sub(i128::try_from(m).ok()?.checked_mul(r.su)?));
+                let v = match (num, den) {
+                    (Some(0), _) => Exact::Small(0, 1),
+                    (Some(num), Some(den)) => Exact::ratio(num, den),
+                    _ => {
+                        let num = BigInt::from(k) * BigInt::from(prefix)
+                            - BigInt::from(m) * BigInt::from(r.su);
+                        if num.is_zero() {
+                            Exact::Small(0, 1)
+                        } else {
+                            Exact::big(
+                                num,
+                                BigInt::from(k) * BigInt::from(self.d.du) * BigInt::from(n),
+                            )
+                        }
+                    }
+                };
+                f(&v)?;
+            }
+            first += r.k as usize;
+        }
+        Ok(())
+    }
+
+    /// Calls `f(i, x_i, u_i, λ_{i+1})` on every particle in order (0-based
+    /// `i`; `λ` of the pair `(i, i+1)`, `None` for the last particle): the
+    /// values of [`Self::positions`], [`Self::velocities`] and
+    /// [`Self::multipliers`], row by row.
+    pub fn rows(
+        &self,
+        mut f: impl FnMut(usize, &Exact, &Exact, Option<&Exact>) -> io::Result<()>,
+    ) -> io::Result<()> {
+        // The three visitors in step, one block at a time.
+        let n = self.n();
+        let mut i = 0usize;
+        for r in &self.runs {
+            let one = LeanBlocks {
+                d: self.d,
+                runs: vec![r.clone()],
+                t: self.t.clone(),
+                dy: self.dy,
+            };
+            let (mut xs, mut us, mut ls) = (Vec::new(), Vec::new(), Vec::new());
+            let k = r.k as usize;
+            one.positions_from(i, |v| {
+                xs.push(v.clone());
+                Ok(())
+            })?;
+            one.velocities(|v| {
+                us.push(v.clone());
+                Ok(())
+            })?;
+            one.multipliers_from(i, n, |v| {
+                ls.push(v.clone());
+                Ok(())
+            })?;
+            for m in 0..k {
+                f(i + m, &xs[m], &us[m], ls.get(m))?;
+            }
+            i += k;
+        }
+        Ok(())
+    }
+
+    /// The contact clusters of `x(t)` (`df:Omega-micro`): runs of blocks
+    /// with equal `x̃` (cross-multiplied sums, exact by the kernel's bound).
+    pub fn clusters(&self) -> Vec<Cluster> {
+        let blocks = runs(self.runs.len(), |j| {
+            let (a, b) = (&self.runs[j], &self.runs[j + 1]);
+            a.sy.wrapping_mul(i128::from(b.k)) == b.sy.wrapping_mul(i128::from(a.k))
+        });
+        let mut first = 0usize;
+        blocks
+            .into_iter()
+            .map(|c| {
+                let size: u64 = self.runs[c.first..c.first + c.size]
+                    .iter()
+                    .map(|r| r.k)
+                    .sum();
+                let start = first;
+                first += size as usize;
+                Cluster {
+                    first: start,
+                    size: size as usize,
+                }
+            })
+            .collect()
+    }
+}
