@@ -24,6 +24,7 @@ use crate::trajectory::Trajectory;
 pub mod discrete;
 pub mod fuzz;
 pub mod ledger;
+pub mod macro_data;
 pub mod micro;
 pub mod registry;
 pub mod sampling;
