@@ -21,6 +21,7 @@ use crate::initial::InitialData;
 use crate::scalar::Scalar;
 use crate::trajectory::Trajectory;
 
+pub mod continuum;
 pub mod discrete;
 pub mod fuzz;
 pub mod ledger;

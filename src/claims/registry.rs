@@ -4,7 +4,7 @@
 //! them. A `correction` is attached to a claim once it has been found false
 //! as printed; the corrected statement is then what the test engines require.
 
-use super::{always, discrete, micro, paper_radius, sampling, scaling};
+use super::{always, continuum, discrete, micro, paper_radius, sampling, scaling};
 use super::{Claim, Correction, Kind};
 use crate::limit::appendix_c;
 use crate::scalar::Scalar;
@@ -196,6 +196,9 @@ pub fn registry<S: Scalar>() -> Vec<Claim<S>> {
             Kind::Scaling(scaling::cvg1_measured),
             "The theorem survives: the passage to the limit in eq:PDE-Lagr-N-1 uses the strong convergence in C([0,T]; L¹(0,1)) and the weak-* limits, not uniform convergence; X ∈ L^∞(0,T; BV(0,1)) with ∂_t X ∈ L^∞ instead of W^{1,∞}. Witness: appendix-c-two-blocks (gap η = 1/4 between two congested blocks): sup_w |X̃_N(0,w) − X⁰(w)| = 1/4 for every N = 4 … 4096.",
         ),
+        fixed("eq:Lagr-1", S3, "\"∂_t X = U⁰ − ∂_w Λ, ∂_w X ≥ 1, (∂_w X − 1)Λ = 0, Λ ≥ 0 a.e., Λ(t,0) = Λ(t,1) = 0\" — checked exactly on the continuum solution X = P_K(X⁰ + tU⁰) (limit::continuum, ∂_t X its right derivative U) of the 18 macroscopic data of the scaling claims at t = T/4, T/2, 3T/4, T, on the profiles that are rational there (segment by segment: a quadratic Λ is ≥ 0 on an interval iff at its ends and vertex).", continuum::lagr1),
+        fixed("eq:PDE-Lagr-2", S3, "\"∂_t U + ∂_w P = 0 in D', … P ≥ 0 in D'\" with P = ∂_t Λ — checked exactly between consecutive times t₀ < t₁ of {T/4, T/2, 3T/4, T} on the continuum solution of the same 18 data (rational profiles): Λ(t₁) − Λ(t₀) ≥ 0 on [0, 1] and U(t₁) − U(t₀) = −∂_w(Λ(t₁) − Λ(t₀)) on the common refinement.", continuum::pde_lagr2),
+        fixed("eq:Oleinik-Lagr", S3, "\"∂_w U < ∂_w X / t in D'((0,T) × (0,1))\" — checked exactly on the continuum solution of the same 18 data at t = T/4 … T (rational profiles): strictly, t ∂_w U < ∂_w X, on every affine piece, and t [U] ≤ [X] at every jump (equality happens: a velocity jump upwards between touching blocks opens a vacuum with [X] = t[U]).", continuum::oleinik_lagr),
         // -- end of the scaling block --
         fixed("app:uniqueness#free-collision", APPC, "The collision occurs at t* = η/2, at which point X^f(t*, w) = w + η/2.", appendix_c::free_collision),
         corrected(
