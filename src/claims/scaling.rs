@@ -188,7 +188,8 @@ fn run(
     judge_all(id, &table, verdict, pick)
 }
 
-/// [`run`] on a given table (unit tests feed wrong tables).
+/// Judges every series of a given table (the scaling checks run it on the
+/// measured table; unit tests feed wrong tables).
 pub fn judge_all(
     id: &'static str,
     table: &[Series],
