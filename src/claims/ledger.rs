@@ -39,7 +39,7 @@ impl Default for Budget {
         Budget {
             cases: 200,
             max_n: 24,
-            scaling_max_n: 256,
+            scaling_max_n: 4096,
             seed: 0x5EED,
         }
     }
@@ -276,7 +276,7 @@ fn run_kind(
             let outcome = match check(sb) {
                 Ok(reports) => Outcome {
                     status: Status::Holds,
-                    cases: reports.iter().map(|r| r.values.len()).sum(),
+                    cases: reports.iter().map(|r| r.cases).sum(),
                     witness: None,
                     note: Some(
                         reports

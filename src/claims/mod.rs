@@ -21,9 +21,11 @@ use crate::initial::InitialData;
 use crate::scalar::Scalar;
 use crate::trajectory::Trajectory;
 
+pub mod continuum;
 pub mod discrete;
 pub mod fuzz;
 pub mod ledger;
+pub mod macro_data;
 pub mod micro;
 pub mod registry;
 pub mod sampling;

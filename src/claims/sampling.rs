@@ -25,7 +25,7 @@ const SCENES: [&str; 3] = [
 const RANDOM_DATA: u64 = 300;
 
 /// A macroscopic datum as the `blocks` of a `[macro]` scene, for witnesses.
-fn render_blocks(datum: &MacroDatum) -> String {
+pub(super) fn render_blocks(datum: &MacroDatum) -> String {
     let blocks: Vec<String> = datum
         .blocks()
         .iter()
