@@ -187,12 +187,14 @@ impl IntegerData {
     }
 }
 
-/// One block of the loop: `k` entries with the sums `sy = ΣY`, `su = ΣU`.
+/// One block of the loop: `k` entries with the sums `sy = ΣY`, `su = ΣU`
+/// (`ΣU` in a narrower word `V` when its bound allows: a smaller block is
+/// less memory to write).
 #[derive(Debug, Clone, PartialEq)]
-pub(crate) struct Run<W> {
+pub(crate) struct Run<W, V = W> {
     pub(crate) k: u64,
     pub(crate) sy: W,
-    pub(crate) su: W,
+    pub(crate) su: V,
 }
 
 /// The block sums in the width the loop ran on.
@@ -201,6 +203,8 @@ pub(crate) enum Sums {
     I128(Vec<Run<i128>>),
     I256(Vec<Run<I256>>),
     I512(Vec<Run<I512>>),
+    /// 512-bit `ΣY`, `ΣU` in `i128` (`bits(max|U|) + b_K < 128`).
+    I512U128(Vec<Run<I512, i128>>),
     Big(Vec<Run<BigInt>>),
 }
 
@@ -244,7 +248,7 @@ impl Blocks {
         match self.sums {
             Sums::I128(_) => Width::I128,
             Sums::I256(_) => Width::I256,
-            Sums::I512(_) => Width::I512,
+            Sums::I512(_) | Sums::I512U128(_) => Width::I512,
             Sums::Big(_) => Width::Big,
         }
     }
@@ -254,6 +258,7 @@ impl Blocks {
             Sums::I128(v) => v.len(),
             Sums::I256(v) => v.len(),
             Sums::I512(v) => v.len(),
+            Sums::I512U128(v) => v.len(),
             Sums::Big(v) => v.len(),
         }
     }
@@ -266,6 +271,7 @@ impl Blocks {
             Sums::I128(v) => v[j].k,
             Sums::I256(v) => v[j].k,
             Sums::I512(v) => v[j].k,
+            Sums::I512U128(v) => v[j].k,
             Sums::Big(v) => v[j].k,
         }
     }
@@ -312,6 +318,14 @@ impl Blocks {
             Sums::I512(v) => {
                 let s = if y { v[j].sy } else { v[j].su };
                 BigRational::new(s.to_bigint(), d * BigInt::from(v[j].k))
+            }
+            Sums::I512U128(v) => {
+                let s = if y {
+                    v[j].sy.to_bigint()
+                } else {
+                    BigInt::from(v[j].su)
+                };
+                BigRational::new(s, d * BigInt::from(v[j].k))
             }
             Sums::Big(v) => BigRational::new(pick(&v[j]), d * BigInt::from(v[j].k)),
         }
@@ -365,7 +379,7 @@ impl Word for BigInt {
 /// definition) on two blocks of integer sums: is the left block's mean `≥`
 /// in the lexicographic order on `(Y, U)` (cross-multiplied, no division)?
 #[inline]
-pub(crate) fn pools<W: Word>(a: &Run<W>, b: &Run<W>) -> bool {
+pub(crate) fn pools<W: Word, V: Word>(a: &Run<W, V>, b: &Run<W, V>) -> bool {
     projection::pools(a.sy.mul_k(b.k).cmp(&b.sy.mul_k(a.k)), || {
         a.su.mul_k(b.k).cmp(&b.su.mul_k(a.k))
     })
@@ -375,8 +389,8 @@ pub(crate) fn pools<W: Word>(a: &Run<W>, b: &Run<W>) -> bool {
 /// order: adjacent blocks are pooled while the left mean is `≥` the right
 /// one, so the blocks returned have strictly increasing means.
 #[inline]
-fn pava_words<W: Word>(n: usize, mut item: impl FnMut(usize) -> (W, W)) -> Vec<Run<W>> {
-    let mut stack: Vec<Run<W>> = Vec::with_capacity(n);
+fn pava_words<W: Word, V: Word>(n: usize, mut item: impl FnMut(usize) -> (W, V)) -> Vec<Run<W, V>> {
+    let mut stack: Vec<Run<W, V>> = Vec::with_capacity(n);
     for i in 0..n {
         // The decision of [`projection::pools`] on loose variables:
         // building a `Run` for the entry being pooled cost ~10 % here.
@@ -457,8 +471,16 @@ pub fn blocks_at(d: &IntegerData, t: &BigRational) -> Blocks {
                 (a.wrapping_mul(x).wrapping_add(b.wrapping_mul(u)), u)
             }))
         }
-        (_, _, Width::I128 | Width::I256) => Sums::I256(pava_fixed(d, &at)),
-        (_, _, Width::I512) => Sums::I512(pava_fixed(d, &at)),
+        (_, _, Width::I128 | Width::I256) => {
+            Sums::I256(pava_fixed(d, &at, |b: &I256, i| wide_u(&d.u_col, b, i)))
+        }
+        // |ΣU| k ≤ k_a k_b max|U| < 2^(bits(max|U|) + b_K) ≤ 2^127.
+        (_, Column::Small(us), Width::I512) if d.u_bits + size_bits(n) < 128 => {
+            Sums::I512U128(pava_fixed(d, &at, |b: &I512, i| {
+                (b.wrapping_mul_i64(us[i]), i128::from(us[i]))
+            }))
+        }
+        (_, _, Width::I512) => Sums::I512(pava_fixed(d, &at, |b: &I512, i| wide_u(&d.u_col, b, i))),
         (_, _, Width::Big) => Sums::Big(pava_words(n, |i| {
             (&at.a * &d.x[i] + &at.b * &d.u[i], d.u[i].clone())
         })),
@@ -466,9 +488,26 @@ pub fn blocks_at(d: &IntegerData, t: &BigRational) -> Blocks {
     Blocks::new(sums, at.dy, d.du.clone())
 }
 
+/// `(b U_i, U_i)` on `L` limbs.
+#[inline]
+fn wide_u<const L: usize>(col: &Column, b: &Int<L>, i: usize) -> (Int<L>, Int<L>) {
+    match col {
+        Column::Small(v) => (b.wrapping_mul_i64(v[i]), Int::from_i64(v[i])),
+        c => {
+            let u = c.get::<L>(i);
+            (b.wrapping_mul(u), u)
+        }
+    }
+}
+
 /// PAVA on `L`-limb integers, for a width the data fit (`d`'s columns
-/// hold at most `L` limbs and `b_Y + b_K < 64 L`, [`AtTime::new`]).
-fn pava_fixed<const L: usize>(d: &IntegerData, at: &AtTime) -> Vec<Run<Int<L>>> {
+/// hold at most `L` limbs and `b_Y + b_K < 64 L`, [`AtTime::new`]);
+/// `bu(b, i)` gives `(b U_i, U_i)`, `U_i` in the word `V` of the `U` sums.
+fn pava_fixed<const L: usize, V: Word>(
+    d: &IntegerData,
+    at: &AtTime,
+    bu: impl Fn(&Int<L>, usize) -> (Int<L>, V),
+) -> Vec<Run<Int<L>, V>> {
     // Both factors of each product and the products themselves are below
     // 2^(b_Y − 1) < 2^(64L − 2); `a, b ≥ 0`, so the product skips their
     // zero high limbs.
@@ -484,13 +523,7 @@ fn pava_fixed<const L: usize>(d: &IntegerData, at: &AtTime) -> Vec<Run<Int<L>>> 
             Some(k) => x.wrapping_mul_i64(k),
             None => a.wrapping_mul(x),
         };
-        let (bu, u) = match &d.u_col {
-            Column::Small(v) => (b.wrapping_mul_i64(v[i]), Int::from_i64(v[i])),
-            c => {
-                let u = c.get::<L>(i);
-                (b.wrapping_mul(u), u)
-            }
-        };
+        let (bu, u) = bu(&b, i);
         (ax.wrapping_add(bu), u)
     })
 }
@@ -631,6 +664,30 @@ mod tests {
                     projection::state_at(&data, &t).unwrap(),
                     "offset 2^{}, t = {t}",
                     offset.numer().bits()
+                );
+            }
+        }
+    }
+
+    /// The 512-bit loop keeps `ΣU` in `i128` when every `U_i` fits `i64`
+    /// (and `bits(max|U|) + b_K < 128`, implied here) and in 512 bits
+    /// otherwise: both equal the generic path, on both sides of that bound.
+    #[test]
+    fn both_u_words_of_the_512_bit_loop() {
+        // U_i = 21 u_i 2^e (D_u = 21): max|U| = 21 · 2^e has e + 5 bits.
+        for (e, narrow) in [(0u32, true), (58, true), (59, false), (200, false)] {
+            let base = around(&pow2(300), &pow2(1));
+            let u = base.velocities().iter().map(|v| v * pow2(e)).collect();
+            let data = InitialData::new(q(1, 2), base.positions().to_vec(), u).unwrap();
+            let d = IntegerData::new(&data);
+            for t in [q(0, 1), q(1, 1), q(5, 2), pow2(290)] {
+                let b = blocks_at(&d, &t);
+                assert_eq!(b.width(), Width::I512, "2^{e}, t = {t}");
+                assert_eq!(matches!(b.sums, Sums::I512U128(_)), narrow, "2^{e}");
+                assert_eq!(
+                    state_at(&d, &t).unwrap(),
+                    projection::state_at(&data, &t).unwrap(),
+                    "2^{e}, t = {t}"
                 );
             }
         }
