@@ -15,7 +15,7 @@ use num_rational::BigRational;
 
 use sticky::fast::adaptive::adaptive_blocks_at;
 use sticky::fast::kernel::{blocks_at, IntegerData};
-use sticky::fast::wide::I256;
+use sticky::fast::wide::Int;
 use sticky::projection::isotonic;
 use sticky::report::bench::{decimal_scene, scene};
 use sticky::scalar::Scalar;
@@ -76,7 +76,12 @@ fn main() {
             &format!("pava/i256/{n}"),
             sample(n, wide, |d| blocks_at(d, &t)),
         );
-        let big = |s: u64| IntegerData::new(&decimal_scene(&scene(n, s), 100));
+        let wider = |s: u64| IntegerData::new(&decimal_scene(&scene(n, s), 100));
+        line(
+            &format!("pava/i512/{n}"),
+            sample(n, wider, |d| blocks_at(d, &t)),
+        );
+        let big = |s: u64| IntegerData::new(&decimal_scene(&scene(n, s), 200));
         line(
             &format!("pava/bigint/{n}"),
             sample(n, big, |d| blocks_at(d, &t)),
@@ -94,29 +99,39 @@ fn main() {
             ),
         );
     }
-    // 256-bit arithmetic, per operation.
+    // 256- and 512-bit arithmetic, per operation.
     if wanted("i256") {
+        wide_ops::<4>("i256");
+    }
+    if wanted("i512") {
+        wide_ops::<8>("i512");
+    }
+}
+
+/// `Int<L>` addition, multiplication and comparison, per operation.
+fn wide_ops<const L: usize>(name: &str) {
+    {
         let ops = 1_000_000;
-        let vals = |s: u64| -> Vec<I256> {
+        let vals = |s: u64| -> Vec<Int<L>> {
             let mut x = s.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1;
             (0..ops)
                 .map(|_| {
                     x ^= x << 13;
                     x ^= x >> 7;
                     x ^= x << 17;
-                    I256::from_i128((i128::from(x as i64) << 40) ^ i128::from(x))
+                    Int::<L>::from_i128((i128::from(x as i64) << 40) ^ i128::from(x))
                 })
                 .collect()
         };
         let add = sample(ops, vals, |v| {
-            v.iter().fold(I256::ZERO, |a, b| a.wrapping_add(*b))
+            v.iter().fold(Int::<L>::ZERO, |a, b| a.wrapping_add(*b))
         });
         let mul = sample(ops, vals, |v| {
             v.windows(2).map(|w| w[0].wrapping_mul(w[1])).max()
         });
         let cmp = sample(ops, vals, |v| v.windows(2).filter(|w| w[0] < w[1]).count());
-        println!("i256/add               {add:>10.2} ns/op");
-        println!("i256/mul               {mul:>10.2} ns/op");
-        println!("i256/cmp               {cmp:>10.2} ns/op");
+        println!("{name}/add               {add:>10.2} ns/op");
+        println!("{name}/mul               {mul:>10.2} ns/op");
+        println!("{name}/cmp               {cmp:>10.2} ns/op");
     }
 }

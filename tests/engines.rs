@@ -346,7 +346,7 @@ proptest! {
         bytes in proptest::collection::vec(any::<u8>(), 0..200),
         max_n in 1usize..40,
         scale in 0u32..300,
-        offset in 0u32..330,
+        offset in 0u32..660,
         tn in 0i64..1000,
         td in 1i64..1000,
     ) {
@@ -392,6 +392,7 @@ fn the_ranges_reach_every_width() {
     };
     assert_eq!(width(0, 0), Width::I128);
     assert_eq!(width(0, 100), Width::I256);
-    assert_eq!(width(250, 0), Width::Big);
-    assert_eq!(width(0, 320), Width::Big);
+    assert_eq!(width(250, 0), Width::I512);
+    assert_eq!(width(0, 320), Width::I512);
+    assert_eq!(width(0, 600), Width::Big);
 }

@@ -4,7 +4,8 @@
 //! than it needs", and the answer is still exact.
 //!
 //! **Which path.** When the data fit the fixed-width kernels
-//! ([`crate::fast::kernel::Width::I128`] or [`crate::fast::kernel::Width::I256`]) the
+//! ([`crate::fast::kernel::Width::I128`], [`crate::fast::kernel::Width::I256`]
+//! or [`crate::fast::kernel::Width::I512`]) the
 //! exact kernel is as cheap as a float PAVA or within a small factor of it
 //! (measured by `sticky bench`: 0.7× and 2× our f64 PAVA), so it answers
 //! ([`Path::Integer`]). Only data that need `BigInt` take the filter: the
@@ -262,9 +263,9 @@ mod tests {
         )
     }
 
-    /// A position that needs `BigInt` (beyond the 256-bit kernel).
-    fn beyond_256() -> BigRational {
-        BigRational::from_integer(BigInt::one() << 300u32) + decimal30()
+    /// A position that needs `BigInt` (beyond the 512-bit kernel).
+    fn beyond_512() -> BigRational {
+        BigRational::from_integer(BigInt::one() << 600u32) + decimal30()
     }
 
     /// The oracle battery: random scenes at every collision instant (exact
@@ -278,6 +279,7 @@ mod tests {
             decimal30(),
             BigRational::from_integer(BigInt::one() << 200u32) + decimal30(),
             BigRational::from_integer(BigInt::one() << 400u32) + q(1, 3),
+            BigRational::from_integer(BigInt::one() << 700u32) + q(1, 3),
             BigRational::from_integer(BigInt::one() << 1100u32),
         ];
         let mut seen = [0usize; 3];
@@ -325,13 +327,13 @@ mod tests {
         ] {
             // x̃ = (c, c + gap): pooled exactly when gap ≤ 0 (equal
             // velocities, so the tie-break pools).
-            let c = beyond_256();
+            let c = beyond_512();
             let x = vec![c.clone(), c + q(1, 1) + gap];
             let data = InitialData::new(q(1, 2), x, vec![q(0, 1), q(0, 1)]);
             let Ok(data) = data else {
                 // An overlapping pair (gap < 0) is not admissible data;
                 // probe the same decision through the velocities instead.
-                let c = beyond_256();
+                let c = beyond_512();
                 let x = vec![c.clone(), c + q(2, 1)];
                 let u = vec![q(1, 1) + tiny.clone(), q(0, 1)];
                 let data = InitialData::new(q(1, 2), x, u).unwrap();
@@ -364,7 +366,7 @@ mod tests {
     #[test]
     fn too_many_ties_fall_back_to_the_exact_kernel() {
         let n = 400;
-        let x = (0..n).map(|i| beyond_256() + q(i, 1)).collect();
+        let x = (0..n).map(|i| beyond_512() + q(i, 1)).collect();
         let data = InitialData::new(q(1, 2), x, vec![q(1, 3); n as usize]).unwrap();
         let d = IntegerData::new(&data);
         let got = adaptive_blocks_at(&d, &q(5, 7));

@@ -31,7 +31,10 @@
 //!   the same with `bits(max|U|)` for the `U` sums;
 //! * `i128` when `X_i`, `U_i`, `q D_u`, `p D_x` all fit `i64` (each product
 //!   `< 2^126`) and `b_Y + b_K ≤ 127`, `bits(max|U|) + b_K ≤ 127`;
-//! * [`I256`] when the data fit 255 bits and the same bounds hold with 255;
+//! * [`I256`] when the data fit 255 bits and the same bounds hold with 256
+//!   (`b_Y + b_K < 256`, `bits(max|U|) + b_K < 256`);
+//! * [`I512`] when the data fit 511 bits and the same bounds hold with 512
+//!   (100-digit decimal data);
 //! * `BigInt` otherwise.
 //!
 //! Inside the proved range the fixed-width loops use wrapping operations (the
@@ -47,7 +50,7 @@ use crate::cluster::{runs, Cluster};
 use crate::contact::cluster_multiplier_numerators;
 use crate::error::Error;
 use crate::fast::int::{narrowed, pair_bound, ratio_over};
-use crate::fast::wide::I256;
+use crate::fast::wide::{Int, I256, I512};
 use crate::initial::InitialData;
 use crate::projection;
 use crate::state::State;
@@ -59,6 +62,8 @@ pub enum Width {
     I128,
     /// 256-bit integers ([`I256`]).
     I256,
+    /// 512-bit integers ([`I512`]).
+    I512,
     /// Arbitrary-precision integers.
     Big,
 }
@@ -68,27 +73,53 @@ pub enum Width {
 pub(crate) enum Column {
     /// Every value fits `i64`.
     Small(Vec<i64>),
-    /// Every value fits 255 bits.
-    Wide(Vec<I256>),
+    /// Every value fits 254 bits.
+    W256(Vec<I256>),
+    /// Every value fits 510 bits.
+    W512(Vec<I512>),
     /// Only the `BigInt` values.
     Big,
 }
 
 impl Column {
     fn of(v: &[BigInt]) -> Column {
-        if let Some(s) = narrowed(v, ToPrimitive::to_i64) {
-            return Column::Small(s);
+        let bits = v.iter().map(BigInt::bits).max().unwrap_or(0);
+        if bits <= 63 {
+            if let Some(s) = narrowed(v, ToPrimitive::to_i64) {
+                return Column::Small(s);
+            }
         }
-        narrowed(v, |x| {
-            (x.bits() <= 254).then(|| I256::from_bigint(x)).flatten()
-        })
-        .map_or(Column::Big, Column::Wide)
+        if bits <= 254 {
+            if let Some(w) = narrowed(v, I256::from_bigint) {
+                return Column::W256(w);
+            }
+        }
+        if bits <= 510 {
+            if let Some(w) = narrowed(v, I512::from_bigint) {
+                return Column::W512(w);
+            }
+        }
+        Column::Big
     }
-    pub(crate) fn wide(&self, i: usize) -> I256 {
+    /// The widest fixed width whose values the column holds, in 64-bit
+    /// limbs (`usize::MAX` for `BigInt` values).
+    fn limbs(&self) -> usize {
         match self {
-            Column::Small(v) => I256::from_i64(v[i]),
-            Column::Wide(v) => v[i],
-            Column::Big => I256::ZERO,
+            Column::Small(_) => 1,
+            Column::W256(_) => 4,
+            Column::W512(_) => 8,
+            Column::Big => usize::MAX,
+        }
+    }
+    /// Value `i` in `L` limbs; the caller has checked `self.limbs() ≤ L`
+    /// (zero for `BigInt` columns).
+    #[inline]
+    pub(crate) fn get<const L: usize>(&self, i: usize) -> Int<L> {
+        match self {
+            Column::Small(v) => Int::from_i64(v[i]),
+            Column::W256(v) => v[i].resize(),
+            Column::W512(v) => v[i].resize(),
+            Column::Big => Int::ZERO,
         }
     }
 }
@@ -156,12 +187,14 @@ impl IntegerData {
     }
 }
 
-/// One block of the loop: `k` entries with the sums `sy = ΣY`, `su = ΣU`.
+/// One block of the loop: `k` entries with the sums `sy = ΣY`, `su = ΣU`
+/// (`ΣU` in a narrower word `V` when its bound allows: a smaller block is
+/// less memory to write).
 #[derive(Debug, Clone, PartialEq)]
-pub(crate) struct Run<W> {
+pub(crate) struct Run<W, V = W> {
     pub(crate) k: u64,
     pub(crate) sy: W,
-    pub(crate) su: W,
+    pub(crate) su: V,
 }
 
 /// The block sums in the width the loop ran on.
@@ -169,6 +202,9 @@ pub(crate) struct Run<W> {
 pub(crate) enum Sums {
     I128(Vec<Run<i128>>),
     I256(Vec<Run<I256>>),
+    I512(Vec<Run<I512>>),
+    /// 512-bit `ΣY`, `ΣU` in `i128` (`bits(max|U|) + b_K < 128`).
+    I512U128(Vec<Run<I512, i128>>),
     Big(Vec<Run<BigInt>>),
 }
 
@@ -212,6 +248,7 @@ impl Blocks {
         match self.sums {
             Sums::I128(_) => Width::I128,
             Sums::I256(_) => Width::I256,
+            Sums::I512(_) | Sums::I512U128(_) => Width::I512,
             Sums::Big(_) => Width::Big,
         }
     }
@@ -220,6 +257,8 @@ impl Blocks {
         match &self.sums {
             Sums::I128(v) => v.len(),
             Sums::I256(v) => v.len(),
+            Sums::I512(v) => v.len(),
+            Sums::I512U128(v) => v.len(),
             Sums::Big(v) => v.len(),
         }
     }
@@ -231,6 +270,8 @@ impl Blocks {
         match &self.sums {
             Sums::I128(v) => v[j].k,
             Sums::I256(v) => v[j].k,
+            Sums::I512(v) => v[j].k,
+            Sums::I512U128(v) => v[j].k,
             Sums::Big(v) => v[j].k,
         }
     }
@@ -274,6 +315,18 @@ impl Blocks {
                 let s = if y { v[j].sy } else { v[j].su };
                 BigRational::new(s.to_bigint(), d * BigInt::from(v[j].k))
             }
+            Sums::I512(v) => {
+                let s = if y { v[j].sy } else { v[j].su };
+                BigRational::new(s.to_bigint(), d * BigInt::from(v[j].k))
+            }
+            Sums::I512U128(v) => {
+                let s = if y {
+                    v[j].sy.to_bigint()
+                } else {
+                    BigInt::from(v[j].su)
+                };
+                BigRational::new(s, d * BigInt::from(v[j].k))
+            }
             Sums::Big(v) => BigRational::new(pick(&v[j]), d * BigInt::from(v[j].k)),
         }
     }
@@ -297,14 +350,19 @@ impl Word for i128 {
     }
 }
 
-impl Word for I256 {
+impl<const L: usize> Word for Int<L> {
     #[inline]
     fn add(&self, o: &Self) -> Self {
         self.wrapping_add(*o)
     }
     #[inline]
     fn mul_k(&self, k: u64) -> Self {
-        self.wrapping_mul_u64(k)
+        // Most comparisons involve a block of one entry.
+        if k == 1 {
+            *self
+        } else {
+            self.wrapping_mul_u64(k)
+        }
     }
 }
 
@@ -321,7 +379,7 @@ impl Word for BigInt {
 /// definition) on two blocks of integer sums: is the left block's mean `≥`
 /// in the lexicographic order on `(Y, U)` (cross-multiplied, no division)?
 #[inline]
-pub(crate) fn pools<W: Word>(a: &Run<W>, b: &Run<W>) -> bool {
+pub(crate) fn pools<W: Word, V: Word>(a: &Run<W, V>, b: &Run<W, V>) -> bool {
     projection::pools(a.sy.mul_k(b.k).cmp(&b.sy.mul_k(a.k)), || {
         a.su.mul_k(b.k).cmp(&b.su.mul_k(a.k))
     })
@@ -331,8 +389,11 @@ pub(crate) fn pools<W: Word>(a: &Run<W>, b: &Run<W>) -> bool {
 /// order: adjacent blocks are pooled while the left mean is `≥` the right
 /// one, so the blocks returned have strictly increasing means.
 #[inline]
-pub(crate) fn pava_words<W: Word>(n: usize, mut item: impl FnMut(usize) -> (W, W)) -> Vec<Run<W>> {
-    let mut stack: Vec<Run<W>> = Vec::with_capacity(n);
+pub(crate) fn pava_words<W: Word, V: Word>(
+    n: usize,
+    mut item: impl FnMut(usize) -> (W, V),
+) -> Vec<Run<W, V>> {
+    let mut stack: Vec<Run<W, V>> = Vec::with_capacity(n);
     for i in 0..n {
         // The decision of [`projection::pools`] on loose variables:
         // building a `Run` for the entry being pooled cost ~10 % here.
@@ -382,17 +443,13 @@ impl AtTime {
         let b_k = size_bits(d.n());
         let b_y = (a.bits() + d.x_bits).max(b.bits() + d.u_bits) + 1;
         let fits = |w: u64| b_y + b_k < w && d.u_bits + b_k < w;
-        let small = |c: &Column| matches!(c, Column::Small(_));
-        let wide = |c: &Column| !matches!(c, Column::Big);
-        let width = if small(&d.x_col)
-            && small(&d.u_col)
-            && a.to_i64().is_some()
-            && b.to_i64().is_some()
-            && fits(128)
-        {
+        let limbs = d.x_col.limbs().max(d.u_col.limbs());
+        let width = if limbs <= 1 && a.to_i64().is_some() && b.to_i64().is_some() && fits(128) {
             Width::I128
-        } else if wide(&d.x_col) && wide(&d.u_col) && fits(256) {
+        } else if limbs <= 4 && fits(256) {
             Width::I256
+        } else if limbs <= 8 && fits(512) {
+            Width::I512
         } else {
             Width::Big
         };
@@ -418,22 +475,60 @@ pub fn blocks_at(d: &IntegerData, t: &BigRational) -> Blocks {
             }))
         }
         (_, _, Width::I128 | Width::I256) => {
-            // Both factors of each product and the products themselves are
-            // below 2^(b_Y − 1) < 2^254.
-            let (a, b) = (
-                I256::from_bigint(&at.a).unwrap_or_default(),
-                I256::from_bigint(&at.b).unwrap_or_default(),
-            );
-            Sums::I256(pava_words(n, |i| {
-                let (x, u) = (d.x_col.wide(i), d.u_col.wide(i));
-                (a.wrapping_mul(x).wrapping_add(b.wrapping_mul(u)), u)
+            Sums::I256(pava_fixed(d, &at, |b: &I256, i| wide_u(&d.u_col, b, i)))
+        }
+        // |ΣU| k ≤ k_a k_b max|U| < 2^(bits(max|U|) + b_K) ≤ 2^127.
+        (_, Column::Small(us), Width::I512) if d.u_bits + size_bits(n) < 128 => {
+            Sums::I512U128(pava_fixed(d, &at, |b: &I512, i| {
+                (b.wrapping_mul_i64(us[i]), i128::from(us[i]))
             }))
         }
+        (_, _, Width::I512) => Sums::I512(pava_fixed(d, &at, |b: &I512, i| wide_u(&d.u_col, b, i))),
         (_, _, Width::Big) => Sums::Big(pava_words(n, |i| {
             (&at.a * &d.x[i] + &at.b * &d.u[i], d.u[i].clone())
         })),
     };
     Blocks::new(sums, at.dy, d.du.clone())
+}
+
+/// `(b U_i, U_i)` on `L` limbs.
+#[inline]
+fn wide_u<const L: usize>(col: &Column, b: &Int<L>, i: usize) -> (Int<L>, Int<L>) {
+    match col {
+        Column::Small(v) => (b.wrapping_mul_i64(v[i]), Int::from_i64(v[i])),
+        c => {
+            let u = c.get::<L>(i);
+            (b.wrapping_mul(u), u)
+        }
+    }
+}
+
+/// PAVA on `L`-limb integers, for a width the data fit (`d`'s columns
+/// hold at most `L` limbs and `b_Y + b_K < 64 L`, [`AtTime::new`]);
+/// `bu(b, i)` gives `(b U_i, U_i)`, `U_i` in the word `V` of the `U` sums.
+fn pava_fixed<const L: usize, V: Word>(
+    d: &IntegerData,
+    at: &AtTime,
+    bu: impl Fn(&Int<L>, usize) -> (Int<L>, V),
+) -> Vec<Run<Int<L>, V>> {
+    // Both factors of each product and the products themselves are below
+    // 2^(b_Y − 1) < 2^(64L − 2); `a, b ≥ 0`, so the product skips their
+    // zero high limbs.
+    let (a, b) = (
+        Int::<L>::from_bigint(&at.a).unwrap_or_default(),
+        Int::<L>::from_bigint(&at.b).unwrap_or_default(),
+    );
+    // One 64-bit row instead of a full product where a factor is a word.
+    let a_word = at.a.to_i64();
+    pava_words(d.n(), |i| {
+        let x = d.x_col.get::<L>(i);
+        let ax = match a_word {
+            Some(k) => x.wrapping_mul_i64(k),
+            None => a.wrapping_mul(x),
+        };
+        let (bu, u) = bu(&b, i);
+        (ax.wrapping_add(bu), u)
+    })
 }
 
 /// The state at `t ≥ 0` from the integer kernel: equal, field by field, to
@@ -547,8 +642,11 @@ mod tests {
             (pow2(70), pow2(0), Width::I256),
             (pow2(140), pow2(0), Width::I256),
             (pow2(240), pow2(2), Width::I256),
-            (pow2(300), pow2(1), Width::Big),
+            (pow2(300), pow2(1), Width::I512),
+            (pow2(480), pow2(2), Width::I512),
+            (pow2(600), pow2(1), Width::Big),
             (pow2(140), pow2(130), Width::I256),
+            (pow2(300), pow2(200), Width::I512),
         ];
         for (offset, spread, width) in cases {
             let data = around(&offset, &spread);
@@ -574,7 +672,31 @@ mod tests {
         }
     }
 
-    /// Right at the `i128` and `I256` bounds: four particles `2^bits` apart
+    /// The 512-bit loop keeps `ΣU` in `i128` when every `U_i` fits `i64`
+    /// (and `bits(max|U|) + b_K < 128`, implied here) and in 512 bits
+    /// otherwise: both equal the generic path, on both sides of that bound.
+    #[test]
+    fn both_u_words_of_the_512_bit_loop() {
+        // U_i = 21 u_i 2^e (D_u = 21): max|U| = 21 · 2^e has e + 5 bits.
+        for (e, narrow) in [(0u32, true), (58, true), (59, false), (200, false)] {
+            let base = around(&pow2(300), &pow2(1));
+            let u = base.velocities().iter().map(|v| v * pow2(e)).collect();
+            let data = InitialData::new(q(1, 2), base.positions().to_vec(), u).unwrap();
+            let d = IntegerData::new(&data);
+            for t in [q(0, 1), q(1, 1), q(5, 2), pow2(290)] {
+                let b = blocks_at(&d, &t);
+                assert_eq!(b.width(), Width::I512, "2^{e}, t = {t}");
+                assert_eq!(matches!(b.sums, Sums::I512U128(_)), narrow, "2^{e}");
+                assert_eq!(
+                    state_at(&d, &t).unwrap(),
+                    projection::state_at(&data, &t).unwrap(),
+                    "2^{e}, t = {t}"
+                );
+            }
+        }
+    }
+
+    /// Right at the `i128`, `I256` and `I512` bounds: four particles `2^bits` apart
     /// that all meet, so the loop's sums come within a factor 4 of `Y`'s
     /// bound, at times whose denominator `q` pushes `b_Y + b_K` to the edge
     /// of each width (`b_K = 3` for N = 4). The result equals the generic
@@ -593,9 +715,16 @@ mod tests {
             (60, inv(63), Width::I256),
             // X_i up to 3·2^189 (191 bits), q D_u = 2^60 (61 bits):
             // b_Y + b_K = 61 + 191 + 1 + 3 = 256, not < 256.
-            (190, inv(60), Width::Big),
+            (190, inv(60), Width::I512),
             // One bit less: 255 < 256.
             (190, inv(59), Width::I256),
+            // X_i up to 3·2^445 (447 bits), q D_u = 2^60 (61 bits):
+            // b_Y + b_K = 61 + 447 + 1 + 3 = 512, not < 512.
+            (446, inv(60), Width::Big),
+            // One bit less: 511 < 512.
+            (446, inv(59), Width::I512),
+            // The columns no longer fit 510 bits (X_i up to 3·2^509).
+            (510, inv(0), Width::Big),
         ];
         for (bits, t, width) in cases {
             let big = pow2(bits);

@@ -2,7 +2,7 @@
 //! code of the model core ([`crate::projection`], [`crate::trajectory`]),
 //! computed on integers over common denominators.
 //!
-//! * [`kernel`] — exact PAVA on `i128`, 256-bit ([`wide`]) or `BigInt`
+//! * [`kernel`] — exact PAVA on `i128`, 256- or 512-bit ([`wide`]) or `BigInt`
 //!   integers, the narrowest width a proved bit-length bound allows;
 //! * [`adaptive`] — the same PAVA with `f64` decisions certified by an error
 //!   bound, exact integers for the decisions the bound cannot settle;

@@ -1,31 +1,51 @@
-//! A signed 256-bit integer for the exact kernels, just wide enough for
-//! 30-digit decimal data at N = 10^7.
+//! Fixed-width signed integers for the exact kernels: [`I256`], just wide
+//! enough for 30-digit decimal data at N = 10^7, and [`I512`], for
+//! 100-digit decimal data — one const-generic type [`Int`] of `L` 64-bit
+//! limbs, so both widths share every line.
 //!
-//! Arithmetic is two's complement modulo `2^256` (wrapping), which is exact
-//! whenever the true result lies in `[−2^255, 2^255)`. The callers prove that
-//! before they use it: [`crate::fast::kernel`] bounds every sum and cross product of
-//! its loop by the bit lengths of the data and takes this
-//! width only when the bound is below `2^254`. Nothing here checks overflow:
-//! that is the callers' obligation, stated where they take this path.
+//! Arithmetic is two's complement modulo `2^(64L)` (wrapping), which is
+//! exact whenever the true result lies in `[−2^(64L−1), 2^(64L−1))`. The
+//! callers prove that before they use it: [`crate::fast::kernel`] bounds
+//! every sum and cross product of its loop by the bit lengths of the data
+//! and takes a width only when the bound is below `2^(64L−1)`. Nothing here
+//! checks overflow: that is the callers' obligation, stated where they take
+//! this path.
 
 use std::cmp::Ordering;
 
 use num_bigint::{BigInt, BigUint, Sign};
 use num_traits::Signed;
 
-/// A signed 256-bit integer: four little-endian 64-bit limbs, two's
-/// complement.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
-pub struct I256([u64; 4]);
+/// A signed integer of `L` little-endian 64-bit limbs, two's complement.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Int<const L: usize>([u64; L]);
 
-impl I256 {
+/// A signed 256-bit integer.
+pub type I256 = Int<4>;
+
+/// A signed 512-bit integer.
+pub type I512 = Int<8>;
+
+impl<const L: usize> Default for Int<L> {
+    fn default() -> Self {
+        Self::ZERO
+    }
+}
+
+impl<const L: usize> Int<L> {
     /// Zero.
-    pub const ZERO: I256 = I256([0; 4]);
+    pub const ZERO: Self = Int([0; L]);
 
-    /// From an `i128` (sign-extended).
+    /// The width in bits, `64 L`.
+    pub const BITS: u64 = 64 * L as u64;
+
+    /// From an `i128` (sign-extended; `L ≥ 2`).
     pub fn from_i128(v: i128) -> Self {
         let ext = if v < 0 { u64::MAX } else { 0 };
-        I256([v as u64, (v >> 64) as u64, ext, ext])
+        let mut limbs = [ext; L];
+        limbs[0] = v as u64;
+        limbs[1] = (v >> 64) as u64;
+        Int(limbs)
     }
 
     /// From an `i64` (sign-extended).
@@ -33,16 +53,29 @@ impl I256 {
         Self::from_i128(i128::from(v))
     }
 
-    /// From a `BigInt` whose magnitude is below `2^255`; `None` otherwise.
+    /// The same value in `M` limbs: sign-extended when `M ≥ L`, the low
+    /// `M` limbs otherwise (the same value when it fits).
+    #[inline]
+    pub fn resize<const M: usize>(self) -> Int<M> {
+        let ext = if self.is_negative() { u64::MAX } else { 0 };
+        let mut limbs = [ext; M];
+        for (o, &l) in limbs.iter_mut().zip(&self.0) {
+            *o = l;
+        }
+        Int(limbs)
+    }
+
+    /// From a `BigInt` whose magnitude is below `2^(64L−1)`; `None`
+    /// otherwise.
     pub fn from_bigint(v: &BigInt) -> Option<Self> {
-        if v.bits() > 255 {
+        if v.bits() > Self::BITS - 1 {
             return None;
         }
-        let mut limbs = [0u64; 4];
+        let mut limbs = [0u64; L];
         for (l, d) in limbs.iter_mut().zip(v.magnitude().iter_u64_digits()) {
             *l = d;
         }
-        let m = I256(limbs);
+        let m = Int(limbs);
         Some(if v.is_negative() { m.wrapping_neg() } else { m })
     }
 
@@ -62,86 +95,111 @@ impl I256 {
     }
 
     /// `v < 0`.
+    #[inline]
     pub fn is_negative(self) -> bool {
-        (self.0[3] as i64) < 0
+        (self.0[L - 1] as i64) < 0
     }
 
     /// `−v` (wrapping).
     pub fn wrapping_neg(self) -> Self {
-        let mut out = [0u64; 4];
+        let mut out = [0u64; L];
         let mut carry = true;
         for (o, &l) in out.iter_mut().zip(&self.0) {
             let (v, c) = (!l).overflowing_add(u64::from(carry));
             *o = v;
             carry = c;
         }
-        I256(out)
+        Int(out)
     }
 
     /// `a + b` (wrapping).
     #[inline]
     pub fn wrapping_add(self, o: Self) -> Self {
-        let mut out = [0u64; 4];
-        let mut carry = 0u64;
+        let mut out = [0u64; L];
+        let mut carry = false;
         for ((r, &a), &b) in out.iter_mut().zip(&self.0).zip(&o.0) {
             let (s1, c1) = a.overflowing_add(b);
-            let (s2, c2) = s1.overflowing_add(carry);
+            let (s2, c2) = s1.overflowing_add(u64::from(carry));
             *r = s2;
-            carry = u64::from(c1) + u64::from(c2);
+            carry = c1 | c2;
         }
-        I256(out)
+        Int(out)
     }
 
     /// `a · k` for an unsigned 64-bit `k` (wrapping).
     #[inline]
     pub fn wrapping_mul_u64(self, k: u64) -> Self {
-        let mut out = [0u64; 4];
+        let mut out = [0u64; L];
         let mut carry = 0u128;
         for (r, &a) in out.iter_mut().zip(&self.0) {
             let p = u128::from(a) * u128::from(k) + carry;
             *r = p as u64;
             carry = p >> 64;
         }
-        I256(out)
+        Int(out)
     }
 
-    /// `a · b` exactly, for any two `i128` (`|a b| ≤ 2^254` is in range):
-    /// the 256-bit products of the kernel and of the merge's time
+    /// `a · k` for a signed 64-bit `k` (wrapping).
+    #[inline]
+    pub fn wrapping_mul_i64(self, k: i64) -> Self {
+        let p = self.wrapping_mul_u64(k.unsigned_abs());
+        if k < 0 {
+            p.wrapping_neg()
+        } else {
+            p
+        }
+    }
+
+    /// `a · b` exactly, for any two `i128` (`|a b| ≤ 2^254` is in range
+    /// from 256 bits on): the 256-bit products of the merge's time
     /// comparisons.
     #[inline]
     pub fn product(a: i128, b: i128) -> Self {
         Self::from_i128(a).wrapping_mul(Self::from_i128(b))
     }
 
-    /// `a · b` (wrapping): the low 256 bits of the product, which is the
+    /// `a · b` (wrapping): the low `64 L` bits of the product, which is the
     /// exact product when it lies in range (two's complement multiplication
-    /// is the same modulo `2^256` for signed and unsigned operands).
+    /// is the same modulo `2^(64L)` for signed and unsigned operands). The
+    /// rows of `a`'s zero limbs are skipped: a small non-negative `a` (the
+    /// kernel's scale factors) costs one row per significant limb.
     #[inline]
     pub fn wrapping_mul(self, o: Self) -> Self {
-        let mut out = [0u64; 4];
-        for i in 0..4 {
+        let mut out = [0u64; L];
+        for i in 0..L {
+            let ai = self.0[i];
+            if ai == 0 {
+                continue;
+            }
             let mut carry = 0u128;
-            for j in 0..4 - i {
-                let p = u128::from(self.0[i]) * u128::from(o.0[j]) + u128::from(out[i + j]) + carry;
+            for j in 0..L - i {
+                let p = u128::from(ai) * u128::from(o.0[j]) + u128::from(out[i + j]) + carry;
                 out[i + j] = p as u64;
                 carry = p >> 64;
             }
         }
-        I256(out)
+        Int(out)
     }
 }
 
-impl Ord for I256 {
+impl<const L: usize> Ord for Int<L> {
+    #[inline]
     fn cmp(&self, o: &Self) -> Ordering {
-        (self.0[3] as i64)
-            .cmp(&(o.0[3] as i64))
-            .then_with(|| self.0[2].cmp(&o.0[2]))
-            .then_with(|| self.0[1].cmp(&o.0[1]))
-            .then_with(|| self.0[0].cmp(&o.0[0]))
+        let top = (self.0[L - 1] as i64).cmp(&(o.0[L - 1] as i64));
+        if top != Ordering::Equal {
+            return top;
+        }
+        for i in (0..L - 1).rev() {
+            let c = self.0[i].cmp(&o.0[i]);
+            if c != Ordering::Equal {
+                return c;
+            }
+        }
+        Ordering::Equal
     }
 }
 
-impl PartialOrd for I256 {
+impl<const L: usize> PartialOrd for Int<L> {
     fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
         Some(self.cmp(o))
     }
@@ -168,54 +226,78 @@ mod tests {
         }
     }
 
-    /// Every operation agrees with `BigInt` on random operands whose exact
-    /// results stay in range, including the edges `±(2^255 − 1)`.
-    #[test]
-    fn agrees_with_bigint() {
-        let mut rng = SplitMix64::new(7);
-        let edge: BigInt = (BigInt::from(1) << 255u32) - 1;
+    /// Every operation of `Int<L>` agrees with `BigInt` on random operands
+    /// whose exact results stay in range, including the edges
+    /// `±(2^(64L−1) − 1)`; `2^(64L−1)` is refused.
+    fn agrees_with_bigint<const L: usize>(seed: u64) {
+        let w = Int::<L>::BITS;
+        let mut rng = SplitMix64::new(seed);
+        let edge: BigInt = (BigInt::from(1) << (w - 1)) - 1;
+        let of = |v: &BigInt| Int::<L>::from_bigint(v).unwrap();
         for e in [
             edge.clone(),
             -edge.clone(),
             BigInt::from(-1),
             BigInt::from(0),
         ] {
-            let w = I256::from_bigint(&e).unwrap();
-            assert_eq!(w.to_bigint(), e);
+            assert_eq!(of(&e).to_bigint(), e);
         }
-        assert!(I256::from_bigint(&(BigInt::from(1) << 255u32)).is_none());
-        for _ in 0..20_000 {
-            let a = random_big(&mut rng, 127);
-            let b = random_big(&mut rng, 127);
-            let (wa, wb) = (
-                I256::from_bigint(&a).unwrap(),
-                I256::from_bigint(&b).unwrap(),
-            );
+        assert!(Int::<L>::from_bigint(&(BigInt::from(1) << (w - 1))).is_none());
+        assert!(Int::<L>::from_bigint(&-(BigInt::from(1) << (w - 1))).is_none());
+        // The sum and the product right at the edge.
+        let half: BigInt = BigInt::from(1) << (w - 2);
+        assert_eq!(
+            of(&half).wrapping_add(of(&(&half - 1))).to_bigint(),
+            edge.clone()
+        );
+        let root: BigInt = (BigInt::from(1) << ((w - 2) / 2)) + 1;
+        let sq = &root * &root;
+        assert!(sq.bits() == w - 1);
+        assert_eq!(of(&root).wrapping_mul(of(&root)).to_bigint(), sq);
+        assert_eq!(of(&-&root).wrapping_mul(of(&root)).to_bigint(), -&sq);
+        for _ in 0..10_000 {
+            let a = random_big(&mut rng, w / 2 - 1);
+            let b = random_big(&mut rng, w / 2 - 1);
+            let (wa, wb) = (of(&a), of(&b));
             assert_eq!(wa.wrapping_mul(wb).to_bigint(), &a * &b);
             assert_eq!(wa.wrapping_add(wb).to_bigint(), &a + &b);
             assert_eq!(wa.cmp(&wb), a.cmp(&b));
             let k = rng.next_u64() >> (rng.next_u64() % 64);
             assert_eq!(wa.wrapping_mul_u64(k).to_bigint(), &a * BigInt::from(k));
-            let c = random_big(&mut rng, 254);
-            let d = random_big(&mut rng, 254);
-            let (wc, wd) = (
-                I256::from_bigint(&c).unwrap(),
-                I256::from_bigint(&d).unwrap(),
-            );
+            let k = k as i64;
+            assert_eq!(wa.wrapping_mul_i64(k).to_bigint(), &a * BigInt::from(k));
+            let c = random_big(&mut rng, w - 2);
+            let d = random_big(&mut rng, w - 2);
+            let (wc, wd) = (of(&c), of(&d));
             assert_eq!(wc.wrapping_add(wd).to_bigint(), &c + &d);
             assert_eq!(wc.cmp(&wd), c.cmp(&d));
             assert_eq!(wc.wrapping_neg().to_bigint(), -&c);
+            assert_eq!(wc.resize::<16>().to_bigint(), c);
+            if c.bits() < 255 {
+                assert_eq!(wc.resize::<4>().to_bigint(), c);
+            }
             let small = random_big(&mut rng, 60);
-            let ws = I256::from_bigint(&small).unwrap();
-            if c.bits() + small.bits() <= 254 {
+            let ws = of(&small);
+            if c.bits() + small.bits() < w {
                 assert_eq!(wc.wrapping_mul(ws).to_bigint(), &c * &small);
+                assert_eq!(ws.wrapping_mul(wc).to_bigint(), &c * &small);
             }
         }
         for v in [i128::MIN, i128::MAX, -1, 0, 1] {
-            assert_eq!(I256::from_i128(v).to_bigint(), BigInt::from(v));
-            for w in [i128::MIN, i128::MAX, -1, 0, 1, 1 << 64] {
-                assert_eq!(I256::product(v, w).to_bigint(), BigInt::from(v) * w);
+            assert_eq!(Int::<L>::from_i128(v).to_bigint(), BigInt::from(v));
+            for u in [i128::MIN, i128::MAX, -1, 0, 1, 1 << 64] {
+                assert_eq!(Int::<L>::product(v, u).to_bigint(), BigInt::from(v) * u);
             }
         }
+    }
+
+    #[test]
+    fn i256_agrees_with_bigint() {
+        agrees_with_bigint::<4>(7);
+    }
+
+    #[test]
+    fn i512_agrees_with_bigint() {
+        agrees_with_bigint::<8>(8);
     }
 }

@@ -14,7 +14,7 @@
 //!   pays);
 //! * `exact_bigint` — the same kernel on data with 30-digit decimals, which
 //!   need the 256-bit loop; `exact_bigint_100` on 100-digit decimals (the
-//!   `BigInt` loop);
+//!   512-bit loop);
 //! * `adaptive`, `adaptive_bigdata` — [`crate::fast::adaptive::adaptive_blocks_at`]
 //!   on the `exact_int` scene and on the 100-digit one (the path taken is in
 //!   the note);
@@ -143,7 +143,7 @@ pub fn scene(n: usize, seed: u64) -> InitialData<BigRational> {
 
 /// The same scene with every position shifted by a decimal of `digits`
 /// significant digits (`1.2345678901234…`), so that the common denominators
-/// no longer fit `i128` (30 digits: the 256-bit loop; 100 digits: `BigInt`).
+/// no longer fit `i128` (30 digits: the 256-bit loop; 100 digits: the 512-bit loop).
 pub fn decimal_scene(d: &InitialData<BigRational>, digits: usize) -> InitialData<BigRational> {
     let text: String = (0..digits)
         .map(|i| char::from(b'0' + ((i + 1) % 10) as u8))
