@@ -259,8 +259,11 @@ impl<S: Scalar> Trajectory<S> {
     /// [`Trajectory::at`] reads are computed by the same [`prefix_sums`] as
     /// in `new` (which keeps its own, already needed for the initial
     /// clusters, rather than computing them twice), and both constructors
-    /// end in [`Trajectory::assemble`].
-    pub(crate) fn from_parts(
+    /// end in [`Trajectory::assemble`]. Public but hidden for one more
+    /// caller: `tests/claims_mutants.rs` builds histories tampered on
+    /// purpose with it; nothing checks that the parts are consistent.
+    #[doc(hidden)]
+    pub fn from_parts(
         data: InitialData<S>,
         join_time: Vec<Option<S>>,
         impulses: Vec<Impulse<S>>,
