@@ -546,6 +546,25 @@ mod tests {
             &[Some(q(1, 2)), Some(q(5, 2)), Some(q(14, 5)), None]
         );
         assert_eq!(traj.last_collision(), Some(&q(14, 5)));
+        // 0, each collision instant preceded by the midpoint since the
+        // previous one, and one time unit after the last.
+        let probes = [
+            (0, 1),
+            (1, 4),
+            (1, 2),
+            (3, 2),
+            (5, 2),
+            (53, 20),
+            (14, 5),
+            (19, 5),
+        ];
+        let probes: Vec<_> = probes.iter().map(|&(n, d)| q(n, d)).collect();
+        assert_eq!(probe_times(&traj, None), probes);
+        // A spread of 2 instants keeps the first and the last (each with
+        // the midpoint since the collision before it).
+        let spread = [(0, 1), (1, 4), (1, 2), (53, 20), (14, 5), (19, 5)];
+        let spread: Vec<_> = spread.iter().map(|&(n, d)| q(n, d)).collect();
+        assert_eq!(probe_times(&traj, Some(2)), spread);
         for t in probe_times(&traj, None) {
             assert_eq!(traj.at(&t).unwrap(), state_at(&data, &t).unwrap());
         }
