@@ -565,6 +565,9 @@ mod tests {
         let spread = [(0, 1), (1, 4), (1, 2), (53, 20), (14, 5), (19, 5)];
         let spread: Vec<_> = spread.iter().map(|&(n, d)| q(n, d)).collect();
         assert_eq!(probe_times(&traj, Some(2)), spread);
+        // A spread needs two instants: fewer asked for means all of them.
+        assert_eq!(probe_times(&traj, Some(1)), probes);
+        assert_eq!(probe_times(&traj, Some(0)), probes);
         for t in probe_times(&traj, None) {
             assert_eq!(traj.at(&t).unwrap(), state_at(&data, &t).unwrap());
         }
