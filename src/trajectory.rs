@@ -580,6 +580,7 @@ mod tests {
     fn history_is_the_projection_on_random_scenes() {
         use crate::generate::{initial_data, Limits, SplitMix64};
         let mut rng = SplitMix64::new(0x7EA5);
+        let mut spreads = 0;
         for k in 0..60 {
             let limits = Limits {
                 max_n: 2 + k % 12,
@@ -588,7 +589,20 @@ mod tests {
             };
             let data = initial_data(&rng.bytes(96), limits);
             let traj = Trajectory::new(data.clone());
-            for t in probe_times(&traj, None) {
+            let all = probe_times(&traj, None);
+            // A spread of 3 instants among more: 0, three instants with their
+            // midpoints, the time after — all of them probe times, the first
+            // and the last instant among them.
+            let instants = (all.len() - 2) / 2;
+            if instants > 3 {
+                let spread = probe_times(&traj, Some(3));
+                assert_eq!(spread.len(), 8);
+                assert!(spread.iter().all(|t| all.contains(t)));
+                assert_eq!(spread[2], all[2]);
+                assert_eq!(spread[6..], all[all.len() - 2..]);
+                spreads += 1;
+            }
+            for t in all {
                 let s = traj.at(&t).unwrap();
                 assert_eq!(s, state_at(&data, &t).unwrap(), "scene {k}, t = {t}");
                 for c in traj.clusters_after(&t) {
@@ -598,6 +612,10 @@ mod tests {
                 }
             }
         }
+        assert!(
+            spreads > 5,
+            "only {spreads} scenes with more than 3 collision instants"
+        );
     }
 
     #[test]
