@@ -162,6 +162,32 @@ mod tests {
         assert_eq!(mu_n, S::zero());
     }
 
+    /// A collision after which the cluster still moves: the jumps are
+    /// `(1/N) Σ_{j ≤ i} (u_j(t⁻) − ū)` with `ū ≠ 0`, parts of unequal sizes,
+    /// and the pairs outside the cluster get no jump. From rest (`λ = 0`
+    /// before), the jumps are the multipliers just after.
+    #[test]
+    fn jumps_of_a_moving_cluster() {
+        let q = |n: i64, d: i64| BigRational::from_i64(n) / BigRational::from_i64(d);
+        // N = 4: particle 1 alone, then particles 2 (u = 3) and 3, 4 (u = 0)
+        // merge into a cluster moving at 1.
+        let imp = Impulse {
+            t: q(1, 1),
+            cluster: Cluster { first: 1, size: 3 },
+            parts: vec![Cluster { first: 1, size: 1 }, Cluster { first: 2, size: 2 }],
+            part_velocities: vec![q(3, 1), q(0, 1)],
+            velocity: q(1, 1),
+            n: 4,
+        };
+        assert_eq!(imp.jumps(), vec![q(1, 2), q(1, 4)]);
+        assert_eq!(imp.total(), q(3, 4));
+        let u0 = vec![q(-5, 1), q(3, 1), q(0, 1), q(0, 1)];
+        let u = vec![q(-5, 1), q(1, 1), q(1, 1), q(1, 1)];
+        let (lambda, last) = multipliers(&u0, &u);
+        assert_eq!(lambda, vec![q(0, 1), q(1, 2), q(1, 4)]);
+        assert_eq!(last, q(0, 1));
+    }
+
     /// The closed form on a cluster is the recurrence: on integer data
     /// (`D = 1`), `N k λ` from both.
     #[test]

@@ -261,6 +261,97 @@ mod tests {
         assert_eq!(s.multipliers, vec![S::zero()]);
     }
 
+    /// Isotonic regression by its closed form,
+    /// `P(y)_i = max_{j ≤ i} min_{k ≥ i} mean(y_j … y_k)`, in any ordered
+    /// field — here pairs `(y, u)` in the lexicographic order, the field
+    /// `R(ε)` of the module documentation (means are taken componentwise).
+    fn min_max(y: &[(Rational64, Rational64)]) -> Vec<(Rational64, Rational64)> {
+        let mean = |j: usize, k: usize| {
+            let len = Rational64::from_usize(k + 1 - j);
+            let (sy, su) = y[j..=k].iter().fold(
+                (Rational64::zero(), Rational64::zero()),
+                |(a, b), (p, q)| (a + p, b + q),
+            );
+            (sy / len, su / len)
+        };
+        (0..y.len())
+            .map(|i| {
+                (0..=i)
+                    .map(|j| (i..y.len()).map(|k| mean(j, k)).min().unwrap())
+                    .max()
+                    .unwrap()
+            })
+            .collect()
+    }
+
+    /// PAVA (pooling by cross-multiplied means, lexicographic tie-break)
+    /// equals the closed form on every vector of a pseudo-random family with
+    /// many ties and blocks of unequal sizes, primary key alone and with a
+    /// secondary key.
+    #[test]
+    fn pava_is_the_min_max_formula() {
+        let mut state = 0x2545_F491_4F6C_DD1Du64;
+        let mut small = |m: u64| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state % m) as i64 - (m as i64) / 2
+        };
+        for round in 0..400 {
+            let len = 1 + round % 9;
+            let y: Vec<Rational64> = (0..len).map(|_| Rational64::from_i64(small(7))).collect();
+            let u: Vec<Rational64> = (0..len).map(|_| Rational64::from_i64(small(5))).collect();
+            let pairs: Vec<_> = y.iter().cloned().zip(u.iter().cloned()).collect();
+            let want = min_max(&pairs);
+            let mut got = Vec::new();
+            for b in pava_blocks(&y, Some(&u)) {
+                got.extend(std::iter::repeat_n((b.mean_y(), b.mean_u()), b.size));
+            }
+            assert_eq!(got, want, "y = {y:?}, u = {u:?}");
+            let primary: Vec<_> = y.iter().map(|v| (*v, Rational64::zero())).collect();
+            let want: Vec<Rational64> = min_max(&primary).into_iter().map(|p| p.0).collect();
+            assert_eq!(isotonic(&y), want, "y = {y:?}");
+        }
+    }
+
+    /// `P_K` on known points: a point of `K` is fixed, two particles at the
+    /// same place are pushed apart symmetrically, and `P_K(0)` is the
+    /// centred chain `2r·(i − (N−1)/2)`.
+    #[test]
+    fn project_k_known_points() {
+        let q = |n, d| Rational64::new(n, d);
+        let inside = vec![q(0, 1), q(1, 1), q(5, 2)];
+        assert_eq!(project_k(&inside, &q(1, 1)), inside);
+        assert_eq!(
+            project_k(&[q(0, 1), q(0, 1)], &q(1, 1)),
+            vec![q(-1, 2), q(1, 2)]
+        );
+        assert_eq!(
+            project_k(&[Rational64::zero(); 4], &q(1, 2)),
+            vec![q(-3, 4), q(-1, 4), q(1, 4), q(3, 4)]
+        );
+        assert!(project_k::<Rational64>(&[], &q(1, 1)).is_empty());
+    }
+
+    /// The free flight `x⁰ + t u⁰`, and its translated form `x̃⁰ + t u⁰`.
+    #[test]
+    fn free_flight_values() {
+        let q = |n, d| Rational64::new(n, d);
+        let data = InitialData::new(
+            q(1, 4),
+            vec![q(0, 1), q(1, 1), q(3, 1)],
+            vec![q(2, 1), q(-1, 1), q(1, 3)],
+        )
+        .unwrap();
+        let t = q(3, 2);
+        assert_eq!(free_flight(&data, &t), vec![q(3, 1), q(-1, 2), q(7, 2)]);
+        assert_eq!(
+            shifted_free_flight(&data, &t),
+            vec![q(3, 1), q(-1, 1), q(5, 2)]
+        );
+        assert_eq!(free_flight(&data, &Rational64::zero()), data.positions());
+    }
+
     #[test]
     fn pava_rational64() {
         pava_cases::<Rational64>();

@@ -259,8 +259,11 @@ impl<S: Scalar> Trajectory<S> {
     /// [`Trajectory::at`] reads are computed by the same [`prefix_sums`] as
     /// in `new` (which keeps its own, already needed for the initial
     /// clusters, rather than computing them twice), and both constructors
-    /// end in [`Trajectory::assemble`].
-    pub(crate) fn from_parts(
+    /// end in [`Trajectory::assemble`]. Public but hidden for one more
+    /// caller: `tests/claims_mutants.rs` builds histories tampered on
+    /// purpose with it; nothing checks that the parts are consistent.
+    #[doc(hidden)]
+    pub fn from_parts(
         data: InitialData<S>,
         join_time: Vec<Option<S>>,
         impulses: Vec<Impulse<S>>,
@@ -518,6 +521,101 @@ mod tests {
         assert_eq!(s.positions, vec![q(-2, 1)]);
         assert!(s.multipliers.is_empty());
         assert_eq!(s, state_at(&data, &q(5, 2)).unwrap());
+    }
+
+    /// Collisions at distinct times, the later candidates pushed before the
+    /// earlier ones pop: each collision at its own time, in time order; the
+    /// join time of every pair (`None`: never joined); and the state from
+    /// the history equals the projection at every probe time.
+    #[test]
+    fn cascade_in_time_order() {
+        let q = |n, d| BigRational::from_i64(n) / BigRational::from_i64(d);
+        // 2r = 1. Pair (1,2) meets at 1/2; (4,5) would at 3 but the cluster
+        // {1,2} (velocity 1) reaches 3 at 5/2 and {1,2,3} (velocity 2/3)
+        // reaches 4 at 14/5; particle 5 runs away.
+        let x = vec![q(0, 1), q(2, 1), q(5, 1), q(9, 1), q(20, 1)];
+        let u = vec![q(2, 1), q(0, 1), q(0, 1), q(-1, 1), q(5, 1)];
+        let data = InitialData::new(q(1, 2), x, u).unwrap();
+        let traj = Trajectory::new(data.clone());
+        let times: Vec<_> = traj.impulses().iter().map(|i| i.t.clone()).collect();
+        assert_eq!(times, vec![q(1, 2), q(5, 2), q(14, 5)]);
+        let sizes: Vec<_> = traj.impulses().iter().map(|i| i.cluster.size).collect();
+        assert_eq!(sizes, vec![2, 3, 4]);
+        assert_eq!(
+            traj.join_times(),
+            &[Some(q(1, 2)), Some(q(5, 2)), Some(q(14, 5)), None]
+        );
+        assert_eq!(traj.last_collision(), Some(&q(14, 5)));
+        // 0, each collision instant preceded by the midpoint since the
+        // previous one, and one time unit after the last.
+        let probes = [
+            (0, 1),
+            (1, 4),
+            (1, 2),
+            (3, 2),
+            (5, 2),
+            (53, 20),
+            (14, 5),
+            (19, 5),
+        ];
+        let probes: Vec<_> = probes.iter().map(|&(n, d)| q(n, d)).collect();
+        assert_eq!(probe_times(&traj, None), probes);
+        // A spread of 2 instants keeps the first and the last (each with
+        // the midpoint since the collision before it).
+        let spread = [(0, 1), (1, 4), (1, 2), (53, 20), (14, 5), (19, 5)];
+        let spread: Vec<_> = spread.iter().map(|&(n, d)| q(n, d)).collect();
+        assert_eq!(probe_times(&traj, Some(2)), spread);
+        // A spread needs two instants: fewer asked for means all of them.
+        assert_eq!(probe_times(&traj, Some(1)), probes);
+        assert_eq!(probe_times(&traj, Some(0)), probes);
+        for t in probe_times(&traj, None) {
+            assert_eq!(traj.at(&t).unwrap(), state_at(&data, &t).unwrap());
+        }
+    }
+
+    /// The history equals the projection on random scenes (contacts and
+    /// simultaneous collisions on purpose), and [`Trajectory::position_in`]
+    /// gives every particle's position from its cluster's sums.
+    #[test]
+    fn history_is_the_projection_on_random_scenes() {
+        use crate::generate::{initial_data, Limits, SplitMix64};
+        let mut rng = SplitMix64::new(0x7EA5);
+        let mut spreads = 0;
+        for k in 0..60 {
+            let limits = Limits {
+                max_n: 2 + k % 12,
+                max_den: 6,
+                max_speed: 8,
+            };
+            let data = initial_data(&rng.bytes(96), limits);
+            let traj = Trajectory::new(data.clone());
+            let all = probe_times(&traj, None);
+            // A spread of 3 instants among more: 0, three instants with their
+            // midpoints, the time after — all of them probe times, the first
+            // and the last instant among them.
+            let instants = (all.len() - 2) / 2;
+            if instants > 3 {
+                let spread = probe_times(&traj, Some(3));
+                assert_eq!(spread.len(), 8);
+                assert!(spread.iter().all(|t| all.contains(t)));
+                assert_eq!(spread[2], all[2]);
+                assert_eq!(spread[6..], all[all.len() - 2..]);
+                spreads += 1;
+            }
+            for t in all {
+                let s = traj.at(&t).unwrap();
+                assert_eq!(s, state_at(&data, &t).unwrap(), "scene {k}, t = {t}");
+                for c in traj.clusters_after(&t) {
+                    for i in c.range() {
+                        assert_eq!(traj.position_in(&c, i, &t), s.positions[i]);
+                    }
+                }
+            }
+        }
+        assert!(
+            spreads > 5,
+            "only {spreads} scenes with more than 3 collision instants"
+        );
     }
 
     #[test]

@@ -6,8 +6,6 @@
 //! independent of N; the claims below do not depend on its value).
 
 use super::{Case, Violation};
-use crate::contact::multipliers;
-use crate::projection::state_at;
 use crate::scalar::Scalar;
 use crate::state::State;
 
@@ -34,10 +32,9 @@ fn augmented<S: Scalar>(case: &Case<S>, s: &State<S>) -> Augmented<S> {
     x.extend(s.positions.iter().cloned());
     let mut u = vec![s.velocities[0].clone()];
     u.extend(s.velocities.iter().cloned());
-    let (l, ln) = multipliers(case.data().velocities(), &s.velocities);
-    let mut lambda = vec![S::zero()];
-    lambda.extend(l);
-    lambda.push(ln);
+    // The engine's λ (not recomputed from u: eq:PDE-Lagr-N-1 would then
+    // hold by construction), λ_0 = λ_N = 0.
+    let lambda = crate::claims::micro::augmented_lambda(s);
     Augmented {
         t: s.t.clone(),
         x,
@@ -50,7 +47,7 @@ fn states<S: Scalar>(case: &Case<S>, id: &'static str) -> Result<Vec<Augmented<S
     case.times
         .iter()
         .map(|t| {
-            state_at(case.data(), t)
+            case.state(t)
                 .map(|s| augmented(case, &s))
                 .map_err(|e| Violation::new(id, e.to_string()))
         })
@@ -165,7 +162,9 @@ fn exclusion<S: Scalar>(case: &Case<S>, id: &'static str, affine: bool) -> R {
     let n = S::from_usize(case.n());
     for imp in case.impulse_spread() {
         let (t, jumps) = (imp.t.clone(), augmented_jumps(case.n(), imp));
-        let s = state_at(case.data(), &t).map_err(|e| Violation::new(id, e.to_string()))?;
+        let s = case
+            .state(&t)
+            .map_err(|e| Violation::new(id, e.to_string()))?;
         let a = augmented(case, &s);
         for i in 1..=case.n() {
             let slope = n.clone() * &(a.x[i].clone() - &a.x[i - 1]);
@@ -438,7 +437,9 @@ pub fn bv_xn<S: Scalar>(case: &Case<S>) -> R {
     // estimate of the paper's right-hand side's sup, i.e. harder to meet).
     let mut impulse_states = Vec::new();
     for imp in case.impulse_spread() {
-        let s = state_at(case.data(), &imp.t).map_err(|e| Violation::new(ID, e.to_string()))?;
+        let s = case
+            .state(&imp.t)
+            .map_err(|e| Violation::new(ID, e.to_string()))?;
         impulse_states.push(augmented(case, &s));
     }
     let first = &all[0];

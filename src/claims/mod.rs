@@ -17,8 +17,11 @@
 // pairs `(i, i+1)`), which reads closer to the statements than iterators.
 #![allow(clippy::needless_range_loop)]
 
+use crate::error::Error;
 use crate::initial::InitialData;
+use crate::projection::state_at;
 use crate::scalar::Scalar;
+use crate::state::State;
 use crate::trajectory::Trajectory;
 
 pub mod continuum;
@@ -35,6 +38,13 @@ pub use registry::registry;
 
 pub use crate::violation::Violation;
 
+/// A deliberate corruption of the state the engines compute, applied by
+/// [`Case::state`] and [`Case::history_state`] after the engine ran. Only
+/// for `tests/claims_mutants.rs`, which shows with hand-written mutants that
+/// every checker of the registry can fail; no real case carries one.
+#[doc(hidden)]
+pub type Tamper<S> = fn(&InitialData<S>, &mut State<S>);
+
 /// One initial datum with its whole sticky history and the times at which
 /// claims are evaluated (0, collision instants, midpoints, after the last).
 #[derive(Debug, Clone)]
@@ -43,6 +53,7 @@ pub struct Case<S> {
     pub traj: Trajectory<S>,
     /// The probe times, increasing.
     pub times: Vec<S>,
+    tamper: Option<Tamper<S>>,
 }
 
 impl<S: Scalar> Case<S> {
@@ -51,7 +62,44 @@ impl<S: Scalar> Case<S> {
     pub fn new(data: InitialData<S>, limit: Option<usize>) -> Self {
         let traj = Trajectory::new(data);
         let times = micro::probe_times(&traj, limit);
-        Case { traj, times }
+        Self::with_times(traj, times)
+    }
+    /// The case for a computed trajectory, probed at the given times.
+    pub fn with_times(traj: Trajectory<S>, times: Vec<S>) -> Self {
+        Case {
+            traj,
+            times,
+            tamper: None,
+        }
+    }
+    /// The same case with every state the checkers read corrupted by
+    /// `tamper` (a hand-written mutant of the engines' output; test hook).
+    #[doc(hidden)]
+    pub fn tampered(mut self, tamper: Tamper<S>) -> Self {
+        self.tamper = Some(tamper);
+        self
+    }
+    /// The state at `t` from the projection formula
+    /// ([`state_at`], `eq:proj-micro-x`): the state the checkers read.
+    pub fn state(&self, t: &S) -> Result<State<S>, Error> {
+        self.state_of(self.data(), t)
+    }
+    /// The state at `t` of another datum, computed by the same engine as
+    /// [`Case::state`] (a second solution, as in a uniqueness argument).
+    pub fn state_of(&self, data: &InitialData<S>, t: &S) -> Result<State<S>, Error> {
+        let mut s = state_at(data, t)?;
+        if let Some(f) = self.tamper {
+            f(data, &mut s);
+        }
+        Ok(s)
+    }
+    /// The state at `t` from the recorded history ([`Trajectory::at`]).
+    pub fn history_state(&self, t: &S) -> Result<State<S>, Error> {
+        let mut s = self.traj.at(t)?;
+        if let Some(f) = self.tamper {
+            f(self.data(), &mut s);
+        }
+        Ok(s)
     }
     /// The initial data.
     pub fn data(&self) -> &InitialData<S> {

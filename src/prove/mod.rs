@@ -326,10 +326,7 @@ impl Program for Target {
             Ok(d) => d,
             Err(e) => return PathEnd::Excluded(e.to_string()),
         };
-        let case = Case {
-            traj: Trajectory::new(data),
-            times: input.times.clone(),
-        };
+        let case = Case::with_times(Trajectory::new(data), input.times.clone());
         let claims: Vec<Claim<S>> = registry();
         let Some(claim) = claims.iter().find(|c| c.id == self.registry_id) else {
             return PathEnd::Excluded(format!("no claim {}", self.registry_id));

@@ -6,7 +6,7 @@ use super::{dot, lambda_integral, render_vec, state, sub, R};
 use crate::claims::{Case, Violation};
 use crate::contact::kkt_multipliers;
 use crate::initial::InitialData;
-use crate::projection::{free_flight, state_at};
+use crate::projection::free_flight;
 use crate::scalar::Scalar;
 
 /// `app:KKT`, as printed: "the KKT conditions apply and yield the existence
@@ -112,7 +112,9 @@ fn uniqueness<S: Scalar>(case: &Case<S>, id: &'static str, corrected: bool) -> R
     let n = S::from_usize(case.n());
     for t in &case.times {
         let s1 = state(case, t, id)?;
-        let s2 = state_at(&other, t).map_err(|e| Violation::new(id, e.to_string()))?;
+        let s2 = case
+            .state_of(&other, t)
+            .map_err(|e| Violation::new(id, e.to_string()))?;
         let d = sub(&s1.positions, &s2.positions);
         let dd = sub(&s1.velocities, &s2.velocities);
         // ξ^a = u⁰ − u^a, so −⟨ξ¹ − ξ², d⟩ = ⟨u¹ − u², d⟩.

@@ -12,7 +12,6 @@
 
 use super::{Case, Violation};
 use crate::cluster::Cluster;
-use crate::projection::state_at;
 use crate::scalar::Scalar;
 use crate::state::State;
 use crate::trajectory::Trajectory;
@@ -32,6 +31,7 @@ pub use bounds::{
 pub use kkt::{
     kkt_corrected, kkt_printed, uniqueness_identity_corrected, uniqueness_identity_printed,
 };
+pub(crate) use multipliers::augmented_lambda;
 pub use multipliers::{
     delta_lambda, dyn_micro, lambda_cs, multiplier_relation_corrected, multiplier_relation_printed,
     multiplier_signs, sup_u_and_increments,
@@ -80,7 +80,7 @@ fn sub<S: Scalar>(a: &[S], b: &[S]) -> Vec<S> {
 }
 
 fn state<S: Scalar>(case: &Case<S>, t: &S, id: &'static str) -> Result<State<S>, Violation> {
-    state_at(case.data(), t).map_err(|e| Violation::new(id, e.to_string()))
+    case.state(t).map_err(|e| Violation::new(id, e.to_string()))
 }
 
 fn positive_times<S: Scalar>(case: &Case<S>) -> impl Iterator<Item = &S> {

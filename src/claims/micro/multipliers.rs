@@ -4,24 +4,48 @@
 
 use super::{norm2, state, sub, R};
 use crate::claims::{Case, Violation};
-use crate::contact::multipliers;
 use crate::initial::InitialData;
 use crate::scalar::Scalar;
 use crate::state::State;
 
-/// `eq:dyn-micro`: `λ_0 = λ_N = 0`, `λ_i ≥ 0` and
-/// `λ_i (x_{i+1} − x_i − 2r) = 0` for the state `s` of the data `data`.
+/// `eq:dyn-micro` for the state `s` of the data `data`, on the engine's own
+/// multipliers `s.multipliers` (not recomputed from `u`, which would make the
+/// identity true by construction): `u_i − u⁰_i = −N(λ_i − λ_{i−1})` for
+/// `i = 1 … N` with `λ_0 = λ_N = 0`, `λ_i ≥ 0` and
+/// `λ_i (x_{i+1} − x_i − 2r) = 0`.
 pub fn multiplier_signs<S: Scalar>(data: &InitialData<S>, s: &State<S>) -> R {
     const ID: &str = "eq:dyn-micro";
-    let (lambda, lambda_n) = multipliers(data.velocities(), &s.velocities);
-    if !lambda_n.is_zero() {
+    let n = data.n();
+    if s.multipliers.len() != n.saturating_sub(1) {
         return Err(Violation::new(
             ID,
-            format!("λ_N = {} ≠ 0 at t = {}", lambda_n.render(), s.t.render()),
+            format!(
+                "{} multipliers for N = {n} at t = {}",
+                s.multipliers.len(),
+                s.t.render()
+            ),
         ));
     }
+    let lambda = augmented_lambda(s);
+    let nn = S::from_usize(n);
+    for i in 1..=n {
+        let lhs = s.velocities[i - 1].clone() - &data.velocities()[i - 1];
+        let rhs = -(nn.clone() * &(lambda[i].clone() - &lambda[i - 1]));
+        if lhs != rhs {
+            return Err(Violation::new(
+                ID,
+                format!(
+                    "u_{i} − u⁰_{i} = {} but −N(λ_{i} − λ_{}) = {} at t = {} (λ_0 = λ_N = 0)",
+                    lhs.render(),
+                    i - 1,
+                    rhs.render(),
+                    s.t.render()
+                ),
+            ));
+        }
+    }
     let two_r = data.two_r();
-    for (i, l) in lambda.iter().enumerate() {
+    for (i, l) in s.multipliers.iter().enumerate() {
         if l.total_cmp(&S::zero()).is_lt() {
             return Err(Violation::new(
                 ID,
@@ -47,6 +71,16 @@ pub fn multiplier_signs<S: Scalar>(data: &InitialData<S>, s: &State<S>) -> R {
     Ok(())
 }
 
+/// `(λ_0, λ_1, …, λ_{N−1}, λ_N)` with `λ_0 = λ_N = 0` and the engine's
+/// `λ_1 … λ_{N−1}` (`s.multipliers`) in between.
+pub(crate) fn augmented_lambda<S: Scalar>(s: &State<S>) -> Vec<S> {
+    let mut l = Vec::with_capacity(s.multipliers.len() + 2);
+    l.push(S::zero());
+    l.extend(s.multipliers.iter().cloned());
+    l.push(S::zero());
+    l
+}
+
 /// `eq:dyn-micro` at every probe time.
 pub fn dyn_micro<S: Scalar>(case: &Case<S>) -> R {
     for t in &case.times {
@@ -56,10 +90,11 @@ pub fn dyn_micro<S: Scalar>(case: &Case<S>) -> R {
     Ok(())
 }
 
-/// `(λ_1 − λ_0, …, λ_N − λ_{N−1})` and `L = (λ_1, …, λ_N)` at state `s`.
-fn delta_l<S: Scalar>(data: &InitialData<S>, s: &State<S>) -> (Vec<S>, Vec<S>) {
-    let (mut l, ln) = multipliers(data.velocities(), &s.velocities);
-    l.push(ln);
+/// `(λ_1 − λ_0, …, λ_N − λ_{N−1})` and `L = (λ_1, …, λ_N)` at state `s`,
+/// from the engine's multipliers (`λ_0 = λ_N = 0`).
+fn delta_l<S: Scalar>(s: &State<S>) -> (Vec<S>, Vec<S>) {
+    let mut l = augmented_lambda(s);
+    l.remove(0);
     let mut prev = S::zero();
     let d = l
         .iter()
@@ -80,7 +115,7 @@ pub fn delta_lambda<S: Scalar>(case: &Case<S>) -> R {
     let n3 = n.clone() * &n * &n;
     for t in &case.times {
         let s = state(case, t, ID)?;
-        let (dl, _) = delta_l(case.data(), &s);
+        let (dl, _) = delta_l(&s);
         let lhs = norm2(&dl);
         let mid = sub(&s.velocities, case.data().velocities())
             .iter()
@@ -110,7 +145,7 @@ pub fn lambda_cs<S: Scalar>(case: &Case<S>) -> R {
     let n = S::from_usize(case.n());
     for t in &case.times {
         let s = state(case, t, ID)?;
-        let (dl, l) = delta_l(case.data(), &s);
+        let (dl, l) = delta_l(&s);
         let bound = n.clone() * &n * norm2(&dl);
         for (i, li) in l.iter().enumerate() {
             if li.clone() * li > bound {
@@ -164,7 +199,7 @@ fn multiplier_relation<S: Scalar>(case: &Case<S>, id: &'static str, as_printed: 
     let n = S::from_usize(case.n());
     for t in &case.times {
         let s = state(case, t, id)?;
-        let (dl, _) = delta_l(case.data(), &s);
+        let (dl, _) = delta_l(&s);
         for i in 0..case.n() {
             let lhs = n.clone() * &dl[i];
             let (u, u0) = (&s.velocities[i], &case.data().velocities()[i]);
@@ -214,7 +249,7 @@ pub fn sup_u_and_increments<S: Scalar>(case: &Case<S>) -> R {
     let n = S::from_usize(case.n());
     for t in &case.times {
         let s = state(case, t, ID)?;
-        let (dl, _) = delta_l(case.data(), &s);
+        let (dl, _) = delta_l(&s);
         let su = sup_abs(&s.velocities);
         let sd = n.clone() * sup_abs(&dl);
         if su > c0 || sd > S::from_i64(2) * &c0 {

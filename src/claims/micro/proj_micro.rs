@@ -7,6 +7,7 @@
 use super::{dot, positive_times, render_state, render_vec, state, sub, R};
 use crate::claims::{Case, Violation};
 use crate::cluster::{contact_clusters, project_h};
+use crate::error::Error;
 use crate::initial::shift;
 use crate::projection::{free_flight, state_at};
 use crate::scalar::Scalar;
@@ -18,14 +19,42 @@ use crate::trajectory::Trajectory;
 /// right-derivative velocities, multipliers and contact clusters, exactly.
 /// Returns the (common) state.
 pub fn projection_formula<S: Scalar>(traj: &Trajectory<S>, t: &S) -> Result<State<S>, Violation> {
+    agree(
+        traj.at(t),
+        state_at(traj.data(), t),
+        t,
+        &traj.data().two_r(),
+    )
+}
+
+/// The two engines' states at `t`, compared (`prop:proj-micro`); the
+/// clusters they report must be the contact clusters of the positions
+/// (`df:Omega-micro`), not merely the same list from both.
+fn agree<S: Scalar>(
+    events: Result<State<S>, Error>,
+    proj: Result<State<S>, Error>,
+    t: &S,
+    two_r: &S,
+) -> Result<State<S>, Violation> {
     const ID: &str = "prop:proj-micro";
-    let events = traj
-        .at(t)
+    let events = events
         .map_err(|e| Violation::new(ID, format!("event engine refused t = {}: {e}", t.render())))?;
-    let proj = state_at(traj.data(), t)
+    let proj = proj
         .map_err(|e| Violation::new(ID, format!("projection refused t = {}: {e}", t.render())))?;
     if events == proj {
-        return Ok(proj);
+        let contact = contact_clusters(&proj.positions, two_r);
+        if contact == proj.clusters {
+            return Ok(proj);
+        }
+        return Err(Violation::new(
+            ID,
+            format!(
+                "at t = {}: clusters {:?} reported, but the contact clusters of x(t) are {:?}",
+                t.render(),
+                proj.clusters,
+                contact
+            ),
+        ));
     }
     Err(Violation::new(
         ID,
@@ -41,7 +70,12 @@ pub fn projection_formula<S: Scalar>(traj: &Trajectory<S>, t: &S) -> Result<Stat
 /// `prop:proj-micro` on every probe time of the case.
 pub fn proj_micro<S: Scalar>(case: &Case<S>) -> R {
     for t in &case.times {
-        projection_formula(&case.traj, t)?;
+        agree(
+            case.history_state(t),
+            case.state(t),
+            t,
+            &case.data().two_r(),
+        )?;
     }
     Ok(())
 }
