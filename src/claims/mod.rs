@@ -30,6 +30,7 @@ pub mod momentum;
 pub mod registry;
 pub mod sampling;
 pub mod scaling;
+pub mod test_pressure;
 
 pub use registry::registry;
 

@@ -4,7 +4,9 @@
 //! them. A `correction` is attached to a claim once it has been found false
 //! as printed; the corrected statement is then what the test engines require.
 
-use super::{always, discrete, linf, micro, momentum, paper_radius, sampling, scaling};
+use super::{
+    always, discrete, linf, micro, momentum, paper_radius, sampling, scaling, test_pressure,
+};
 use super::{Claim, Correction, Kind};
 use crate::limit::appendix_c;
 use crate::scalar::Scalar;
@@ -165,6 +167,18 @@ pub fn registry<S: Scalar>() -> Vec<Claim<S>> {
             "No re-indexing rescues this step: on [(i−1)/N, i/N], P̃_N interpolates p_{i−1} and p_i, carried by the pairs (i−1, i) and (i, i+1), and a continuous piecewise-affine P̃_N cannot vanish on an interval whose pair is apart while its end values are the pressures of the neighbouring pairs. The bound itself follows from the pair-indexed pressure: testing eq:micro-2nd-ID with φ_i = (x_N − x_0) i/N − x_i (the proof's test function at the nodes) and summing by parts, at every collision (1/N) Σ_i [u_i] φ_i = Σ_i [λ_i](φ_{i+1} − φ_i) = ((x_N − x_0) − 1)/N · Σ_i [λ_i] ≥ (δ/N) Σ_i [λ_i] (the exclusion is exact for the pair (i, i+1)), and (1/N) Σ_i [λ_i] is the mass of both P_N and P̃_N (trapezoid rule, p_0 = p_N = 0).",
             Kind::Case(momentum::pressure_bound_by_parts),
             "prop:pressure-bound holds by this other argument (the summation by parts above, checked exactly at every collision: it sees the sign and the scale of λ); the printed step is wrong. The same wrong step is reused in the proof of prop:2ndorder-LagrPDE, \"0 = ⟨P̃_N, (∂_w X̃_N − 1)Ψ⟩\", false as printed for the same reason (the counterexample above). That conclusion survives through the paper's own previous item: with the re-indexed P_N := p_{i−1} the exclusion (∂_w X̃_N − 1) P_N = 0 is exact, so ⟨P̃_N, (∂_w X̃_N − 1)Ψ⟩ = −⟨R¹_N, Ψ⟩ with R¹_N = (∂_w X̃_N − 1)(P_N − P̃_N), which the paper shows tends to 0; the final item then needs → 0 instead of = 0. That limit is not checked by the ledger.",
+        ),
+        corrected(
+            s3("prop:pressure-bound#test-function", "(proof) φ(t,w) = ((x_N(t) − x_0(t))w − X̃_N(t,w))ϕ(t): \"Observe that at the boundaries φ(t,0) = φ(t,1) = 0\" (with the normalisation x⁰_0 = 0 of prop:Linf-micro; checked at every probe time t > 0, any ϕ ≥ 0 with ϕ(t) > 0).", test_pressure::test_function_boundary),
+            "φ(t,0) = φ(t,1) = −x_0(t)ϕ(t), and x_0(t) = ∫_0^t u_1 moves; the integration by parts in w needs only P̃_N(t,0) = p_0 = 0 and P̃_N(t,1) = p_N = 0, so the tested identity holds with this φ (its checker, eq:test-pressure-bound's correction, is run here).",
+            Kind::Case(test_pressure::test_identity_corrected),
+            "Holds: the boundary terms vanish because the pressure does; (x_0(t) + (x_N − x_0)w − X̃_N)ϕ, which does vanish at both ends, has the same ∂_w φ and changes the right side by −(∫U_N dw)∫(x_0ϕ)' dt = 0 (the mean velocity is conserved).",
+        ),
+        corrected(
+            s3("eq:test-pressure-bound", "\"Using (eq:PDE-Lagr-N-2), we obtain ∫_0^T∫_0^1 ((x_N(t) − x_0(t)) − ∂_w X̃_N(t,w))ϕ(t) P̃_N(w,dt) dw = −∫∫ ((U_N(t,0) − U_N(t,1))w − Ũ_N(t,w)) U_N(t,w) ϕ(t) dw dt − ∫∫ U_N(t,w)((x_N(t) − x_0(t))w − X̃_N(t,w)) ϕ'(t) dw dt. By the previously established bounds on U_N and X̃_N, the right-hand side is uniformly bounded. Hence … |∫∫((x_N − x_0) − ∂_w X̃_N)ϕ P̃_N(dt,w) dw| ≤ C(‖U_N‖²_{L^∞_{t,w}} + ‖U_N‖²_{L²_tL²_w} + ‖X̃_N‖²_{L²_tL²_w})\" — the identity checked exactly per trajectory (δ = 1, U_N(t,0) read as u_0 = u_1, the artificial particle moving with particle 1, U_N(t,1) = u_N) for ϕ = (t − a)²(b − t)² on [a, b] covering the collisions (up to 400 instants) and on [a, c] ending between the first two.", test_pressure::test_identity_printed),
+            "The identity holds with (u_N(t) − u_0(t))w in place of (U_N(t,0) − U_N(t,1))w — the ∂_t φ computed just before in the proof — exactly, and it gives |left side| ≤ 2‖ϕ‖_{L¹} sup_t ‖U_N‖²_∞ + ‖ϕ'‖_{L¹} sup_t ‖U_N(t)‖_∞ ((x_N − x_0) + max(|x_0|, |x_N|)) (checked), bounded independently of N by prop:Linf-micro: the bound needs the L^∞ bounds (the spread x_N − x_0 enters through (x_N − x_0)w), not only the L² norms listed.",
+            Kind::Case(test_pressure::test_identity_corrected),
+            "Holds: a sign slip in one factor; the proof only uses that the right side is bounded, which the corrected identity gives with C depending on ϕ through ‖ϕ‖_{L¹} ≤ T and ‖ϕ'‖_{L¹} (= 2 max ϕ for ϕ increasing then decreasing, enough for the total mass since P̃_N ≥ 0).",
         ),
         s3("prop:pressure-bound#gap-delta", "(x_N(t) − x_0(t)) − 1 ≥ 2r(N − 1) + (2r + δ) − 1 = δ.", discrete::gap_delta),
         s3("prop:cvg1#XN-L1", "∫_0^1 |X̃_N(t,w) − X_N(t,w)| dw = (1/2N) Σ_{i=0}^{N−1} (x_{i+1}(t) − x_i(t)) = (1/2N)(x_N(t) − x_0(t)).", discrete::xn_l1),
