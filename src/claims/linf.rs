@@ -41,7 +41,11 @@ pub(super) fn linf_at<S: Scalar>(a: &Augmented<S>, x0: &[S], sup_u0: &S) -> Resu
     let two = S::from_i64(2);
     let su = sup_abs(&a.u[1..]);
     if su > *sup_u0 {
-        return Err(format!("sup|u(t)| = {} > sup|u⁰| = {}", su.render(), sup_u0.render()));
+        return Err(format!(
+            "sup|u(t)| = {} > sup|u⁰| = {}",
+            su.render(),
+            sup_u0.render()
+        ));
     }
     let spread = a.x[n].clone() - &a.x[0];
     let bv = spread0 + &(two.clone() * t * sup_u0);
@@ -94,8 +98,12 @@ pub fn linf_micro<S: Scalar>(case: &Case<S>) -> R {
     debug_assert!(first.t.is_zero());
     let sup_u0 = sup_abs(case.data().velocities());
     for a in &all {
-        linf_at(a, &first.x, &sup_u0)
-            .map_err(|e| Violation::new(ID, format!("t = T = {}, N = {}: {e}", a.t.render(), case.n())))?;
+        linf_at(a, &first.x, &sup_u0).map_err(|e| {
+            Violation::new(
+                ID,
+                format!("t = T = {}, N = {}: {e}", a.t.render(), case.n()),
+            )
+        })?;
     }
     Ok(())
 }
@@ -113,8 +121,8 @@ mod tests {
     /// N = 2, 2r = 1/2: a head-on collision at t = 1/4, λ_1 = 1/2 after.
     #[test]
     fn bounds_hold_and_tampering_fails() {
-        let data =
-            InitialData::with_paper_radius(vec![q(0, 1), q(1, 1)], vec![q(1, 1), q(-1, 1)]).unwrap();
+        let data = InitialData::with_paper_radius(vec![q(0, 1), q(1, 1)], vec![q(1, 1), q(-1, 1)])
+            .unwrap();
         let case = Case::new(data, None);
         linf_micro(&case).unwrap();
         let all = states(&case, ID).unwrap();

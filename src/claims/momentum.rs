@@ -168,8 +168,13 @@ pub fn pressure_bound_by_parts<S: Scalar>(case: &Case<S>) -> R {
                 jumps[k] = jumps[k].clone() + &j;
             }
         }
-        pressure_bound_at(&before.velocities, &after.velocities, &after.positions, &jumps)
-            .map_err(|e| Violation::new(ID, format!("collision at t = {}: {e}", t.render())))?;
+        pressure_bound_at(
+            &before.velocities,
+            &after.velocities,
+            &after.positions,
+            &jumps,
+        )
+        .map_err(|e| Violation::new(ID, format!("collision at t = {}: {e}", t.render())))?;
     }
     Ok(())
 }

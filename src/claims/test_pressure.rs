@@ -140,7 +140,11 @@ fn sides<S: Scalar>(
             lhs = lhs + &(bump.phi(alpha) * &sum);
         }
         let true_c = s.u[n].clone() - &s.u[0];
-        let c = if printed { -true_c.clone() } else { true_c.clone() };
+        let c = if printed {
+            -true_c.clone()
+        } else {
+            true_c.clone()
+        };
         let (a_true, b_alpha) = a_b(&s, &true_c);
         let (a_c, _) = a_b(&s, &c);
         let int_phi = bump.big_phi(beta) - &bump.big_phi(alpha);
@@ -148,9 +152,13 @@ fn sides<S: Scalar>(
             + &(b_alpha * &(bump.phi(beta) - &bump.phi(alpha)))
             + &(a_true * &((beta.clone() - alpha) * &bump.phi(beta) - &int_phi));
         rhs = rhs - &piece;
-        let um = s.u[1..]
-            .iter()
-            .fold(S::zero(), |m, v| if abs(v.clone()) > m { abs(v.clone()) } else { m });
+        let um = s.u[1..].iter().fold(S::zero(), |m, v| {
+            if abs(v.clone()) > m {
+                abs(v.clone())
+            } else {
+                m
+            }
+        });
         if um > sup_u {
             sup_u = um.clone();
         }
@@ -189,7 +197,9 @@ fn bumps<S: Scalar>(case: &Case<S>) -> Vec<Bump<S>> {
     let two = S::from_i64(2);
     let a = (*first).clone() / &two;
     let last = instants[instants.len().min(400) - 1].clone();
-    let next = instants.get(1).map_or(last.clone() + &S::one(), |t| (*t).clone());
+    let next = instants
+        .get(1)
+        .map_or(last.clone() + &S::one(), |t| (*t).clone());
     vec![
         Bump::new(a.clone(), last + &S::one()),
         Bump::new(a, ((*first).clone() + &next) / &two),
@@ -199,7 +209,11 @@ fn bumps<S: Scalar>(case: &Case<S>) -> Vec<Bump<S>> {
 fn identity<S: Scalar>(case: &Case<S>, printed: bool, id: &'static str) -> R {
     for bump in bumps(case) {
         let (lhs, rhs, bound) = sides(case, &bump, printed, id)?;
-        let sup = if abs(lhs.clone()) > bound { Some(&bound) } else { None };
+        let sup = if abs(lhs.clone()) > bound {
+            Some(&bound)
+        } else {
+            None
+        };
         if lhs != rhs || (!printed && sup.is_some()) {
             return Err(Violation::new(
                 id,

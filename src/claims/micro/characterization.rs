@@ -139,8 +139,10 @@ pub fn characterization<S: Scalar>(
     }
     // z − a ∉ N_a C ⟹ P_C(z) ≠ a.
     let n = a.len();
-    let mut outside: Vec<(String, Vec<S>)> =
-        vec![("(1, …, 1)".to_string(), a.iter().map(|x| x.clone() + &S::one()).collect())];
+    let mut outside: Vec<(String, Vec<S>)> = vec![(
+        "(1, …, 1)".to_string(),
+        a.iter().map(|x| x.clone() + &S::one()).collect(),
+    )];
     for j in spread(n.saturating_sub(1)) {
         let contact = contacts.contains(&j);
         if !contact {
@@ -255,12 +257,26 @@ mod tests {
     fn the_crate_projection_passes() {
         let (x, c, two_r) = setting();
         let z: Vec<_> = [2, 0, 5, 1, 1].into_iter().map(q).collect();
-        characterization(&z, &x, &c, false, |v| project_k(v, &two_r), |y| k_contacts(y, &two_r))
-            .unwrap();
+        characterization(
+            &z,
+            &x,
+            &c,
+            false,
+            |v| project_k(v, &two_r),
+            |y| k_contacts(y, &two_r),
+        )
+        .unwrap();
         let clusters = contact_clusters(&x, &two_r);
         let w: Vec<_> = [1, 1, -2, -2, 5].into_iter().map(q).collect();
-        characterization(&z, &w, &c, true, |v| project_h(v, &clusters), |w| h_contacts(w, &clusters))
-            .unwrap();
+        characterization(
+            &z,
+            &w,
+            &c,
+            true,
+            |v| project_h(v, &clusters),
+            |w| h_contacts(w, &clusters),
+        )
+        .unwrap();
     }
 
     /// A wrong projection onto K^N (pushing each violated pair apart
@@ -290,7 +306,14 @@ mod tests {
     #[test]
     fn wrong_projections_fail() {
         let (x, c, two_r) = setting();
-        let e = characterization(&x.clone(), &x, &c, false, |v| v.to_vec(), |y| k_contacts(y, &two_r));
+        let e = characterization(
+            &x.clone(),
+            &x,
+            &c,
+            false,
+            |v| v.to_vec(),
+            |y| k_contacts(y, &two_r),
+        );
         assert!(e.is_err());
         let clusters = contact_clusters(&x, &two_r);
         let short = |v: &[BigRational]| {
@@ -302,7 +325,9 @@ mod tests {
             out
         };
         let z: Vec<_> = [2, 0, 5, 1, 1].into_iter().map(q).collect();
-        let e = characterization(&z, &project_h(&z, &clusters), &c, true, short, |w| h_contacts(w, &clusters));
+        let e = characterization(&z, &project_h(&z, &clusters), &c, true, short, |w| {
+            h_contacts(w, &clusters)
+        });
         assert!(e.is_err());
     }
 }

@@ -46,16 +46,69 @@ fn in_k<S: Scalar>(y: &[S], two_r: &S) -> bool {
         .all(|w| (w[1].clone() - &w[0]).total_cmp(two_r).is_ge())
 }
 
-/// The generators of `C_x`, named.
+/// At most 8 contact pairs and 8 pairs apart, spread evenly (all of them
+/// for small N): the pairs whose generators are materialised (each is a
+/// vector of length N).
+fn pair_spread<S: Scalar>(x: &[S], two_r: &S) -> Vec<usize> {
+    let contacts = contact_set(x, two_r);
+    let apart: Vec<usize> = (0..x.len().saturating_sub(1))
+        .filter(|j| !contacts.contains(j))
+        .collect();
+    let pick = |v: &[usize]| -> Vec<usize> {
+        if v.len() <= 8 {
+            return v.to_vec();
+        }
+        let mut idx: Vec<usize> = (0..8).map(|k| v[k * (v.len() - 1) / 7]).collect();
+        idx.dedup();
+        idx
+    };
+    let mut out = pick(&contacts);
+    out.extend(pick(&apart));
+    out.sort_unstable();
+    out
+}
+
+/// The first generator `g` of `T_x K` (all of them, in O(N) by tail sums)
+/// with `⟨v, g⟩ > 0`: `v ∈ (T_x K)°` iff there is none.
+fn polar_violation<S: Scalar>(v: &[S], x: &[S], two_r: &S) -> Option<String> {
+    let total = v.iter().fold(S::zero(), |a, b| a + b);
+    if !total.is_zero() {
+        return Some(format!("±(1, …, 1) (⟨v, (1, …, 1)⟩ = {})", total.render()));
+    }
+    let mut tail = total;
+    for j in 0..v.len().saturating_sub(1) {
+        tail = tail - &v[j];
+        let contact = (x[j + 1].clone() - &x[j]) == *two_r;
+        if tail > S::zero() || (!contact && tail < S::zero()) {
+            return Some(format!(
+                "{}s_{} (⟨v, s_{}⟩ = {})",
+                if contact || tail > S::zero() {
+                    ""
+                } else {
+                    "−"
+                },
+                j + 1,
+                j + 1,
+                tail.render()
+            ));
+        }
+    }
+    None
+}
+
+/// The generators of `C_x` for the pairs of [`pair_spread`], named.
 fn generators<S: Scalar>(x: &[S], two_r: &S) -> Vec<(String, Vec<S>)> {
     let n = x.len();
     let contacts = contact_set(x, two_r);
     let ones = vec![S::one(); n];
     let mut g = vec![
         ("(1, …, 1)".to_string(), ones.clone()),
-        ("−(1, …, 1)".to_string(), ones.iter().map(|v| -v.clone()).collect()),
+        (
+            "−(1, …, 1)".to_string(),
+            ones.iter().map(|v| -v.clone()).collect(),
+        ),
     ];
-    for j in 0..n.saturating_sub(1) {
+    for j in pair_spread(x, two_r) {
         let s: Vec<S> = s_vec(n, j);
         if !contacts.contains(&j) {
             g.push((
@@ -104,7 +157,11 @@ pub fn tangent_cone_at<S: Scalar>(x: &[S], two_r: &S, samples: &[Vec<S>]) -> Res
         }
         match step(x, &g, two_r) {
             Some(y) if in_k(&y, two_r) => {}
-            _ => return Err(format!("generator {name} ∈ C_x but x + θ·{name} ∉ K^N for every θ > 0")),
+            _ => {
+                return Err(format!(
+                    "generator {name} ∈ C_x but x + θ·{name} ∉ K^N for every θ > 0"
+                ))
+            }
         }
     }
     for y in samples {
@@ -121,7 +178,11 @@ pub fn tangent_cone_at<S: Scalar>(x: &[S], two_r: &S, samples: &[Vec<S>]) -> Res
         }
     }
     let n = x.len();
-    for j in contact_set(x, two_r) {
+    let contacts = contact_set(x, two_r);
+    for j in pair_spread(x, two_r)
+        .into_iter()
+        .filter(|j| contacts.contains(j))
+    {
         let m: Vec<S> = s_vec::<S>(n, j).into_iter().map(|v| -v).collect();
         if velocity_cone_violation(x, &m, two_r).is_none() {
             return Err(format!("−s_{} ∈ C_x across a contact", j + 1));
@@ -157,13 +218,12 @@ pub fn polar_cone_at<S: Scalar>(
     v_normal: &[S],
 ) -> Result<(), String> {
     let n = x.len();
-    let gens = generators(x, two_r);
     let contacts = contact_set(x, two_r);
-    let polar = |v: &[S]| gens.iter().find(|(_, g)| dot(v, g) > S::zero());
-    for j in 0..n.saturating_sub(1) {
+    let polar = |v: &[S]| polar_violation(v, x, two_r);
+    for j in pair_spread(x, two_r) {
         let nj: Vec<S> = n_vec(n, j);
         if contacts.contains(&j) {
-            if let Some((name, _)) = polar(&nj) {
+            if let Some(name) = polar(&nj) {
                 return Err(format!("contact {}: ⟨n_j, {name}⟩ > 0", j + 1));
             }
             for y in samples.iter().filter(|y| in_k(y, two_r)) {
@@ -199,14 +259,18 @@ pub fn polar_cone_at<S: Scalar>(
     if polar(&ones).is_none() {
         return Err("(1, …, 1) ∈ (T_x K)°".to_string());
     }
-    if let Some((name, _)) = polar(v_normal) {
+    if let Some(name) = polar(v_normal) {
         return Err(format!(
             "v = {} ∈ N_x K but ⟨v, {name}⟩ > 0",
             render_vec(v_normal)
         ));
     }
-    normal_coefficients(v_normal, &contacts, false)
-        .map_err(|e| format!("v = {} ∈ (T_x K)° is not a combination of the contacts' n_j: {e}", render_vec(v_normal)))
+    normal_coefficients(v_normal, &contacts, false).map_err(|e| {
+        format!(
+            "v = {} ∈ (T_x K)° is not a combination of the contacts' n_j: {e}",
+            render_vec(v_normal)
+        )
+    })
 }
 
 /// Points of `R^N` near the case at `t`: `x(s)` for every probe time `s`
@@ -226,8 +290,12 @@ pub fn tangent_cone<S: Scalar>(case: &Case<S>) -> R {
     for t in &case.times {
         let x = state(case, t, ID_T)?.positions;
         let ys = samples(case, t, ID_T)?;
-        tangent_cone_at(&x, &two_r, &ys)
-            .map_err(|e| Violation::new(ID_T, format!("t = {}, x = {}: {e}", t.render(), render_vec(&x))))?;
+        tangent_cone_at(&x, &two_r, &ys).map_err(|e| {
+            Violation::new(
+                ID_T,
+                format!("t = {}, x = {}: {e}", t.render(), render_vec(&x)),
+            )
+        })?;
     }
     Ok(())
 }
@@ -241,8 +309,12 @@ pub fn polar_cone<S: Scalar>(case: &Case<S>) -> R {
         let x = state(case, t, ID_N)?.positions;
         let ys = samples(case, t, ID_N)?;
         let v = sub(&free_flight(case.data(), t), &x);
-        polar_cone_at(&x, &two_r, &ys, &v)
-            .map_err(|e| Violation::new(ID_N, format!("t = {}, x = {}: {e}", t.render(), render_vec(&x))))?;
+        polar_cone_at(&x, &two_r, &ys, &v).map_err(|e| {
+            Violation::new(
+                ID_N,
+                format!("t = {}, x = {}: {e}", t.render(), render_vec(&x)),
+            )
+        })?;
     }
     Ok(())
 }
@@ -277,7 +349,11 @@ pub fn translated_cone_at<S: Scalar>(
         if let Some(q) = points.first() {
             let (d, dt) = (sub(p, q), sub(&pt, &tilde(q, two_r)));
             if d != dt {
-                return Err(format!("ỹ − x̃ = {} ≠ y − x = {}", render_vec(&dt), render_vec(&d)));
+                return Err(format!(
+                    "ỹ − x̃ = {} ≠ y − x = {}",
+                    render_vec(&dt),
+                    render_vec(&d)
+                ));
             }
         }
     }

@@ -41,8 +41,9 @@ pub use kkt::{
     kkt_corrected, kkt_printed, uniqueness_identity_corrected, uniqueness_identity_printed,
 };
 pub use multipliers::{
-    delta_lambda, dyn_micro, dyn_micro_at, lambda_cs, lambda_from_history, multiplier_relation_corrected, multiplier_relation_printed,
-    multiplier_signs, sup_u_and_increments,
+    delta_lambda, dyn_micro, dyn_micro_at, lambda_cs, lambda_from_history,
+    multiplier_relation_corrected, multiplier_relation_printed, multiplier_signs,
+    sup_u_and_increments,
 };
 pub use pressure::{lambda_integral, micro_pressure, pressure_sign};
 pub use proj_micro::{
