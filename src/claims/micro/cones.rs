@@ -368,7 +368,7 @@ pub fn translated_cone<S: Scalar>(case: &Case<S>) -> R {
         let x = state(case, t, ID_TK)?.positions;
         let z = free_flight(case.data(), t);
         let y = project_k(&z, &two_r);
-        translated_cone_at(&[x, z, y], &two_r, |v, r| shift(v, r))
+        translated_cone_at(&[x, z, y], &two_r, shift)
             .map_err(|e| Violation::new(ID_TK, format!("t = {}: {e}", t.render())))?;
     }
     Ok(())
@@ -408,7 +408,7 @@ mod tests {
     fn a_wrong_translation_fails() {
         let two_r = q(1);
         let pts = vec![v(&[0, 1, 3]), v(&[2, 0, 5])];
-        translated_cone_at(&pts, &two_r, |p, r| shift(p, r)).unwrap();
+        translated_cone_at(&pts, &two_r, shift).unwrap();
         // Shifting by 2r·i² instead of 2r·i.
         let wrong = |p: &[BigRational], r: &BigRational| {
             p.iter()
