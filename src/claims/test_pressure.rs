@@ -250,11 +250,12 @@ pub fn test_identity_corrected<S: Scalar>(case: &Case<S>) -> R {
 pub fn test_function_boundary<S: Scalar>(case: &Case<S>) -> R {
     const ID: &str = "prop:pressure-bound#test-function";
     let n = case.n();
-    let mut x00: Option<S> = None;
+    let initial =
+        state_at(case.data(), &S::zero()).map_err(|e| Violation::new(ID, e.to_string()))?;
+    let origin = augmented(case, &initial).x[0].clone();
     for t in &case.times {
         let st = state_at(case.data(), t).map_err(|e| Violation::new(ID, e.to_string()))?;
         let s = augmented(case, &st);
-        let origin = x00.get_or_insert_with(|| s.x[0].clone()).clone();
         let at0 = -(s.x[0].clone() - &origin);
         let at1 = (s.x[n].clone() - &s.x[0]) - &(s.x[n].clone() - &origin);
         if !at0.is_zero() || !at1.is_zero() {
