@@ -14,18 +14,19 @@ type R = Result<(), Violation>;
 /// The augmented arrays at one time: `x_0 … x_N`, `u_0 … u_N`, `λ_0 … λ_N`
 /// (index 0 is the artificial particle: `x_0 = x_1 − 1/N − δ`, `u_0 = u_1`,
 /// `λ_0 = 0`).
-struct Augmented<S> {
-    t: S,
-    x: Vec<S>,
-    u: Vec<S>,
-    lambda: Vec<S>,
+pub(super) struct Augmented<S> {
+    pub(super) t: S,
+    pub(super) x: Vec<S>,
+    pub(super) u: Vec<S>,
+    pub(super) lambda: Vec<S>,
 }
 
-fn delta<S: Scalar>() -> S {
+/// `δ` of `df:x0` (the gap added to the artificial particle): 1.
+pub(super) fn delta<S: Scalar>() -> S {
     S::one()
 }
 
-fn augmented<S: Scalar>(case: &Case<S>, s: &State<S>) -> Augmented<S> {
+pub(super) fn augmented<S: Scalar>(case: &Case<S>, s: &State<S>) -> Augmented<S> {
     let n = S::from_usize(case.n());
     let x0 = s.positions[0].clone() - &(S::one() / &n) - &delta::<S>();
     let mut x = vec![x0];
@@ -43,7 +44,10 @@ fn augmented<S: Scalar>(case: &Case<S>, s: &State<S>) -> Augmented<S> {
     }
 }
 
-fn states<S: Scalar>(case: &Case<S>, id: &'static str) -> Result<Vec<Augmented<S>>, Violation> {
+pub(super) fn states<S: Scalar>(
+    case: &Case<S>,
+    id: &'static str,
+) -> Result<Vec<Augmented<S>>, Violation> {
     case.times
         .iter()
         .map(|t| {
@@ -54,7 +58,7 @@ fn states<S: Scalar>(case: &Case<S>, id: &'static str) -> Result<Vec<Augmented<S
         .collect()
 }
 
-fn abs<S: Scalar>(x: S) -> S {
+pub(super) fn abs<S: Scalar>(x: S) -> S {
     if x.total_cmp(&S::zero()).is_lt() {
         -x
     } else {
@@ -119,6 +123,78 @@ pub fn lagr_n1_corrected<S: Scalar>(case: &Case<S>) -> R {
     Ok(())
 }
 
+/// The one re-indexing that makes three printed statements exact: define
+/// `Λ_N := λ_{i−1}` on `((i−1)/N, i/N]` (so `P_N = ∂_t Λ_N := p_{i−1}`;
+/// `Λ̃_N`, hence `eq:PDE-Lagr-N-1`'s first line, is unchanged). Then, on
+/// every interval, `λ_{i−1}` and the slope `N(x_i − x_{i−1})` belong to the
+/// same pair `(i−1, i)`, and
+/// * `eq:PDE-Lagr-N-1#complementarity`: `(∂_w X̃_N − 1) Λ_N = 0`;
+/// * `lem:discPDE2#exclusion`: `(∂_w X̃_N − 1) P_N = 0` (at every collision);
+/// * `eq:diffLambda_N`: `|Λ̃_N − Λ_N| = |N(λ_i − λ_{i−1})(w − (i−1)/N)|`
+///   (at `w = (i−1)/N + k/(4N)`, `k = 1 … 4`),
+///
+/// all as printed.
+pub fn reindexed<S: Scalar>(case: &Case<S>) -> R {
+    const ID: &str = "eq:PDE-Lagr-N-1#complementarity (corrected)";
+    let n = S::from_usize(case.n());
+    for a in states(case, ID)? {
+        for i in 1..=case.n() {
+            let slope = n.clone() * &(a.x[i].clone() - &a.x[i - 1]);
+            if !a.lambda[i - 1].is_zero() && slope != S::one() {
+                return Err(Violation::new(
+                    ID,
+                    format!(
+                        "t = {}, w ∈ (({i}−1)/N, {i}/N]: Λ_N := λ_{} = {} but ∂_w X̃_N − 1 = {}",
+                        a.t.render(),
+                        i - 1,
+                        a.lambda[i - 1].render(),
+                        (slope - &S::one()).render()
+                    ),
+                ));
+            }
+            let d = a.lambda[i].clone() - &a.lambda[i - 1];
+            for k in 1..=4 {
+                let s = S::from_i64(k) / S::from_i64(4);
+                let tilde = d.clone() * &s + &a.lambda[i - 1];
+                let actual = abs(tilde - &a.lambda[i - 1]);
+                let printed = abs(d.clone() * &s);
+                if actual != printed {
+                    return Err(Violation::new(
+                        ID,
+                        format!(
+                            "t = {}, i = {i}, k = {k}: |Λ̃_N − Λ_N| = {} ≠ {}",
+                            a.t.render(),
+                            actual.render(),
+                            printed.render()
+                        ),
+                    ));
+                }
+            }
+        }
+    }
+    for imp in case.impulse_spread() {
+        let jumps = augmented_jumps(case.n(), imp);
+        let s = case.state(&imp.t).map_err(|e| Violation::new(ID, e.to_string()))?;
+        let a = augmented(case, &s);
+        for i in 1..=case.n() {
+            let slope = n.clone() * &(a.x[i].clone() - &a.x[i - 1]);
+            if !jumps[i - 1].is_zero() && slope != S::one() {
+                return Err(Violation::new(
+                    ID,
+                    format!(
+                        "collision at t = {}: P_N := p_{} carries {} on (({i}−1)/N, {i}/N] but ∂_w X̃_N − 1 = {}",
+                        imp.t.render(),
+                        i - 1,
+                        jumps[i - 1].render(),
+                        (slope - &S::one()).render()
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
 /// `eq:PDE-Lagr-N-1`: `∂_t X_N = U⁰_N − ∂_w Λ̃_N` (i.e.
 /// `u_i = u⁰_i − N(λ_i − λ_{i−1})` on each interval), `∂_w X̃_N ≥ 1`,
 /// `Λ_N ≥ 0`.
@@ -150,7 +226,7 @@ pub fn lagr_n1<S: Scalar>(case: &Case<S>) -> R {
 
 /// The jumps of `λ_i` (0 ≤ i ≤ N, augmented index: `jumps[0] = jumps[N] =
 /// 0`) at one collision.
-fn augmented_jumps<S: Scalar>(n: usize, imp: &crate::contact::Impulse<S>) -> Vec<S> {
+pub(super) fn augmented_jumps<S: Scalar>(n: usize, imp: &crate::contact::Impulse<S>) -> Vec<S> {
     let mut j = vec![S::zero(); n + 1];
     for (k, v) in imp.jumps().into_iter().enumerate() {
         j[imp.cluster.first + k + 1] = v;
@@ -475,4 +551,25 @@ pub fn bv_xn<S: Scalar>(case: &Case<S>) -> R {
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::initial::InitialData;
+    use num_rational::BigRational;
+
+    fn q(n: i64, d: i64) -> BigRational {
+        BigRational::new(n.into(), d.into())
+    }
+
+    /// The re-indexed statements hold with 2r = 1/N and fail when the
+    /// radius is not the paper's (slope N·2r = 2 at the contact).
+    #[test]
+    fn reindexed_holds_and_can_fail() {
+        let paper = InitialData::with_paper_radius(vec![q(0, 1), q(1, 1)], vec![q(1, 1), q(-1, 1)]);
+        reindexed(&Case::new(paper.unwrap(), None)).unwrap();
+        let wide = InitialData::new(q(1, 2), vec![q(0, 1), q(2, 1)], vec![q(1, 1), q(-1, 1)]);
+        assert!(reindexed(&Case::new(wide.unwrap(), None)).is_err());
+    }
 }

@@ -28,11 +28,14 @@ pub mod continuum;
 pub mod discrete;
 pub mod fuzz;
 pub mod ledger;
+pub mod linf;
 pub mod macro_data;
 pub mod micro;
+pub mod momentum;
 pub mod registry;
 pub mod sampling;
 pub mod scaling;
+pub mod test_pressure;
 
 pub use registry::registry;
 

@@ -4,7 +4,10 @@
 //! them. A `correction` is attached to a claim once it has been found false
 //! as printed; the corrected statement is then what the test engines require.
 
-use super::{always, continuum, discrete, micro, paper_radius, sampling, scaling};
+use super::{
+    always, continuum, discrete, linf, micro, momentum, paper_radius, sampling, scaling,
+    test_pressure,
+};
 use super::{Claim, Correction, Kind};
 use crate::limit::appendix_c;
 use crate::scalar::Scalar;
@@ -72,6 +75,9 @@ pub fn registry<S: Scalar>() -> Vec<Claim<S>> {
             "The theorem survives: U⁰ is an L² class, and sampling it with the representative that takes the congested side's value at the ends of a congested stretch (which changes u⁰_N only at particles sampled exactly on a block boundary, at most one per boundary, so U⁰_N → U⁰ is unaffected) gives admissible data u⁰_N ∈ C_{x⁰_N}; as printed, u⁰_i = U⁰(i/N) can put two touching particles on a collision course at t = 0 (u⁰_N ∉ C_{x⁰_N}, and sticky refuses such a [macro] scene).",
         ),
         case("df:KN", S2, "K^N = {x ∈ R^N ; x_{i+1} − x_i ≥ 2r}: the trajectory stays admissible, x(t) ∈ K^N for all t ≥ 0.", micro::admissible),
+        case("df:tKN", S2, "\"In these new coordinates [x̃ = (x_1, x_2 − 2r, …, x_N − 2r(N−1)), df:translat-x] the admissible configurations become K̃^N = {x̃ ∈ R^N; x̃_{i+1} − x̃_i ≥ 0}, i.e. K̃^N is the cone of monotone (non-decreasing) vectors\" (checked pair by pair, y_{i+1} − y_i − 2r = ỹ_{i+1} − ỹ_i, so y ∈ K^N ⟺ ỹ ∈ K̃^N, and ỹ − x̃ = y − x, on x(t), the free flight x⁰ + t u⁰ and its projection, at every probe time).", micro::translated_cone),
+        case("def:velcone#tangent-cone", S2, "\"For any configuration x ∈ K^N, it is not difficult to check that the admissible velocities coincide with the tangent cone to K_N at x: C^N_x = T_x K^N := closure{θ(y − x); y ∈ K^N, θ ≥ 0}\" (at x = x(t), every probe time, on the generators ±(1, …, 1), s_j = Σ_{k>j} e_k for contacts and ±s_j for pairs apart (a spread of 8 contacts and 8 pairs apart when there are more): each is in C_x and x + θ g ∈ K^N for some θ > 0; y − x ∈ C_x for y = x(s) at every probe time s and y = x⁰ + t u⁰ when in K^N; −s_j ∉ C_x and x − θ s_j ∉ K^N (θ = 1, 1/1000) across each contact).", micro::tangent_cone),
+        case("df:normal-cone#polar", S2, "\"and the normal cone is the polar cone of the tangent cone: N_x K^N = (T_x K^N)°\" (at x = x(t), every probe time, pairs spread as for def:velcone#tangent-cone: for each contact, n_j = e_j − e_{j+1} has ⟨n_j, g⟩ ≤ 0 on all the generators of T_x K (by tail sums) and ⟨n_j, y − x⟩ ≤ 0 for the sampled y ∈ K^N (df:normal-cone); for each pair apart, and for (1, …, 1), a generator and a point y ∈ K^N with positive products; and x⁰ + t u⁰ − x(t) ∈ N_x K lies in the polar and is Σ μ_j n_j with μ ≥ 0 on the contacts only).", micro::polar_cone),
         corrected(
             case("df:H-micro#contacts-grow", S2, "\"the set of active constraints is non-decreasing in time … N_{x(s)}K^N ⊂ N_{x(t)}K^N for all s ≤ t\" (for x⁰ ∈ K^N, u⁰ ∈ C^N_{x⁰}).", micro::contacts_grow_printed),
             "Ω_{x(s)} ⊂ Ω_{x(t)} for 0 < s ≤ t, and from s = 0 when u⁰ ∈ H_{x⁰} (two particles touching at t = 0 with u⁰_{i+1} > u⁰_i separate at once).",
@@ -81,7 +87,9 @@ pub fn registry<S: Scalar>() -> Vec<Claim<S>> {
         case("prop:proj-micro", S2, "\"there exists a unique solution x to (eq:micro-f0-lagr). It is given by the projection formula x(t) = P_{K^N}(x_0 + t u_0)\" — the event-driven sticky history equals the projection, exactly (positions, right-derivative velocities, multipliers, contact clusters).", micro::proj_micro),
         case("prop:proj-micro#u-in-H", S2, "\"u(t) ∈ H^N_{x(t)} for a.e. t ≥ 0\" (checked at every probe time t > 0, right derivatives).", micro::u_in_h),
         case("eq:proj-micro-u", S2, "u(t) = P_{H^N_{x(t)}}(u_0) (checked at every probe time t > 0, right derivatives).", micro::u_projection),
-        case("eq:dyn-micro", S2, "u(t) = u_0 − N Σ_{i=1}^{N−1} λ_i(t)(e_i − e_{i+1}), λ_0(t) = λ_N(t) = 0, λ_i ≥ 0, and λ_i(t)(x_{i+1}(t) − x_i(t) − 2r) = 0.", micro::dyn_micro),
+        case("eq:dyn-micro", S2, "u(t) = u_0 − N Σ_{i=1}^{N−1} λ_i(t)(e_i − e_{i+1}), λ_0(t) = λ_N(t) = 0, λ_i ≥ 0, and λ_i(t)(x_{i+1}(t) − x_i(t) − 2r) = 0 (the identity is tested, not used as a definition: λ(t) is the sum of the jumps of λ at the collisions up to t, from the event history's pre- and post-collision cluster velocities, and u(t) comes from the projection formula; the state's λ must equal it).", micro::dyn_micro),
+        case("lem:proj-characterization", S2, "\"Let C ⊂ R^N be a closed convex set. Then, for every z ∈ R^N and y ∈ C, y = P_C(z) ⟺ z − y ∈ ∂I_C(y) = N_y C\" — for C = K^N (N_y K^N = {Σ μ_j (e_j − e_{j+1}) : μ_j ≥ 0, μ_j = 0 off the contacts of y}, μ_j the prefix sums of z − y), at every probe time: ⟹ for z = x⁰ + t u⁰ and y = P_K(z) (the crate's projection): y ∈ K^N, the prefix sums of z − y are ≥ 0, vanish at N and off the contacts of y; ⟸ for y = x(t) and z = y + Σ μ_j (e_j − e_{j+1}), μ_j = (j + k mod 3) on the contacts (k = 0, 1, 2): P_K(z) = y; and z − y ∉ N_y K^N ⟹ P_K(z) ≠ y for z − y = (1, …, 1), e_j − e_{j+1} across pairs apart, −(e_j − e_{j+1}) across contacts (a spread of 8 pairs).", micro::proj_characterization_k),
+        case("lem:proj-characterization#H", S2, "The same lemma for C = H^N_{x(t)} (a subspace: N_w H = H^⊥ = span{e_j − e_{j+1} : j ∈ Ω_{x(t)}}), at every probe time t > 0: ⟹ for z = u⁰ and w = P_H(u⁰) (the crate's velocity projection): w ∈ H, the prefix sums of u⁰ − w vanish at N and off the contacts; ⟸ for w = u(t) and z = w + Σ μ_j (e_j − e_{j+1}), μ_j = (j + k mod 3) − 1 on the contacts (both signs): P_H(z) = w; and z − w ∉ H^⊥ ⟹ P_H(z) ≠ w for (1, …, 1) and e_j − e_{j+1} across pairs apart.", micro::proj_characterization_h),
         case("prop:proj-micro#orthogonality", S2, "(proof of prop:proj-micro) ⟨u(t) − u⁰, x̃(t)⟩ = Σ_i (u_i(t) − u⁰_i) x̃_i(t) = 0.", micro::orthogonality),
         case("lem:incl-HSN", S2, "H^N_{x(t)} ⊂ T_{x(t)}K^N ∩ [x⁰ + t u⁰ − x(t)]^⊥ for all t ≥ 0.", micro::incl_hsn),
         corrected(
@@ -150,21 +158,35 @@ pub fn registry<S: Scalar>() -> Vec<Claim<S>> {
         },
         corrected(
             s3("eq:PDE-Lagr-N-1#complementarity", "(∂_w X̃_N − 1) Λ_N = 0: on ((i−1)/N, i/N], (N(x_i − x_{i−1}) − 1) λ_i = 0.", discrete::lagr_n1_printed),
-            "(∂_w X̃_N(t, w + 1/N) − 1) Λ_N(t, w) = 0, i.e. (N(x_{i+1} − x_i) − 1) λ_i = 0: λ_i is carried by the pair (i, i+1), whose slope lives on the next interval (equivalently, define Λ_N = λ_{i−1} on ((i−1)/N, i/N]).",
-            Kind::Case(discrete::lagr_n1_corrected),
-            "Holds after the index shift: Λ_N and its shifted version differ by at most sup|λ_i − λ_{i−1}| ≤ C'/N (eq:diffLambda_N), so the limit (∂_w X − 1)Λ = 0 of prop:cvg1 is unaffected.",
+            "With df:LN re-indexed, Λ_N := λ_{i−1} on ((i−1)/N, i/N] (so P_N = ∂_t Λ_N := p_{i−1}; Λ̃_N is unchanged), λ_{i−1} and the slope N(x_i − x_{i−1}) belong to the same pair (i−1, i) and (∂_w X̃_N − 1) Λ_N = 0 holds as printed. This one re-indexing makes three printed statements exact at once, and this checker checks all three: eq:PDE-Lagr-N-1#complementarity, lem:discPDE2#exclusion ((∂_w X̃_N − 1) P_N = 0 at every collision) and eq:diffLambda_N's equality |Λ̃_N − Λ_N| = |N(λ_i − λ_{i−1})(w − (i−1)/N)|.",
+            Kind::Case(discrete::reindexed),
+            "Holds after the re-indexing: it leaves eq:PDE-Lagr-N-1's first line (which involves only Λ̃_N), Λ_N ≥ 0, the L² and L^∞ bounds on Λ_N (the same values, λ_0 = 0 in place of λ_N = 0) and the limit Λ unchanged; prop:cvg1's passage to the limit in the exclusion relation, which starts from (∂_w X̃_N − 1)Λ_N = 0, then starts from a true identity.",
         ),
+        s3("lem:discPDE2", "∂_t X_N = U_N, ∂_t U_N + ∂_w P̃_N = 0, ∂_w X̃_N ≥ 1, P_N ≥ 0 in D'((0,T)×(0,1)) (eq:PDE-Lagr-N-2) — in discrete form, at every collision instant t_k (a spread of 40): u_i(t_k) − u_i(t_k⁻) = −N([λ_i] − [λ_{i−1}]) for i = 1 … N with [λ_0] = [λ_N] = 0 and [λ_i] ≥ 0 (velocities from the projection formula, jumps [λ] from the event history), x(t_k) − x(s) = (t_k − s)u(s) since the previous instant (and after the last one), N(x_{i+1} − x_i) ≥ 1.", momentum::disc_pde2),
         corrected(
             s3("lem:discPDE2#exclusion", "(∂_w X̃_N − 1) P_N = 0, P_N ≥ 0 (P_N = ∂_t Λ_N, piecewise constant in w).", discrete::disc_pde2_printed),
-            "(∂_w X̃_N(t, w + 1/N) − 1) P_N(t, w) = 0, i.e. the jump of λ_i occurs with N(x_{i+1} − x_i) = 1 (prop:micro-pressure).",
-            Kind::Case(micro::micro_pressure),
-            "Holds after the same index shift as eq:PDE-Lagr-N-1.",
+            "(∂_w X̃_N − 1) P_N = 0 with P_N := p_{i−1} on ((i−1)/N, i/N] (the re-indexing of eq:PDE-Lagr-N-1#complementarity), i.e. the jump of λ_i occurs with N(x_{i+1} − x_i) = 1.",
+            Kind::Case(discrete::reindexed),
+            "Holds after the re-indexing stated once under eq:PDE-Lagr-N-1#complementarity (same checker).",
         ),
+        s3("prop:Linf-micro", "\"Assume ... x⁰_N − x⁰_0 + sup_i |u⁰_i| ≤ C'_0 [cond:Linfty] ... Then sup_t ∫_0^1 |∂_w X̃_N(t,w)| dw ≤ C' [eq:BV_XN] ... Without loss of generality, we may assume x⁰_0 = 0 ... ‖X_N‖_{L^∞} + ‖X̃_N‖_{L^∞} ≤ C', and ‖Λ_N‖_{L^∞} + ‖Λ̃_N‖_{L^∞} ≤ C', C' = C'(T, C'_0)\" — per trajectory, with the constants of the proof: C'_0 the smallest constant of cond:Linfty (x⁰_0 = x⁰_1 − 1/N − δ, δ = 1), positions measured from x⁰_0, T = each probe time: sup|u(t)| ≤ sup|u⁰|; x_N − x_0 ≤ (x⁰_N − x⁰_0) + 2T sup|u⁰| ≤ (1 + 2T)C'_0; ‖X_N‖_∞ + ‖X̃_N‖_∞ ≤ 2(T sup|u⁰| + (x⁰_N − x⁰_0) + 2T sup|u⁰|) ≤ 2(1 + 3T)C'_0; ‖Λ_N‖_∞ + ‖Λ̃_N‖_∞ ≤ 4 sup|u⁰| ≤ 4C'_0.", linf::linf_micro),
         corrected(
             s3("prop:pressure-bound#exclusion", "(proof) \"Since (∂_w X̃_N − 1) P̃_N = 0, we may replace ∂_w X̃_N by 1 on the support of P̃_N\" (P̃_N piecewise affine).", discrete::pressure_bound_exclusion_printed),
-            "P̃_N on [(i−1)/N, i/N] interpolates p_{i−1} and p_i, carried by the pairs (i−1, i) and (i, i+1); the product vanishes only for the index-shifted interpolation (prop:micro-pressure).",
-            Kind::Case(micro::micro_pressure),
-            "Open: the bound ∫∫ P̃_N ≤ C/δ is measured separately (prop:pressure-bound, across N); the step as written needs the index shift and a control of the boundary terms it creates.",
+            "No re-indexing rescues this step: on [(i−1)/N, i/N], P̃_N interpolates p_{i−1} and p_i, carried by the pairs (i−1, i) and (i, i+1), and a continuous piecewise-affine P̃_N cannot vanish on an interval whose pair is apart while its end values are the pressures of the neighbouring pairs. The bound itself follows from the pair-indexed pressure: testing eq:micro-2nd-ID with φ_i = (x_N − x_0) i/N − x_i (the proof's test function at the nodes) and summing by parts, at every collision (1/N) Σ_i [u_i] φ_i = Σ_i [λ_i](φ_{i+1} − φ_i) = ((x_N − x_0) − 1)/N · Σ_i [λ_i] ≥ (δ/N) Σ_i [λ_i] (the exclusion is exact for the pair (i, i+1)), and (1/N) Σ_i [λ_i] is the mass of both P_N and P̃_N (trapezoid rule, p_0 = p_N = 0).",
+            Kind::Case(momentum::pressure_bound_by_parts),
+            "prop:pressure-bound holds by this other argument (the summation by parts above, checked exactly at every collision: it sees the sign and the scale of λ); the printed step is wrong. The same wrong step is reused in the proof of prop:2ndorder-LagrPDE, \"0 = ⟨P̃_N, (∂_w X̃_N − 1)Ψ⟩\", false as printed for the same reason (the counterexample above). That conclusion survives through the paper's own previous item: with the re-indexed P_N := p_{i−1} the exclusion (∂_w X̃_N − 1) P_N = 0 is exact, so ⟨P̃_N, (∂_w X̃_N − 1)Ψ⟩ = −⟨R¹_N, Ψ⟩ with R¹_N = (∂_w X̃_N − 1)(P_N − P̃_N), which the paper shows tends to 0; the final item then needs → 0 instead of = 0. That limit is not checked by the ledger.",
+        ),
+        corrected(
+            s3("prop:pressure-bound#test-function", "(proof) φ(t,w) = ((x_N(t) − x_0(t))w − X̃_N(t,w))ϕ(t): \"Observe that at the boundaries φ(t,0) = φ(t,1) = 0\" (with the normalisation x⁰_0 = 0 of prop:Linf-micro; checked at every probe time t > 0, any ϕ ≥ 0 with ϕ(t) > 0).", test_pressure::test_function_boundary),
+            "φ(t,0) = φ(t,1) = −x_0(t)ϕ(t), and x_0(t) = ∫_0^t u_1 moves; the integration by parts in w needs only P̃_N(t,0) = p_0 = 0 and P̃_N(t,1) = p_N = 0, so the tested identity holds with this φ (its checker, eq:test-pressure-bound's correction, is run here).",
+            Kind::Case(test_pressure::test_identity_corrected),
+            "Holds: the boundary terms vanish because the pressure does; (x_0(t) + (x_N − x_0)w − X̃_N)ϕ, which does vanish at both ends, has the same ∂_w φ and changes the right side by −(∫U_N dw)∫(x_0ϕ)' dt = 0 (the mean velocity is conserved).",
+        ),
+        corrected(
+            s3("eq:test-pressure-bound", "\"Using (eq:PDE-Lagr-N-2), we obtain ∫_0^T∫_0^1 ((x_N(t) − x_0(t)) − ∂_w X̃_N(t,w))ϕ(t) P̃_N(w,dt) dw = −∫∫ ((U_N(t,0) − U_N(t,1))w − Ũ_N(t,w)) U_N(t,w) ϕ(t) dw dt − ∫∫ U_N(t,w)((x_N(t) − x_0(t))w − X̃_N(t,w)) ϕ'(t) dw dt. By the previously established bounds on U_N and X̃_N, the right-hand side is uniformly bounded. Hence … |∫∫((x_N − x_0) − ∂_w X̃_N)ϕ P̃_N(dt,w) dw| ≤ C(‖U_N‖²_{L^∞_{t,w}} + ‖U_N‖²_{L²_tL²_w} + ‖X̃_N‖²_{L²_tL²_w})\" — the identity checked exactly per trajectory (δ = 1, U_N(t,0) read as u_0 = u_1, the artificial particle moving with particle 1, U_N(t,1) = u_N) for ϕ = (t − a)²(b − t)² on [a, b] covering the collisions (up to 400 instants) and on [a, c] ending between the first two.", test_pressure::test_identity_printed),
+            "The identity holds with (u_N(t) − u_0(t))w in place of (U_N(t,0) − U_N(t,1))w — the ∂_t φ computed just before in the proof — exactly, and it gives |left side| ≤ 2‖ϕ‖_{L¹} sup_t ‖U_N‖²_∞ + ‖ϕ'‖_{L¹} sup_t ‖U_N(t)‖_∞ ((x_N − x_0) + max(|x_0|, |x_N|)) (checked), bounded independently of N by prop:Linf-micro: the bound needs the L^∞ bounds (the spread x_N − x_0 enters through (x_N − x_0)w), not only the L² norms listed.",
+            Kind::Case(test_pressure::test_identity_corrected),
+            "Holds: a sign slip in one factor; the proof only uses that the right side is bounded, which the corrected identity gives with C depending on ϕ through ‖ϕ‖_{L¹} ≤ T and ‖ϕ'‖_{L¹} (= 2 max ϕ for ϕ increasing then decreasing, enough for the total mass since P̃_N ≥ 0).",
         ),
         s3("prop:pressure-bound#gap-delta", "(x_N(t) − x_0(t)) − 1 ≥ 2r(N − 1) + (2r + δ) − 1 = δ.", discrete::gap_delta),
         s3("prop:cvg1#XN-L1", "∫_0^1 |X̃_N(t,w) − X_N(t,w)| dw = (1/2N) Σ_{i=0}^{N−1} (x_{i+1}(t) − x_i(t)) = (1/2N)(x_N(t) − x_0(t)).", discrete::xn_l1),
@@ -172,7 +194,7 @@ pub fn registry<S: Scalar>() -> Vec<Claim<S>> {
             s3("eq:diffLambda_N", "For w ∈ ((i−1)/N, i/N]: |Λ̃_N(t,w) − Λ_N(t,w)| = |N(λ_i(t) − λ_{i−1}(t))(w − (i−1)/N)| ≤ |λ_i(t) − λ_{i−1}(t)| ≤ C'/N.", discrete::diff_lambda_printed),
             "|Λ̃_N − Λ_N| = |λ_i − λ_{i−1}| · |1 − N(w − (i−1)/N)| ≤ |λ_i − λ_{i−1}| ≤ 2 sup|u⁰|/N.",
             Kind::Case(discrete::diff_lambda_corrected),
-            "Holds: the bound, which is all that is used, is right.",
+            "Holds: the bound, which is all that is used, is right; and with the re-indexing Λ_N := λ_{i−1} of eq:PDE-Lagr-N-1#complementarity the printed equality itself is exact (checked there).",
         ),
         corrected(
             s3("prop:2ndorder-LagrPDE#UN-L1", "∫_0^1 |Ũ_N(t,w) − U_N(t,w)| dw = (1/2N) Σ_{i=1}^N |u_i(t) − u_{i−1}(t)| = (1/2N)|u_N(t) − u_0(t)| ≤ C/N.", discrete::un_l1_printed),
@@ -212,13 +234,5 @@ pub fn registry<S: Scalar>() -> Vec<Claim<S>> {
         fixed("app:uniqueness#particle-limit", APPC, "The projection principle \"can be seen as the macroscopic counterpart of the sticky blocks dynamics\": the quantile-sampled particles converge to the sticky continuation (‖X_N − X¹‖² = 1/(3N²)) and not to the rebound (‖X_N − X²‖ → (t − t*)/√3).", appendix_c::sticky_is_particle_limit),
         fixed("app:uniqueness#sticky-pressure-is-continuum", APPC, "\"The pressure P is uniquely recovered from the momentum equation and the boundary condition\" P(t,0) = P(t,1) = 0: for the sticky continuation it is the jump at t* of the continuum multiplier Λ (∂_t X = U⁰ − ∂_w Λ), i.e. the corrected P¹.", appendix_c::sticky_pressure_is_continuum),
         fixed("app:uniqueness#rebound-oleinik", APPC, "∂_w U² = 2, ∂_w X²(t,w) = 1 + 2(t − t*), and for η < 1, ∂_w U² ≤ ∂_w X²/t for all t > t* (eq:Oleinik-Lagr).", appendix_c::rebound_oleinik),
-        Claim {
-            id: "lem:proj-characterization",
-            section: S2,
-            statement: "y = P_C(z) ⟺ z − y ∈ N_y C for closed convex C.",
-            kind: Kind::NotCheckable("classical (omitted in the paper); for C = K^N it is exercised by eq:ineg-projortho and app:KKT (corrected), which check z − P_K(z) ∈ N_{P_K(z)}K^N exactly"),
-            applies: always::<S>,
-            correction: None,
-        },
     ]
 }

@@ -355,14 +355,30 @@ const TWO_TIMES: [&str; 3] = [
     "df:H-micro#contacts-grow",
 ];
 
+/// Corrected statements whose checker is beyond the prover, with the
+/// reason (they are checked exactly on every numeric case by the other
+/// engines; their printed statements are still refuted symbolically).
+pub const NOT_SYMBOLIC: [(&str, &str); 2] = [
+    (
+        "eq:test-pressure-bound",
+        "the test function ϕ(t) = (t − a)²(b − t)² with a, b built from the collision times, integrated piece by piece, gives rational functions of degree 7 or more in the data that z3's nlsat does not decide within the limits (unknown at N = 2)",
+    ),
+    (
+        "prop:pressure-bound#test-function",
+        "its correction is checked by eq:test-pressure-bound's corrected checker (see there)",
+    ),
+];
+
 /// Every per-case claim of the registry (section 2, Appendix A, the
-/// discrete claims of section 3), printed and corrected, in registry order.
+/// discrete claims of section 3), printed and corrected, in registry order
+/// (corrected statements of [`NOT_SYMBOLIC`] left out).
 pub fn targets() -> Vec<Target> {
     let mut out = Vec::new();
     for c in registry::<BigRational>() {
         if !matches!(c.kind, Kind::Case(_)) {
             continue;
         }
+        let symbolic = !NOT_SYMBOLIC.iter().any(|(id, _)| *id == c.id);
         let two_times = TWO_TIMES.contains(&c.id);
         match &c.correction {
             None => out.push(Target {
@@ -380,7 +396,7 @@ pub fn targets() -> Vec<Target> {
                     erratum: true,
                     two_times,
                 });
-                if matches!(corr.check, Kind::Case(_)) {
+                if symbolic && matches!(corr.check, Kind::Case(_)) {
                     out.push(Target {
                         id: format!("{} (corrected)", c.id),
                         registry_id: c.id,

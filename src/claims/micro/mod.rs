@@ -8,7 +8,9 @@
 //! `multipliers.rs` (`eq:dyn-micro`, the bounds on `λ`), `bounds.rs`
 //! (`prop:bound-micro`, `prop:Oleinik`), `semigroup.rs` (the semigroup and
 //! the growth of the contact set), `pressure.rs` (`prop:micro-pressure`),
-//! `kkt.rs` (Appendix A). The shared helpers (norms, rendering) are here.
+//! `kkt.rs` (Appendix A), `characterization.rs` (`lem:proj-characterization`
+//! for `K^N` and `H`), `cones.rs` (`C_x = T_xK`, `N_x = (T_xK)°`, `df:tKN`).
+//! The shared helpers (norms, rendering) are here.
 
 use super::{Case, Violation};
 use crate::cluster::Cluster;
@@ -19,6 +21,8 @@ use crate::trajectory::Trajectory;
 type R = Result<(), Violation>;
 
 mod bounds;
+mod characterization;
+mod cones;
 mod kkt;
 mod multipliers;
 mod pressure;
@@ -28,13 +32,18 @@ mod semigroup;
 pub use bounds::{
     oleinik, oleinik_characteristics, position_contraction, position_nonexpansive, velocity_bound,
 };
+pub use characterization::{
+    characterization, normal_coefficients, proj_characterization_h, proj_characterization_k,
+};
+pub use cones::{polar_cone, tangent_cone, translated_cone};
 pub use kkt::{
     kkt_corrected, kkt_printed, uniqueness_identity_corrected, uniqueness_identity_printed,
 };
 pub(crate) use multipliers::augmented_lambda;
 pub use multipliers::{
-    delta_lambda, dyn_micro, lambda_cs, multiplier_relation_corrected, multiplier_relation_printed,
-    multiplier_signs, sup_u_and_increments,
+    delta_lambda, dyn_micro, dyn_micro_at, lambda_cs, lambda_from_history,
+    multiplier_relation_corrected, multiplier_relation_printed, multiplier_signs,
+    sup_u_and_increments,
 };
 pub use pressure::{lambda_integral, micro_pressure, pressure_sign};
 pub use proj_micro::{

@@ -81,11 +81,83 @@ pub(crate) fn augmented_lambda<S: Scalar>(s: &State<S>) -> Vec<S> {
     l
 }
 
-/// `eq:dyn-micro` at every probe time.
-pub fn dyn_micro<S: Scalar>(case: &Case<S>) -> R {
+/// `λ(t)` at each of the (increasing) probe times of `case`, computed from
+/// the event history alone: the sum of the jumps of `λ` at the collisions up
+/// to `t` ([`crate::contact::Impulse::jumps`], from the pre- and
+/// post-collision cluster velocities), in one sweep. Independent of the
+/// recurrence `λ_i = λ_{i−1} + (u⁰_i − u_i)/N` that builds `State::multipliers`.
+pub fn lambda_from_history<S: Scalar>(case: &Case<S>) -> Vec<Vec<S>> {
+    let mut acc = vec![S::zero(); case.n().saturating_sub(1)];
+    let impulses = case.traj.impulses();
+    let mut next = 0;
+    let mut out = Vec::with_capacity(case.times.len());
     for t in &case.times {
+        while next < impulses.len() && impulses[next].t <= *t {
+            let imp = &impulses[next];
+            for (k, j) in imp.jumps().into_iter().enumerate() {
+                let i = imp.cluster.first + k;
+                acc[i] = acc[i].clone() + &j;
+            }
+            next += 1;
+        }
+        out.push(acc.clone());
+    }
+    out
+}
+
+/// `eq:dyn-micro` for the state `s` against multipliers `lambda` computed
+/// independently of `s` (`λ_1 … λ_{N−1}`; `λ_0 = λ_N = 0`): the identity
+/// `u_i = u⁰_i − N(λ_i − λ_{i−1})` for `i = 1 … N`, the state's own
+/// multipliers equal to `lambda`, and [`multiplier_signs`].
+pub fn dyn_micro_at<S: Scalar>(data: &InitialData<S>, s: &State<S>, lambda: &[S]) -> R {
+    const ID: &str = "eq:dyn-micro";
+    let n = data.n();
+    let nn = S::from_usize(n);
+    let u0 = data.velocities();
+    let at = |i: usize| -> S {
+        if i == 0 || i == n {
+            S::zero()
+        } else {
+            lambda[i - 1].clone()
+        }
+    };
+    for i in 1..=n {
+        let rhs = u0[i - 1].clone() - &(nn.clone() * &(at(i) - &at(i - 1)));
+        if s.velocities[i - 1] != rhs {
+            return Err(Violation::new(
+                ID,
+                format!(
+                    "t = {}, i = {i}: u_i = {} but u⁰_i − N(λ_i − λ_{{i−1}}) = {} with λ from the collision history = {}",
+                    s.t.render(),
+                    s.velocities[i - 1].render(),
+                    rhs.render(),
+                    super::render_vec(lambda)
+                ),
+            ));
+        }
+    }
+    if s.multipliers.as_slice() != lambda {
+        return Err(Violation::new(
+            ID,
+            format!(
+                "t = {}: the state's λ = {} but the collision history gives λ = {}",
+                s.t.render(),
+                super::render_vec(&s.multipliers),
+                super::render_vec(lambda)
+            ),
+        ));
+    }
+    multiplier_signs(data, s)
+}
+
+/// `eq:dyn-micro` at every probe time, with `λ` from the collision history
+/// ([`lambda_from_history`]): the identity is tested, not used as a
+/// definition.
+pub fn dyn_micro<S: Scalar>(case: &Case<S>) -> R {
+    let history = lambda_from_history(case);
+    for (t, lambda) in case.times.iter().zip(&history) {
         let s = state(case, t, "eq:dyn-micro")?;
-        multiplier_signs(case.data(), &s)?;
+        dyn_micro_at(case.data(), &s, lambda)?;
     }
     Ok(())
 }
@@ -266,4 +338,55 @@ pub fn sup_u_and_increments<S: Scalar>(case: &Case<S>) -> R {
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::contact::multipliers;
+    use num_rational::BigRational;
+
+    fn q(n: i64, d: i64) -> BigRational {
+        BigRational::new(n.into(), d.into())
+    }
+
+    /// 2r = 1, x⁰ = (0, 2, 4), u⁰ = (2, 0, −1): particles 1, 2 meet at
+    /// t = 1/2, particle 3 joins at t = 3/4.
+    fn case() -> Case<BigRational> {
+        let x = vec![q(0, 1), q(2, 1), q(4, 1)];
+        let u = vec![q(2, 1), q(0, 1), q(-1, 1)];
+        Case::new(InitialData::new(q(1, 2), x, u).unwrap(), None)
+    }
+
+    /// The three mutants of the audit each fail `eq:dyn-micro`: λ with its
+    /// sign flipped, λ not divided by N, and a cluster velocity that leaves
+    /// one particle out of the mean (with λ rebuilt from it, as a mutated
+    /// engine would).
+    #[test]
+    fn mutants_fail_dyn_micro() {
+        let c = case();
+        dyn_micro(&c).unwrap();
+        let history = lambda_from_history(&c);
+        let (t, lambda) = (c.times.last().unwrap(), history.last().unwrap());
+        let s = state(&c, t, "test").unwrap();
+        assert!(lambda.iter().all(|l| *l > q(0, 1)), "a case with pressure");
+        dyn_micro_at(c.data(), &s, lambda).unwrap();
+
+        let mut flipped = s.clone();
+        flipped.multipliers = s.multipliers.iter().map(|l| -l.clone()).collect();
+        assert!(dyn_micro_at(c.data(), &flipped, lambda).is_err());
+
+        let mut undivided = s.clone();
+        undivided.multipliers = s.multipliers.iter().map(|l| l * q(3, 1)).collect();
+        assert!(dyn_micro_at(c.data(), &undivided, lambda).is_err());
+        let undivided_history: Vec<_> = lambda.iter().map(|l| l * q(3, 1)).collect();
+        assert!(dyn_micro_at(c.data(), &s, &undivided_history).is_err());
+
+        let mut short = s.clone();
+        let u0 = c.data().velocities();
+        let mean = (u0[0].clone() + &u0[1]) / q(2, 1);
+        short.velocities = vec![mean; 3];
+        short.multipliers = multipliers(u0, &short.velocities).0;
+        assert!(dyn_micro_at(c.data(), &short, lambda).is_err());
+    }
 }
