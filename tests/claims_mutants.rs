@@ -373,6 +373,23 @@ fn checkers() -> Vec<Checker> {
     out
 }
 
+/// Checkers that no mutant of the engines' output can fail, each with the
+/// reason. Nothing else may be added here without one.
+const NO_ENGINE_MUTANT: [(&str, &str); 3] = [
+    (
+        "df:tKN",
+        "a statement about the change of coordinates x ↦ x̃ (df:translat-x), true of every vector whatever the engine computes; its checker tests the translation map, and the unit test of claims::micro::cones shows it fails on a wrong one",
+    ),
+    (
+        "eq:test-pressure-bound",
+        "false as printed (a sign slip; counterexample in the ledger); no case of this battery satisfies the printed identity, so there is no true case to mutate; the correction rejects 9 of the mutants",
+    ),
+    (
+        "prop:pressure-bound#test-function",
+        "false as printed (φ(t,0) = φ(t,1) = −x_0(t)ϕ(t) ≠ 0; counterexample in the ledger); it holds only when the artificial particle sits at 0, which no case here has; the correction rejects 9 of the mutants",
+    ),
+];
+
 #[test]
 fn every_checker_rejects_a_mutant() {
     let cases = cases();
@@ -419,6 +436,7 @@ fn every_checker_rejects_a_mutant() {
         .zip(&kills)
         .filter(|(_, row)| !row.iter().any(|&x| x))
         .map(|((id, _, _), _)| id.as_str())
+        .filter(|id| !NO_ENGINE_MUTANT.iter().any(|(e, _)| e == id))
         .collect();
     let unseen: Vec<&str> = mutants
         .iter()

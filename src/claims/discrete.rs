@@ -174,7 +174,9 @@ pub fn reindexed<S: Scalar>(case: &Case<S>) -> R {
     }
     for imp in case.impulse_spread() {
         let jumps = augmented_jumps(case.n(), imp);
-        let s = case.state(&imp.t).map_err(|e| Violation::new(ID, e.to_string()))?;
+        let s = case
+            .state(&imp.t)
+            .map_err(|e| Violation::new(ID, e.to_string()))?;
         let a = augmented(case, &s);
         for i in 1..=case.n() {
             let slope = n.clone() * &(a.x[i].clone() - &a.x[i - 1]);

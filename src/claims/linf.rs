@@ -97,8 +97,9 @@ pub(super) fn linf_at<S: Scalar>(a: &Augmented<S>, x0: &[S], sup_u0: &S) -> Resu
 /// `prop:Linf-micro` at every probe time (`T = t`), with the constants
 /// above (`δ = 1`).
 pub fn linf_micro<S: Scalar>(case: &Case<S>) -> R {
-    let initial =
-        case.state(&S::zero()).map_err(|e| Violation::new(ID, e.to_string()))?;
+    let initial = case
+        .state(&S::zero())
+        .map_err(|e| Violation::new(ID, e.to_string()))?;
     let x0 = augmented(case, &initial).x;
     let sup_u0 = sup_abs(case.data().velocities());
     for a in &states(case, ID)? {

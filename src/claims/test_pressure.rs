@@ -117,9 +117,13 @@ fn sides<S: Scalar>(
     let (mut sup_u, mut sup_um) = (S::zero(), S::zero());
     for w in cuts.windows(2) {
         let (alpha, beta) = (&w[0], &w[1]);
-        let st = case.state(alpha).map_err(|e| Violation::new(id, e.to_string()))?;
+        let st = case
+            .state(alpha)
+            .map_err(|e| Violation::new(id, e.to_string()))?;
         let s = augmented(case, &st);
-        let end = case.state(beta).map_err(|e| Violation::new(id, e.to_string()))?;
+        let end = case
+            .state(beta)
+            .map_err(|e| Violation::new(id, e.to_string()))?;
         let e = augmented(case, &end);
         // Collision at α (inside (a, b)): a Dirac mass of P̃_N.
         if alpha > &bump.a {
@@ -249,11 +253,14 @@ pub fn test_identity_corrected<S: Scalar>(case: &Case<S>) -> R {
 pub fn test_function_boundary<S: Scalar>(case: &Case<S>) -> R {
     const ID: &str = "prop:pressure-bound#test-function";
     let n = case.n();
-    let initial =
-        case.state(&S::zero()).map_err(|e| Violation::new(ID, e.to_string()))?;
+    let initial = case
+        .state(&S::zero())
+        .map_err(|e| Violation::new(ID, e.to_string()))?;
     let origin = augmented(case, &initial).x[0].clone();
     for t in &case.times {
-        let st = case.state(t).map_err(|e| Violation::new(ID, e.to_string()))?;
+        let st = case
+            .state(t)
+            .map_err(|e| Violation::new(ID, e.to_string()))?;
         let s = augmented(case, &st);
         let at0 = -(s.x[0].clone() - &origin);
         let at1 = (s.x[n].clone() - &s.x[0]) - &(s.x[n].clone() - &origin);
