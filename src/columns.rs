@@ -550,9 +550,7 @@ mod tests {
     use num_bigint::BigInt;
     use num_traits::One;
 
-    fn q(n: i64, d: i64) -> BigRational {
-        BigRational::new(n.into(), d.into())
-    }
+    use crate::rational::ratio as q;
 
     #[test]
     fn csv_round_trip_is_exact() {

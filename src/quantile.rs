@@ -456,9 +456,7 @@ impl Affine {
 mod tests {
     use super::*;
 
-    fn q(n: i64, d: i64) -> BigRational {
-        BigRational::new(BigInt::from(n), BigInt::from(d))
-    }
+    use crate::rational::ratio as q;
 
     fn block(from: BigRational, to: BigRational, density: BigRational, u: BigRational) -> Block {
         Block {

@@ -107,6 +107,16 @@ fn digits_to_int(s: &str) -> BigInt {
     BigInt::parse_bytes(s.as_bytes(), 10).unwrap_or_default()
 }
 
+/// The rational `n/d` in lowest terms (a literal in code and tests:
+/// `ratio(1, 3)`).
+///
+/// # Panics
+///
+/// If `d == 0`, as [`BigRational::new`] does.
+pub fn ratio(n: i64, d: i64) -> BigRational {
+    BigRational::new(BigInt::from(n), BigInt::from(d))
+}
+
 /// Reads `text` as an exact rational (see the module documentation).
 pub fn parse_exact(text: &str) -> Result<BigRational, NumberError> {
     let s = text.trim();
@@ -190,9 +200,7 @@ pub fn render_exact(q: &BigRational) -> String {
 mod tests {
     use super::*;
 
-    fn q(n: i64, d: i64) -> BigRational {
-        BigRational::new(BigInt::from(n), BigInt::from(d))
-    }
+    use super::ratio as q;
 
     #[test]
     fn reads_every_documented_form_exactly() {

@@ -559,11 +559,8 @@ pub fn bv_xn<S: Scalar>(case: &Case<S>) -> R {
 mod tests {
     use super::*;
     use crate::initial::InitialData;
-    use num_rational::BigRational;
 
-    fn q(n: i64, d: i64) -> BigRational {
-        BigRational::new(n.into(), d.into())
-    }
+    use crate::rational::ratio as q;
 
     /// The re-indexed statements hold with 2r = 1/N and fail when the
     /// radius is not the paper's (slope N·2r = 2 at the contact).

@@ -117,11 +117,8 @@ pub fn linf_micro<S: Scalar>(case: &Case<S>) -> R {
 mod tests {
     use super::*;
     use crate::initial::InitialData;
-    use num_rational::BigRational;
 
-    fn q(n: i64, d: i64) -> BigRational {
-        BigRational::new(n.into(), d.into())
-    }
+    use crate::rational::ratio as q;
 
     /// N = 2, 2r = 1/2: a head-on collision at t = 1/4, λ_1 = 1/2 after.
     #[test]

@@ -221,11 +221,8 @@ pub(super) fn pressure_bound_at<S: Scalar>(
 mod tests {
     use super::*;
     use crate::initial::InitialData;
-    use num_rational::BigRational;
 
-    fn q(n: i64, d: i64) -> BigRational {
-        BigRational::new(n.into(), d.into())
-    }
+    use crate::rational::ratio as q;
 
     /// N = 3, 2r = 1/3: particles 1, 2 meet, then 3 joins.
     #[test]

@@ -283,11 +283,8 @@ pub fn test_function_boundary<S: Scalar>(case: &Case<S>) -> R {
 mod tests {
     use super::*;
     use crate::initial::InitialData;
-    use num_rational::BigRational;
 
-    fn q(n: i64, d: i64) -> BigRational {
-        BigRational::new(n.into(), d.into())
-    }
+    use crate::rational::ratio as q;
 
     #[test]
     fn the_bump_integrates_exactly() {

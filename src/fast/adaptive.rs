@@ -243,9 +243,7 @@ mod tests {
     use crate::trajectory::Trajectory;
     use num_traits::One;
 
-    fn q(n: i64, d: i64) -> BigRational {
-        BigRational::new(BigInt::from(n), BigInt::from(d))
-    }
+    use crate::rational::ratio as q;
 
     fn offset_by(
         data: &InitialData<BigRational>,

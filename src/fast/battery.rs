@@ -200,11 +200,8 @@ mod tests {
     use crate::generate::{initial_data, Limits, SplitMix64};
     use crate::initial::unshift;
     use crate::projection::{pava_blocks, project_at};
-    use num_bigint::BigInt;
 
-    fn q(n: i64, d: i64) -> BigRational {
-        BigRational::new(BigInt::from(n), BigInt::from(d))
-    }
+    use crate::rational::ratio as q;
 
     /// A wrong engine: PAVA on the positions alone, the velocity tie-break
     /// dropped (so the velocity is not the right derivative where two

@@ -616,9 +616,7 @@ mod tests {
         }
     }
 
-    fn q(n: i64, d: i64) -> BigRational {
-        BigRational::new(BigInt::from(n), BigInt::from(d))
-    }
+    use crate::rational::ratio as q;
 
     /// Four particles around `offset`, two pairs colliding at different
     /// times, one contact at `t = 0` that separates.

@@ -358,9 +358,7 @@ impl fmt::Display for Surd {
 mod tests {
     use super::*;
 
-    fn q(n: i64, d: i64) -> BigRational {
-        BigRational::new(BigInt::from(n), BigInt::from(d))
-    }
+    use crate::rational::ratio as q;
 
     #[test]
     fn sqrt_and_fields() {

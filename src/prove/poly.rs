@@ -247,9 +247,7 @@ pub fn smt_rational(q: &BigRational) -> String {
 mod tests {
     use super::*;
 
-    fn q(n: i64, d: i64) -> BigRational {
-        BigRational::new(n.into(), d.into())
-    }
+    use crate::rational::ratio as q;
 
     #[test]
     fn ring_and_normal_form() {

@@ -647,9 +647,7 @@ mod compare_tests {
     use crate::cluster::Cluster;
     use crate::state::State;
 
-    fn q(n: i64, d: i64) -> BigRational {
-        BigRational::new(n.into(), d.into())
-    }
+    use crate::rational::ratio as q;
 
     /// Three particles, 2r = 1/2, the first two in contact.
     fn exact() -> State<BigRational> {

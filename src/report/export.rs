@@ -233,9 +233,7 @@ pub fn npy(e: &Exported) -> Vec<u8> {
 mod tests {
     use super::*;
 
-    fn q(n: i64, d: i64) -> BigRational {
-        BigRational::new(n.into(), d.into())
-    }
+    use crate::rational::ratio as q;
 
     #[test]
     fn nearest_and_its_error() {

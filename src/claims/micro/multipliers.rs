@@ -346,9 +346,7 @@ mod tests {
     use crate::contact::multipliers;
     use num_rational::BigRational;
 
-    fn q(n: i64, d: i64) -> BigRational {
-        BigRational::new(n.into(), d.into())
-    }
+    use crate::rational::ratio as q;
 
     /// 2r = 1, x⁰ = (0, 2, 4), u⁰ = (2, 0, −1): particles 1, 2 meet at
     /// t = 1/2, particle 3 joins at t = 3/4.

@@ -423,9 +423,7 @@ mod tests {
     use num_traits::One;
     use time::Time;
 
-    fn q(n: i64, d: i64) -> BigRational {
-        BigRational::new(BigInt::from(n), BigInt::from(d))
-    }
+    use crate::rational::ratio as q;
 
     fn big(v: &BigInt) -> BigRational {
         BigRational::from_integer(v.clone())

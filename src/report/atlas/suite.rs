@@ -69,9 +69,7 @@ impl Case {
     }
 }
 
-fn q(n: i64, d: i64) -> BigRational {
-    BigRational::new(BigInt::from(n), BigInt::from(d))
-}
+use crate::rational::ratio as q;
 
 pub(super) fn data_err(name: &str) -> impl Fn(crate::Error) -> AtlasError + '_ {
     move |e| AtlasError::Scene {

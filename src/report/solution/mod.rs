@@ -321,9 +321,7 @@ pub fn decimal(q: &BigRational, digits: u32, sqrt: bool) -> String {
 mod tests {
     use super::*;
 
-    fn q(n: i64, d: i64) -> BigRational {
-        BigRational::new(n.into(), d.into())
-    }
+    use crate::rational::ratio as q;
 
     #[test]
     fn json_numbers_are_the_doubles_they_denote() {
