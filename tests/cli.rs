@@ -668,3 +668,27 @@ fn run_model_continuum() {
         &["needs a [macro] scene"],
     );
 }
+
+/// `sticky generate`: the TOML scene on stdout, or in `--out` when given
+/// (it used to be printed and `--out` ignored); the CSV form names a column
+/// file holding the same exact data.
+#[test]
+fn generate_writes_where_it_is_told() {
+    let printed = stdout_ok(&["generate", "--n", "7", "--seed", "3"]);
+    let from_stdout = sticky::scene::parse(&printed).expect("a scene");
+    let dir = std::env::temp_dir().join(format!("sticky-cli-generate-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let d = dir.to_str().expect("UTF-8 temp dir");
+    for format in ["toml", "csv"] {
+        let paths = stdout_ok(&[
+            "generate", "--n", "7", "--seed", "3", "--format", format, "--out", d,
+        ]);
+        let first = paths.lines().next().expect("a path");
+        let scene_file = first.strip_prefix("wrote ").unwrap_or(first);
+        assert!(scene_file.ends_with(".toml"), "{paths}");
+        let scene =
+            sticky::scene::load(std::path::Path::new(scene_file)).expect("the written scene loads");
+        assert_eq!(scene.data, from_stdout.data, "--format {format}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -16,7 +16,8 @@ use crate::{io_err, print_paths, Failure};
 
 /// Prints a random admissible `[particles]` scene (exact rationals, with
 /// contacts, separating contacts and simultaneous collisions on purpose);
-/// with `--format csv|npy`, writes the scene and its column file to --out.
+/// with `--format csv|npy`, writes the scene and its column file to --out
+/// (with `--format toml --out DIR`, the scene to DIR).
 #[derive(clap::Args)]
 pub struct Args {
     /// Number of particles.
@@ -25,13 +26,13 @@ pub struct Args {
     /// Seed of the generator (same seed, same scene).
     #[arg(long, default_value_t = 1)]
     seed: u64,
-    /// `toml`: the whole scene on stdout; `csv`: a TOML scene naming a CSV
+    /// `toml`: the whole scene on stdout (in --out when given); `csv`: a TOML scene naming a CSV
     /// column file of exact strings; `npy`: the same with an f64 `.npy` file
     /// (the data snapped to the grid 2^-32 so that every value is a double).
     #[arg(long, value_enum, default_value_t = Format::Toml)]
     format: Format,
-    /// Folder for the scene and its column file (csv, npy); default
-    /// ./out/generate/.
+    /// Folder for the scene and its column file (csv, npy; default
+    /// ./out/generate/), or for the TOML scene (toml; default: stdout).
     #[arg(long)]
     out: Option<PathBuf>,
 }
@@ -54,12 +55,18 @@ pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
     }
     let data = random(n, args.seed);
     let mut name = format!("random-{n}-seed-{}", args.seed);
-    if args.format == Format::Toml {
+    if args.format == Format::Toml && args.out.is_none() {
         return write!(out, "{}", scene::particles_toml(&data, Some(&name))).map_err(io_err);
     }
     let dir = args.out.unwrap_or_else(|| PathBuf::from("out/generate"));
     std::fs::create_dir_all(&dir)
         .map_err(|e| Failure(format!("cannot create {}: {e}", dir.display())))?;
+    if args.format == Format::Toml {
+        let path = dir.join(format!("{name}.toml"));
+        let toml = scene::particles_toml(&data, Some(&name));
+        write_whole(&path, toml.as_bytes()).map_err(|e| Failure(e.to_string()))?;
+        return print_paths(out, &[path]);
+    }
     let (file, bytes, data) = match args.format {
         Format::Npy => {
             name.push_str("-f64");
