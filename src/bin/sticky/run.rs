@@ -170,9 +170,30 @@ fn run(
     Ok(())
 }
 
-/// One value of a row: writes its exact text (CSV) and returns its nearest
-/// double (NPY).
-type Cell<'a> = &'a dyn Fn(&mut dyn Write) -> io::Result<f64>;
+/// One value of a row: its exact text (CSV) or its nearest double (NPY),
+/// from the streaming path's values or the general state's.
+trait Cell {
+    fn write_exact(&self, out: &mut dyn Write) -> io::Result<()>;
+    fn lossy(&self) -> f64;
+}
+
+impl Cell for sticky::fast::stream::Exact {
+    fn write_exact(&self, out: &mut dyn Write) -> io::Result<()> {
+        self.write(out)
+    }
+    fn lossy(&self) -> f64 {
+        self.to_f64_lossy()
+    }
+}
+
+impl Cell for BigRational {
+    fn write_exact(&self, out: &mut dyn Write) -> io::Result<()> {
+        out.write_all(self.render().as_bytes())
+    }
+    fn lossy(&self) -> f64 {
+        self.to_f64_lossy()
+    }
+}
 
 /// `--format csv|npy`: every particle at every time, row by row, from the
 /// streaming path when it applies, else from the general state.
@@ -191,9 +212,9 @@ fn columns(out: &mut impl Write, args: &Args) -> Result<(), Failure> {
         let mut row = |out: &mut dyn Write,
                        n: usize,
                        i: usize,
-                       x: Cell<'_>,
-                       u: Cell<'_>,
-                       l: Option<Cell<'_>>|
+                       x: &dyn Cell,
+                       u: &dyn Cell,
+                       l: Option<&dyn Cell>|
          -> io::Result<()> {
             if !header {
                 header = true;
@@ -204,51 +225,25 @@ fn columns(out: &mut impl Write, args: &Args) -> Result<(), Failure> {
                 }
             }
             if npy {
-                let mut sink = io::sink();
-                for v in [
-                    x(&mut sink)?,
-                    u(&mut sink)?,
-                    l.map_or(Ok(0.0), |l| l(&mut sink))?,
-                ] {
+                for v in [x.lossy(), u.lossy(), l.map_or(0.0, |l| l.lossy())] {
                     out.write_all(&v.to_le_bytes())?;
                 }
                 return Ok(());
             }
             write!(out, "{t_text},{i},")?;
-            x(out)?;
+            x.write_exact(out)?;
             out.write_all(b",")?;
-            u(out)?;
+            u.write_exact(out)?;
             out.write_all(b",")?;
             if let Some(l) = l {
-                l(out)?;
+                l.write_exact(out)?;
             }
             out.write_all(b"\n")
         };
         if let Some(b) = lean.as_ref().and_then(|l| l.blocks_at(t)) {
             let n = b.n();
-            let value = |v: &sticky::fast::stream::Exact| {
-                let v = v.clone();
-                move |w: &mut dyn Write| -> io::Result<f64> {
-                    if !npy {
-                        v.write(w)?;
-                    }
-                    Ok(if npy { v.to_f64_lossy() } else { 0.0 })
-                }
-            };
-            b.rows(|i, x, u, l| {
-                let (x, u) = (value(x), value(u));
-                let l = l.map(value);
-                row(
-                    out,
-                    n,
-                    i,
-                    &x,
-                    &u,
-                    l.as_ref()
-                        .map(|l| l as &dyn Fn(&mut dyn Write) -> io::Result<f64>),
-                )
-            })
-            .map_err(io_err)?;
+            b.rows(|i, x, u, l| row(out, n, i, x, u, l.map(|l| l as &dyn Cell)))
+                .map_err(io_err)?;
             continue;
         }
         if general.is_none() {
@@ -268,28 +263,9 @@ fn columns(out: &mut impl Write, args: &Args) -> Result<(), Failure> {
         };
         let state = prepared.state_at(t).map_err(|e| Failure(e.to_string()))?;
         let n = state.positions.len();
-        let value = |v: &BigRational| {
-            let v = v.clone();
-            move |w: &mut dyn Write| -> io::Result<f64> {
-                if !npy {
-                    w.write_all(v.render().as_bytes())?;
-                }
-                Ok(if npy { v.to_f64_lossy() } else { 0.0 })
-            }
-        };
         for i in 0..n {
-            let (x, u) = (value(&state.positions[i]), value(&state.velocities[i]));
-            let l = state.multipliers.get(i).map(value);
-            row(
-                out,
-                n,
-                i,
-                &x,
-                &u,
-                l.as_ref()
-                    .map(|l| l as &dyn Fn(&mut dyn Write) -> io::Result<f64>),
-            )
-            .map_err(io_err)?;
+            let l = state.multipliers.get(i).map(|l| l as &dyn Cell);
+            row(out, n, i, &state.positions[i], &state.velocities[i], l).map_err(io_err)?;
         }
     }
     Ok(())
