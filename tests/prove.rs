@@ -229,11 +229,7 @@ struct MutantCheck(Mutant);
 
 impl Program for MutantCheck {
     fn run<S: Scalar>(&self, input: &Input<S>) -> PathEnd {
-        let data = match InitialData::new(
-            input.radius.clone(),
-            input.positions.clone(),
-            input.velocities.clone(),
-        ) {
+        let data = match input.data() {
             Ok(d) => d,
             Err(e) => return PathEnd::Excluded(e.to_string()),
         };
@@ -293,11 +289,7 @@ fn the_unmutated_harness_is_proved() {
     struct Faithful;
     impl Program for Faithful {
         fn run<S: Scalar>(&self, input: &Input<S>) -> PathEnd {
-            let Ok(data) = InitialData::new(
-                input.radius.clone(),
-                input.positions.clone(),
-                input.velocities.clone(),
-            ) else {
+            let Ok(data) = input.data() else {
                 return PathEnd::Excluded("invalid".into());
             };
             let traj = Trajectory::new(data.clone());

@@ -65,6 +65,18 @@ pub struct Input<S> {
     pub times: Vec<S>,
 }
 
+impl<S: Scalar> Input<S> {
+    /// The initial data (`InitialData::new`: its validation is part of the
+    /// program run, so an inadmissible input ends the path as excluded).
+    pub fn data(&self) -> Result<InitialData<S>, crate::error::Error> {
+        InitialData::new(
+            self.radius.clone(),
+            self.positions.clone(),
+            self.velocities.clone(),
+        )
+    }
+}
+
 /// A program to prove: generic over the scalar, deterministic, returning how
 /// the path ended. Run on [`Sym`] for the proof and on [`BigRational`] to
 /// replay a counterexample.
@@ -209,11 +221,7 @@ fn concrete_input(n: usize, two_times: bool, point: &[BigRational]) -> Input<Big
 /// `t_end` and a comment.
 fn witness_toml(id: &str, input: &Input<BigRational>) -> String {
     use crate::rational::render_exact;
-    let data = InitialData::new(
-        input.radius.clone(),
-        input.positions.clone(),
-        input.velocities.clone(),
-    );
+    let data = input.data();
     let times: Vec<String> = input.times.iter().map(render_exact).collect();
     let body = match data {
         Ok(d) => crate::scene::particles_toml(&d, Some(&format!("counterexample to {id}"))),
@@ -318,11 +326,7 @@ pub struct Target {
 
 impl Program for Target {
     fn run<S: Scalar>(&self, input: &Input<S>) -> PathEnd {
-        let data = match InitialData::new(
-            input.radius.clone(),
-            input.positions.clone(),
-            input.velocities.clone(),
-        ) {
+        let data = match input.data() {
             Ok(d) => d,
             Err(e) => return PathEnd::Excluded(e.to_string()),
         };
