@@ -17,7 +17,7 @@ use num_rational::BigRational;
 use std::time::Duration;
 use sticky::fast::kernel::{self, IntegerData};
 use sticky::rational::parse_exact;
-use sticky::reference::measure::{compare, Candidate};
+use sticky::reference::measure::compare;
 
 use sticky::generate::{initial_data, Limits, SplitMix64};
 use sticky::reference::measure::Comparison;
@@ -73,12 +73,7 @@ fn every_installed_peer_lands_near_the_exact_answer() {
         for f in &run.frames {
             let exact = kernel::state_at(&ints, &f.t).unwrap();
             let c = compare(
-                &Candidate {
-                    positions: &f.positions,
-                    velocities: f.velocities.as_deref(),
-                    multipliers: f.multipliers.as_deref(),
-                    contacts: f.contacts.as_deref(),
-                },
+                &f.candidate(),
                 &exact,
                 &scene.data.two_r(),
                 &BigRational::from_integer(0.into()),
@@ -168,12 +163,7 @@ fn compare_peer(
     let exact = kernel::state_at(&IntegerData::new(&scene.data), &f.t).unwrap();
     Some(
         compare(
-            &Candidate {
-                positions: &f.positions,
-                velocities: f.velocities.as_deref(),
-                multipliers: f.multipliers.as_deref(),
-                contacts: f.contacts.as_deref(),
-            },
+            &f.candidate(),
             &exact,
             &scene.data.two_r(),
             &BigRational::from_integer(0.into()),

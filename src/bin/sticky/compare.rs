@@ -17,7 +17,7 @@ use num_traits::Signed;
 
 use sticky::fast::kernel::{self, IntegerData};
 use sticky::rational::parse_exact;
-use sticky::reference::measure::{compare, Candidate, Comparison, MaxError};
+use sticky::reference::measure::{compare, Comparison, MaxError};
 use sticky::report::json::string;
 use sticky::report::solution::{self, decimal, sqrt_text, Frame};
 use sticky::Scalar;
@@ -77,12 +77,7 @@ pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
     let mut exact_states = Vec::with_capacity(frames.len());
     for f in &frames {
         let state = kernel::state_at(&ints, &f.t).map_err(|e| sol_err(f.line, e.to_string()))?;
-        let cand = Candidate {
-            positions: &f.positions,
-            velocities: f.velocities.as_deref(),
-            multipliers: f.multipliers.as_deref(),
-            contacts: f.contacts.as_deref(),
-        };
+        let cand = f.candidate();
         let c = compare(&cand, &state, &two_r, &args.contact_tol)
             .map_err(|e| sol_err(f.line, e.to_string()))?;
         results.push(c);

@@ -20,7 +20,7 @@ use num_rational::BigRational;
 use num_traits::Zero;
 
 use crate::fast::kernel::{self, IntegerData};
-use crate::reference::measure::{compare, Candidate};
+use crate::reference::measure::compare;
 use crate::reference::ErrorsF64;
 use crate::report::peers::{
     default_scripts_dir, peers, run_peer_within, Peer, PeerOutcome, STARTUP_SECONDS,
@@ -183,12 +183,7 @@ fn score(
         .to_big_rational()
         .map(|t| t * &two_r)
         .unwrap_or_else(<BigRational as Zero>::zero);
-    let cand = Candidate {
-        positions: &f.positions,
-        velocities: f.velocities.as_deref(),
-        multipliers: f.multipliers.as_deref(),
-        contacts: f.contacts.as_deref(),
-    };
+    let cand = f.candidate();
     let c = compare(&cand, state, &two_r, &tol).map_err(|e| e.to_string())?;
     let lossy = |q: &BigRational| q.to_f64_lossy();
     let min_gap = f

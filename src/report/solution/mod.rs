@@ -54,6 +54,21 @@ pub struct Frame {
     pub contacts: Option<Vec<bool>>,
 }
 
+impl Frame {
+    /// This time of the solution as what [`compare`] scores against the
+    /// exact state.
+    ///
+    /// [`compare`]: crate::reference::measure::compare
+    pub fn candidate(&self) -> crate::reference::measure::Candidate<'_> {
+        crate::reference::measure::Candidate {
+            positions: &self.positions,
+            velocities: self.velocities.as_deref(),
+            multipliers: self.multipliers.as_deref(),
+            contacts: self.contacts.as_deref(),
+        }
+    }
+}
+
 /// A bad solution: the 1-based line and what is wrong there.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct SolutionError {
