@@ -312,6 +312,83 @@ mod tests {
         assert!(seen.iter().all(|&c| c > 0), "{seen:?}");
     }
 
+    /// Data beyond the 512-bit kernel whose values still differ at the top
+    /// of their `f64` mantissas, so that most pooling decisions are taken in
+    /// `f64`: random scenes scaled by `1 + 7/10^100` (the collision instants
+    /// of the unscaled scene stay exact ties), or with positions perturbed by
+    /// non-decreasing `δ_i / 10^160` (near-ties, one part in ~10^150). Both
+    /// need more than 512 bits and stay well inside the `f64` range. At every
+    /// collision instant and between: the answer equals the exact kernel's,
+    /// the certified path answers almost every probe (not the budget's
+    /// fallback), most decisions are taken in `f64` (measured: 22 % exact,
+    /// the ties and near-ties), and some are left to the exact comparison.
+    /// The oracle battery above shifts its big-width scenes by `2^700`, where
+    /// no decision is within `f64` resolution, so it never reaches the `f64`
+    /// certificate: this test checks it (a bound made smaller decides a
+    /// near-tie the wrong way; a bound made much larger sends the decisions
+    /// to the exact comparison). Found by cargo-mutants on `src/fast/`
+    /// (docs/mutants.md).
+    #[test]
+    fn certified_decisions_in_f64_are_right() {
+        let mut rng = SplitMix64::new(41);
+        let big = |e: u32| BigRational::from_integer(BigInt::from(10u32).pow(e));
+        let (scale, fine) = (big(100), big(160));
+        let (mut decided, mut exact_calls) = (0usize, 0usize);
+        let (mut probes, mut certified) = (0usize, 0usize);
+        for k in 0..120u64 {
+            let data = initial_data(
+                &rng.bytes(300),
+                Limits {
+                    max_n: 2 + (k % 40) as usize,
+                    ..Limits::default()
+                },
+            );
+            let traj = Trajectory::new(data.clone());
+            let times = crate::trajectory::probe_times(&traj, Some(8));
+            let data = if k % 2 == 0 {
+                // Everything scaled by c = 1 + 7/10^100: the collision
+                // times (gap over closing speed) are unchanged, so the
+                // instants probed are exact ties.
+                let c = q(1, 1) + q(7, 1) / &scale;
+                let x = data.positions().iter().map(|x| x * &c).collect();
+                let u = data.velocities().iter().map(|u| u * &c).collect();
+                InitialData::new(data.radius() * &c, x, u).unwrap()
+            } else {
+                // Non-decreasing perturbations (contacts stay admissible).
+                let mut d = 7u64;
+                let x = (data.positions().iter().zip(0u64..))
+                    .map(|(x, i)| {
+                        d += (i * 7919 + k) % 9973;
+                        x + BigRational::from_integer(BigInt::from(d)) / &fine
+                    })
+                    .collect();
+                InitialData::new(data.radius().clone(), x, data.velocities().to_vec()).unwrap()
+            };
+            let d = IntegerData::new(&data);
+            for t in &times {
+                let got = adaptive_blocks_at(&d, t);
+                assert_eq!(got.blocks, blocks_at(&d, t), "case {k}, t = {t}");
+                probes += 1;
+                if let Path::Certified { decisions, exact } = got.path {
+                    certified += 1;
+                    decided += decisions;
+                    exact_calls += exact;
+                }
+            }
+        }
+        // One particle, or data whose offsets cancel in the translation,
+        // may still fit the 512-bit kernel; every other probe is certified.
+        assert!(
+            10 * certified > 9 * probes,
+            "{certified} of {probes} probes certified"
+        );
+        assert!(exact_calls > 0, "no decision needed the exact comparison");
+        assert!(
+            4 * exact_calls < decided,
+            "{exact_calls} of {decided} decisions exact: the f64 certificate settles too few"
+        );
+    }
+
     /// Two particles whose free-flight positions differ by one part in
     /// 10^40: far below f64 resolution, so the decision is exact, and right
     /// on both sides of the tie.
