@@ -185,6 +185,9 @@ pub enum Memory {
     /// default, adaptive mmap threshold whether a buffer is resident depends
     /// on what ran before it. (A huge `MALLOC_TRIM_THRESHOLD_` as well made
     /// the `BigInt` loop 3× slower here; it is left at its default.)
+    /// A call that writes more than the heap has free still faults its
+    /// fresh pages in (the kernel's 512-bit blocks were once 90 MB at
+    /// N = 10⁶: 75–263 ns per particle depending on the machine's state).
     Warm,
     /// Peak memory: every allocation above 128 KiB is mapped afresh and
     /// returned on free (`MALLOC_MMAP_THRESHOLD_`, `MALLOC_TRIM_THRESHOLD_`),
