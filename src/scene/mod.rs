@@ -19,6 +19,9 @@
 //! instead of `positions`/`velocities` ([`crate::columns`]; read by [`load`]
 //! or [`parse_in`], relative to the scene's folder).
 //!
+//! The streaming path reads inline columns of the plain shape above straight
+//! into machine words ([`inline_scene`]) and leaves anything else to [`parse`].
+//!
 //! or, instead of `[particles]`, a macroscopic datum sampled at the quantiles
 //! (paper §2.1, `thm:main`; see [`crate::quantile`]):
 //!
