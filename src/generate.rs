@@ -275,6 +275,98 @@ pub fn dyadic(data: &InitialData<BigRational>, bits: u32) -> Option<InitialData<
     all_doubles.then_some(snapped)
 }
 
+/// [`dyadic`] as the rows of a `.npy` file: the snapped radius and every
+/// `(position, velocity)` as the double it is, the same values bit for bit
+/// and `None` exactly when [`dyadic`] gives `None` (tests: against
+/// [`dyadic`] on random data). Computed on `i128`: with `x_i = p/d`,
+/// `2r = a/b`, the grid index of the translated position is
+/// `⌊2^bits (p b − a i d) / (d b)⌋` (`df:translat-x`) and the snapped
+/// position is that index plus `2 R i`, `R = ⌊2^bits r⌋`; when a term leaves
+/// `i128`, [`dyadic`] itself answers.
+pub fn dyadic_doubles(data: &InitialData<BigRational>, bits: u32) -> Option<DyadicRows> {
+    match dyadic_words(data, bits) {
+        Ok(answer) => answer,
+        Err(Overflow) => {
+            use crate::scalar::Scalar;
+            let d = dyadic(data, bits)?;
+            let rows = d
+                .positions()
+                .iter()
+                .zip(d.velocities())
+                .map(|(x, u)| (x.to_f64_lossy(), u.to_f64_lossy()))
+                .collect();
+            Some((d.radius().clone(), rows))
+        }
+    }
+}
+
+/// The snapped radius and the `(position, velocity)` doubles of
+/// [`dyadic_doubles`].
+pub type DyadicRows = (BigRational, Vec<(f64, f64)>);
+
+/// A term of [`dyadic_words`] left `i128`.
+struct Overflow;
+
+fn dyadic_words(
+    data: &InitialData<BigRational>,
+    bits: u32,
+) -> Result<Option<DyadicRows>, Overflow> {
+    use num_traits::ToPrimitive;
+    let words = |q: &BigRational| Some((q.numer().to_i128()?, q.denom().to_i128()?));
+    // ⌊2^bits n / d⌋, d > 0.
+    let grid = |n: i128, d: i128| -> Option<i128> {
+        n.checked_mul(1i128.checked_shl(bits)?)?
+            .checked_div_euclid(d)
+    };
+    let (rn, rd) = words(data.radius()).ok_or(Overflow)?;
+    let big_r = grid(rn, rd).ok_or(Overflow)?;
+    let two_r = data.radius() + data.radius();
+    let (a, b) = words(&two_r).ok_or(Overflow)?;
+    // k / 2^bits is a double iff k has at most 53 significant bits.
+    let unit = 2f64.powi(-i32::try_from(bits).map_err(|_| Overflow)?);
+    let to_f64 = |k: i128| -> Option<f64> {
+        let m = k.unsigned_abs() >> k.trailing_zeros().min(127);
+        (k == 0 || 128 - m.leading_zeros() <= 53).then_some(k as f64 * unit)
+    };
+    if big_r <= 0 {
+        return Ok(None);
+    }
+    let mut rows = Vec::with_capacity(data.n());
+    let mut prev: Option<(i128, i128)> = None;
+    for (i, (x, u)) in data.positions().iter().zip(data.velocities()).enumerate() {
+        let terms = (|| {
+            let ii = i128::try_from(i).ok()?;
+            let (p, d) = words(x)?;
+            let (un, ud) = words(u)?;
+            let num = p
+                .checked_mul(b)?
+                .checked_sub(a.checked_mul(ii)?.checked_mul(d)?)?;
+            let k = grid(num, d.checked_mul(b)?)?;
+            let position = k.checked_add(big_r.checked_mul(2)?.checked_mul(ii)?)?;
+            Some((k, grid(un, ud)?, position))
+        })();
+        let (k, v, position) = terms.ok_or(Overflow)?;
+        // `InitialData::new` on the snapped data: the translated positions
+        // never decrease (the floor is monotone); a contact must not
+        // approach (`def:velcone`).
+        if let Some((k0, v0)) = prev {
+            if k < k0 || (k == k0 && v < v0) {
+                return Ok(None);
+            }
+        }
+        prev = Some((k, v));
+        match (to_f64(position), to_f64(v)) {
+            (Some(x), Some(u)) => rows.push((x, u)),
+            _ => return Ok(None),
+        }
+    }
+    if to_f64(big_r).is_none() {
+        return Ok(None);
+    }
+    let radius = BigRational::new(BigInt::from(big_r), BigInt::from(1) << bits as usize);
+    Ok(Some((radius, rows)))
+}
+
 /// SplitMix64: a tiny, well-mixed deterministic generator (for seeds and test
 /// data, not for cryptography).
 #[derive(Debug, Clone)]
@@ -346,5 +438,63 @@ mod tests {
             ..Limits::default()
         };
         assert_eq!(initial_data(&bytes, lim).n(), 37);
+    }
+
+    /// `dyadic_doubles` against `dyadic` (then `to_f64_lossy`): the same
+    /// radius and doubles bit for bit, `None` on the same data, on random
+    /// data at fine and coarse grids (coarse ones make snapped contacts
+    /// approach: `None`), shifted far off the origin, and with terms off
+    /// `i128` (the `BigRational` answer then).
+    #[test]
+    fn dyadic_doubles_are_dyadic_bit_for_bit() {
+        use crate::scalar::Scalar;
+        let mut rng = SplitMix64::new(99);
+        let (mut some, mut none) = (0, 0);
+        for case in 0..300u64 {
+            let d = initial_data(&rng.bytes(200), Limits::default());
+            let shift = match case % 4 {
+                0 => BigRational::from_integer(0.into()),
+                1 => BigRational::new((-7i64).into(), 3.into()),
+                2 => BigRational::from_integer(BigInt::from(1) << 90usize),
+                _ => BigRational::new(1.into(), BigInt::from(3) << 100usize),
+            };
+            let positions = d.positions().iter().map(|x| x + &shift).collect();
+            let d =
+                InitialData::new(d.radius().clone(), positions, d.velocities().to_vec()).unwrap();
+            let bits = [32, 3, 8, 52][(case / 4 % 4) as usize];
+            let want = dyadic(&d, bits).map(|s| {
+                let rows: Vec<(u64, u64)> = s
+                    .positions()
+                    .iter()
+                    .zip(s.velocities())
+                    .map(|(x, u)| (x.to_f64_lossy().to_bits(), u.to_f64_lossy().to_bits()))
+                    .collect();
+                (s.radius().clone(), rows)
+            });
+            let got = dyadic_doubles(&d, bits).map(|(r, rows)| {
+                let rows: Vec<(u64, u64)> = rows
+                    .iter()
+                    .map(|(x, u)| (x.to_bits(), u.to_bits()))
+                    .collect();
+                (r, rows)
+            });
+            assert_eq!(got, want, "case {case}, bits {bits}");
+            if want.is_some() {
+                some += 1;
+            } else {
+                none += 1;
+            }
+        }
+        assert!(some > 50 && none > 50, "{some} snapped, {none} refused");
+        // At the edge of the double: ⌊(10/3) 2^51⌋ has 53 significant
+        // bits, ⌊(10/3) 2^52⌋ 54.
+        let one = InitialData::new(
+            BigRational::new(1.into(), 4.into()),
+            vec![BigRational::new(10.into(), 3.into())],
+            vec![BigRational::from_integer(0.into())],
+        )
+        .unwrap();
+        assert!(dyadic(&one, 51).is_some() && dyadic_doubles(&one, 51).is_some());
+        assert!(dyadic(&one, 52).is_none() && dyadic_doubles(&one, 52).is_none());
     }
 }

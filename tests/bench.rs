@@ -50,3 +50,81 @@ fn bench_reports_every_method() {
     // The bench scene is admissible and exactly N particles.
     assert_eq!(scene(777, 3).n(), 777);
 }
+
+/// `sticky bench --e2e` at a small N: every `sticky` pipeline runs as a
+/// whole process and reports its wall time and its own peak memory; the
+/// scipy rows are empty and say why when skipped, or when the helper
+/// script is missing (Python peers absent), while the `sticky` rows still
+/// run; the JSON is valid.
+#[test]
+fn e2e_rows_measure_every_sticky_pipeline() {
+    use sticky::report::bench::e2e::{self, E2eOptions, Tool, PIPELINES};
+    let empty = std::env::temp_dir().join(format!("sticky-e2e-noscripts-{}", std::process::id()));
+    std::fs::create_dir_all(&empty).unwrap();
+    for (peers, scripts) in [(false, empty.clone()), (true, empty.clone())] {
+        let opts = E2eOptions {
+            n: 500,
+            reps: 2,
+            peers,
+            sticky: env!("CARGO_BIN_EXE_sticky").into(),
+            scripts,
+        };
+        let r = e2e::run(&opts, |_| {}).expect("inputs written");
+        assert_eq!(r.rows.len(), PIPELINES.len());
+        for row in &r.rows {
+            if row.tool == Tool::Scipy {
+                assert!(row.wall_s.is_none(), "{row:?}");
+                assert!(r.vs_scipy(row).is_none());
+                // Skipped; or the helper missing (python3 fails on it, or
+                // python3 itself is absent).
+                let why: &[&str] = if peers {
+                    &["failed", "cannot start"]
+                } else {
+                    &["skipped"]
+                };
+                assert!(why.iter().any(|w| row.note.contains(w)), "{row:?}");
+            } else {
+                assert!(row.wall_s.is_some_and(|w| w > 0.0), "{row:?}");
+                // The child's own high-water mark (a process holds more
+                // than a MiB).
+                assert!(row.peak_kib.is_some_and(|k| k > 1024.0), "{row:?}");
+                assert!(row.note.starts_with("in "), "{row:?}");
+                // An answer was written: N positions at least.
+                assert!(row.out_bytes.is_some_and(|b| b > 1000), "{row:?}");
+            }
+        }
+        let v: serde_json::Value = serde_json::from_str(&e2e::json(&r)).expect("valid JSON");
+        assert_eq!(v["n"], 500);
+        assert_eq!(v["e2e"].as_array().map(Vec::len), Some(PIPELINES.len()));
+        assert!(e2e::table(&r).contains("sticky events --json"));
+    }
+    let _ = std::fs::remove_dir_all(&empty);
+}
+
+/// The three inputs of the end-to-end rows hold the same particles: the
+/// inline TOML scene equals the CSV scene, and the NPY scene is the CSV
+/// scene's integers over 1024 instead of 1000 (radius included).
+#[test]
+fn e2e_inputs_are_one_scene_three_ways() {
+    use num_bigint::BigInt;
+    let dir = std::env::temp_dir().join(format!("sticky-e2e-inputs-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    sticky::report::bench::e2e::write_inputs(&dir, 3000, 7).unwrap();
+    let load = |name: &str| sticky::scene::load(&dir.join(name)).unwrap().data;
+    let (csv, toml, npy) = (load("dec.toml"), load("inline.toml"), load("dyadic.toml"));
+    assert_eq!(csv, toml);
+    assert_eq!(csv.n(), 3000);
+    let k = BigRational::new(BigInt::from(1000), BigInt::from(1024));
+    let scaled = |v: &[BigRational]| v.iter().map(|x| x * &k).collect::<Vec<_>>();
+    assert_eq!(npy.positions(), &scaled(csv.positions())[..]);
+    assert_eq!(npy.velocities(), &scaled(csv.velocities())[..]);
+    assert_eq!(npy.radius(), &(csv.radius() * &k));
+    // Contacts and collisions both occur (the rows measure real merges).
+    let contacts = csv
+        .positions()
+        .windows(2)
+        .filter(|w| &w[1] - &w[0] == csv.radius() * BigRational::from_integer(2.into()))
+        .count();
+    assert!(contacts > 100 && contacts < 2000, "{contacts}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

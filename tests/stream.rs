@@ -392,3 +392,192 @@ fn csv_and_npy_output() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("--lossy"));
     std::fs::remove_dir_all(&d).unwrap();
 }
+
+/// Writes a `[particles]` scene with inline columns in one of several
+/// layouts (`style`): one line each, one value per line with comments and
+/// a trailing comma, CRLF line ends, padded strings, top-level fields.
+fn write_inline_scene(
+    dir: &Path,
+    name: &str,
+    radius: Option<&str>,
+    rows: &[(String, String)],
+    style: u64,
+) -> PathBuf {
+    let nl = if style % 4 == 2 { "\r\n" } else { "\n" };
+    let array = |v: Vec<&String>| -> String {
+        let items: Vec<String> = v.iter().map(|s| format!("\"{s}\"")).collect();
+        match style % 4 {
+            1 => format!(
+                "[{nl}  {},{nl}] # end",
+                items.join(&format!(", # a comment{nl}  "))
+            ),
+            3 => format!("[ {} , ]", items.join(" ,\t")),
+            _ => format!("[{}]", items.join(", ")),
+        }
+    };
+    let mut text = String::new();
+    if style % 3 == 0 {
+        text.push_str(&format!(
+            "# a scene{nl}name = \"{name}\"{nl}description = \"inline, style {style}\"{nl}t_end = \"3/2\"{nl}{nl}"
+        ));
+    }
+    text.push_str(&format!("[ particles ]{nl}"));
+    if let Some(r) = radius {
+        text.push_str(&format!("radius = \"{r}\"{nl}"));
+    }
+    let xs = array(rows.iter().map(|r| &r.0).collect());
+    let us = array(rows.iter().map(|r| &r.1).collect());
+    if style % 2 == 0 {
+        text.push_str(&format!("positions = {xs}{nl}velocities = {us}{nl}"));
+    } else {
+        text.push_str(&format!("velocities = {us}{nl}positions = {xs}"));
+    }
+    let path = dir.join(format!("{name}.toml"));
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// TOML scenes with inline columns (`scene::inline_scene`, issue 13 part 2):
+/// the streaming path gives the general path's bytes on random scenes in
+/// every layout, and the shipped `[particles]` scenes (all three).
+#[test]
+fn inline_toml_scenes_give_the_same_bytes() {
+    let d = dir("toml");
+    let mut rng = SplitMix64::new(2626);
+    let mut taken = 0;
+    let mut events_taken = 0;
+    for case in 0..120u64 {
+        let data = initial_data(
+            &rng.bytes(300),
+            Limits {
+                max_n: 1 + case as usize % 60,
+                max_den: [8, 10, 1000, 40][case as usize % 4],
+                max_speed: 16,
+            },
+        );
+        let offset = q(
+            -((rng.next_u64() % 1000) as i64),
+            1 + (rng.next_u64() % 50) as i64,
+        );
+        let rows: Vec<(String, String)> = data
+            .positions()
+            .iter()
+            .zip(data.velocities())
+            .map(|(x, u)| {
+                (
+                    text(&(x + &offset), rng.next_u64()),
+                    text(u, rng.next_u64()),
+                )
+            })
+            .collect();
+        let radius = sticky::rational::render_exact(data.radius());
+        let radius = (case % 5 != 4).then_some(radius.as_str());
+        let path = write_inline_scene(&d, &format!("t{case}"), radius, &rows, case);
+        // Without its radius (the default 1/(2N)) a scene may overlap:
+        // then the streaming path declines and the general path says so.
+        if sticky::scene::load(&path).is_err() {
+            assert!(radius.is_none(), "case {case}: every layout is TOML");
+            assert!(Lean::load(&path).is_none(), "case {case}");
+            continue;
+        }
+        events_taken += usize::from(events_agree(&path));
+        for t in [q(0, 1), q(1, 3), q(5, 2), q(7, 1)] {
+            let want = general(&path, &t);
+            if let Some(got) = streamed(&path, &t) {
+                assert_eq!(got, want, "case {case}, t = {t}");
+                taken += 1;
+            }
+        }
+    }
+    assert!(taken >= 350, "streaming path taken {taken} times of 480");
+    assert!(
+        events_taken >= 90,
+        "streaming events taken {events_taken} times of 120"
+    );
+    let mut shipped = 0;
+    for (name, text) in sticky::scene::SHIPPED {
+        let path = d.join(format!("{name}.toml"));
+        std::fs::write(&path, text).unwrap();
+        if Lean::load(&path).is_some() {
+            shipped += 1;
+            events_agree(&path);
+            for t in [q(0, 1), q(1, 8), q(1, 1), q(10, 1)] {
+                if let Some(got) = streamed(&path, &t) {
+                    assert_eq!(got, general(&path, &t), "{name}, t = {t}");
+                }
+            }
+        }
+    }
+    assert!(
+        shipped >= 3,
+        "{shipped} shipped scenes on the streaming path"
+    );
+    std::fs::remove_dir_all(&d).unwrap();
+}
+
+/// What the inline reader does not hold, the streaming path declines and
+/// the general path reads or refuses with its own message (the CLI prints
+/// the same error with or without the streaming path in front).
+#[test]
+fn inline_toml_off_words_or_invalid_declines() {
+    let d = dir("toml-off");
+    let s = |v: &[&str]| v.iter().map(|x| x.to_string()).collect::<Vec<_>>();
+    let pair =
+        |x: &[&str], u: &[&str]| -> Vec<(String, String)> { s(x).into_iter().zip(s(u)).collect() };
+    // A 30-digit value: off words, the general path answers.
+    let long = write_inline_scene(
+        &d,
+        "long",
+        Some("1/4"),
+        &pair(&["-123456789012345678901234567890", "0"], &["1", "-1"]),
+        0,
+    );
+    assert!(Lean::load(&long).is_none());
+    assert!(sticky::scene::load(&long).is_ok());
+    // TOML integers and escapes: valid TOML the reader leaves to the
+    // general path.
+    let ints = d.join("ints.toml");
+    std::fs::write(
+        &ints,
+        "[particles]\npositions = [0, 1]\nvelocities = [\"1\", \"0\"]\n",
+    )
+    .unwrap();
+    assert!(Lean::load(&ints).is_none());
+    assert!(sticky::scene::load(&ints).is_ok());
+    let esc = d.join("esc.toml");
+    std::fs::write(
+        &esc,
+        "[particles]\npositions = [\"\\u0030\", \"1\"]\nvelocities = [\"1\", \"0\"]\n",
+    )
+    .unwrap();
+    assert!(Lean::load(&esc).is_none());
+    assert_eq!(
+        general(&esc, &q(1, 1)),
+        general(&ints, &q(1, 1)),
+        "\\u0030 is 0"
+    );
+    // Invalid scenes: an overlap, a bad number, a negative radius, unequal
+    // columns. The streaming path declines; the CLI's error is the general
+    // path's.
+    for (name, rows, radius) in [
+        ("overlap", pair(&["1", "1"], &["0", "0"]), "1/4"),
+        ("badnum", pair(&["1", "2/0"], &["0", "0"]), "1/4"),
+        ("negr", pair(&["0", "1"], &["0", "0"]), "-1/4"),
+        ("approach", pair(&["0", "1/2"], &["1", "0"]), "1/4"),
+    ] {
+        let path = write_inline_scene(&d, name, Some(radius), &rows, 0);
+        assert!(Lean::load(&path).is_none(), "{name}");
+        let err = sticky::scene::load(&path).unwrap_err();
+        let o = std::process::Command::new(STICKY)
+            .args(["run", path.to_str().unwrap(), "--at", "1", "--json"])
+            .output()
+            .unwrap();
+        assert_eq!(o.status.code(), Some(1), "{name}");
+        assert_eq!(
+            String::from_utf8_lossy(&o.stderr).trim(),
+            format!("error: {}: {err}", path.display()),
+            "{name}"
+        );
+    }
+    std::fs::remove_dir_all(&d).unwrap();
+}

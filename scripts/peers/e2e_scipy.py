@@ -7,9 +7,14 @@ x0 + t u0 onto K = {x_{i+1} - x_i >= 2r} with scipy.optimize.isotonic_regression
     e2e_scipy.py csv IN.csv OUT.csv --t 1 --two-r 0.002   # numpy.loadtxt ... numpy.savetxt
     e2e_scipy.py npy IN.npy OUT.npy --t 1 --two-r 1/32    # numpy.load ... numpy.save
 
-Everything in f64 (the peer's arithmetic); the timing is the whole process.
+Everything in f64 (the peer's arithmetic); the timing is the whole process
+(`sticky bench --e2e`). When STICKY_PEAK_RSS_FILE is set, the script writes
+its own peak resident memory (kB, VmHWM of /proc/self/status, else
+ru_maxrss) into that file at the end, as the `sticky` binary does.
 """
 import argparse
+import os
+import resource
 from fractions import Fraction
 
 import numpy as np
@@ -37,6 +42,22 @@ def main():
         np.savetxt(a.output, x, header="position", comments="")
     else:
         np.save(a.output, x)
+    peak_to = os.environ.get("STICKY_PEAK_RSS_FILE")
+    if peak_to:
+        with open(peak_to, "w") as f:
+            f.write(f"{peak_kib()}\n")
+
+
+def peak_kib():
+    """This process's peak resident memory in kB."""
+    try:
+        with open("/proc/self/status") as f:
+            for line in f:
+                if line.startswith("VmHWM:"):
+                    return int(line.split()[1])
+    except OSError:
+        pass
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
 
 
 if __name__ == "__main__":

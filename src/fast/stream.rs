@@ -3,9 +3,9 @@
 //! value where the data allow (issue 13, part 2).
 //!
 //! For a `[particles]` scene whose columns live in a CSV or NPY file
-//! ([`crate::columns`]), [`Lean::load`] reads every value straight into a
-//! pair of machine words ([`crate::columns::parse_small`],
-//! [`crate::columns::f64_small`]), scales the columns to common
+//! ([`crate::columns`]) or inline in the TOML ([`crate::scene::inline_scene`]),
+//! [`Lean::load`] reads every value straight into a pair of machine words
+//! ([`crate::columns::parse_small`], [`crate::columns::f64_small`]), scales the columns to common
 //! denominators on words (`df:translat-x`, the same scaling as the kernel,
 //! `fast::scaling`), validates them on the scaled integers
 //! (`df:KN`: `X̃_{i+1} ≥ X̃_i`; `def:velcone`: `U_{i+1} ≥ U_i` across a
@@ -37,7 +37,7 @@ use crate::columns::{read_csv_small, read_npy_small, Small};
 use crate::fast::int::gcd;
 use crate::fast::kernel::{pava_words, size_bits, Run};
 use crate::fast::scaling::scale_pairs;
-use crate::scene::{column_scene, MAX_NUMBER_BITS};
+use crate::scene::{column_scene, inline_scene, MAX_NUMBER_BITS, MAX_SCENE_BYTES};
 
 /// Bits of `|v|` (0 for 0).
 fn bits_u(v: u128) -> u64 {
@@ -118,10 +118,21 @@ impl Exact {
 
 impl Lean {
     /// Reads the scene at `path` on the streaming path; `None` when it is
-    /// not a `[particles]` scene with a column file whose values fit words
-    /// and whose data are valid (the module documentation: the general path
-    /// then reads it).
+    /// not a `[particles]` scene with its columns inline
+    /// ([`crate::scene::inline_scene`]) or in a column file, whose values fit
+    /// words and whose data are valid (the module documentation: the
+    /// general path then reads it).
     pub fn load(path: &Path) -> Option<Lean> {
+        let meta = std::fs::metadata(path).ok()?;
+        if !meta.is_file() || meta.len() > MAX_SCENE_BYTES {
+            return None;
+        }
+        let text = std::fs::read(path).ok()?;
+        if let Some(s) = inline_scene(&text) {
+            drop(text);
+            return Lean::new(s.radius, s.charged_bits, s.positions, s.velocities);
+        }
+        drop(text);
         let scene = column_scene(path)?;
         let (xs, us) = {
             let bytes = std::fs::read(&scene.data).ok()?;
@@ -131,6 +142,17 @@ impl Lean {
                 _ => return None,
             }
         };
+        Lean::new(scene.radius, scene.charged_bits, xs, us)
+    }
+
+    /// The scene of radius `radius` (`None`: `1/(2N)`) with columns `xs`,
+    /// `us`, `charged_bits` already charged against the number budget.
+    fn new(
+        radius: Option<BigRational>,
+        charged_bits: u64,
+        xs: Vec<Small>,
+        us: Vec<Small>,
+    ) -> Option<Lean> {
         let n = xs.len();
         if n == 0 || us.len() != n {
             return None;
@@ -138,13 +160,11 @@ impl Lean {
         // The general path's budget on the size of the numbers
         // (`scene::MAX_NUMBER_BITS`, 64 bits of header per number).
         let cost = |&(p, d): &Small| bits_u(u128::from(p.unsigned_abs())) + bits_u(d.into()) + 64;
-        let total: u64 = xs.iter().chain(&us).map(cost).sum::<u64>() + scene.charged_bits;
+        let total: u64 = xs.iter().chain(&us).map(cost).sum::<u64>() + charged_bits;
         if total > MAX_NUMBER_BITS {
             return None;
         }
-        let radius = scene
-            .radius
-            .unwrap_or_else(|| BigRational::new(1.into(), BigInt::from(2 * n)));
+        let radius = radius.unwrap_or_else(|| BigRational::new(1.into(), BigInt::from(2 * n)));
         if !radius.is_positive() {
             return None;
         }

@@ -19,6 +19,9 @@
 //! instead of `positions`/`velocities` ([`crate::columns`]; read by [`load`]
 //! or [`parse_in`], relative to the scene's folder).
 //!
+//! The streaming path reads inline columns of the plain shape above straight
+//! into machine words ([`inline_scene`]) and leaves anything else to [`parse`].
+//!
 //! or, instead of `[particles]`, a macroscopic datum sampled at the quantiles
 //! (paper §2.1, `thm:main`; see [`crate::quantile`]):
 //!
@@ -59,6 +62,7 @@
 //! integer), the blocks by [`MAX_MACRO_BLOCKS`]; [`load`] refuses files
 //! larger than [`MAX_SCENE_BYTES`].
 
+mod lean;
 mod macro_datum;
 mod particles;
 mod values;
@@ -76,6 +80,8 @@ use crate::quantile::{render_short, MacroDatum};
 use macro_datum::macro_table;
 use particles::particles_table;
 use values::{check_keys, exact, optional_string, toml_error, Budget};
+
+pub use lean::{inline_scene, InlineScene};
 
 /// The scenes shipped in `scenes/`, embedded in the library: `(name, text)`,
 /// the name being the file stem. The one list the claims ledger, the
@@ -302,6 +308,11 @@ pub fn column_scene(path: &Path) -> Option<ColumnScene> {
         return None;
     }
     let text = std::fs::read_to_string(path).ok()?;
+    // Cheap refusal before parsing a big inline scene: a `data` key is
+    // spelled out (an escaped spelling is left to the general path).
+    if !text.contains("data") {
+        return None;
+    }
     let table: Table = text.parse::<Table>().ok()?;
     check_keys(
         &table,

@@ -54,6 +54,13 @@ pub struct Args {
     /// Output folder of the scaling study (default ./out/bench/).
     #[arg(long)]
     out: Option<PathBuf>,
+    /// The end-to-end rows instead: `sticky run` and `sticky events` as
+    /// whole processes from file to answer to file (TOML, CSV and NPY
+    /// input) beside scipy's own pipeline on the same CSV and NPY files;
+    /// wall time, ratio to scipy, peak memory per particle (default 3
+    /// repetitions, 1 with --quick).
+    #[arg(long, conflicts_with_all = ["scaling", "memory", "at"])]
+    e2e: bool,
     /// With --scaling: measure nothing, redraw the charts from a CSV that
     /// an earlier `--scaling` run wrote (e.g. docs/scaling.csv).
     #[arg(long, requires = "scaling")]
@@ -82,7 +89,9 @@ pub fn reexec_with_malloc(args: &Args) -> Option<ExitCode> {
     } else {
         Memory::Warm
     };
-    if !cfg!(target_os = "linux") || std::env::var_os(MEMORY_MODE_VAR).is_some() {
+    // The end-to-end rows time child processes under the allocator's
+    // defaults, as a user runs them: nothing to set up.
+    if args.e2e || !cfg!(target_os = "linux") || std::env::var_os(MEMORY_MODE_VAR).is_some() {
         return None;
     }
     let exe = std::env::current_exe().ok()?;
@@ -105,6 +114,9 @@ pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
     if args.scaling {
         return scaling(args, out);
     }
+    if args.e2e {
+        return e2e(args, out);
+    }
     let opts = bench::BenchOptions {
         n: args.n,
         reps: args.reps.unwrap_or(if args.quick { 2 } else { 3 }),
@@ -117,6 +129,25 @@ pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
         bench::json(&report)
     } else {
         bench::table(&report)
+    };
+    writeln!(out, "{}", text.trim_end()).map_err(io_err)
+}
+
+/// `sticky bench --e2e`.
+fn e2e(args: Args, out: &mut impl Write) -> Result<(), Failure> {
+    let opts = bench::e2e::E2eOptions {
+        n: args.n,
+        reps: args.reps.unwrap_or(if args.quick { 1 } else { 3 }),
+        peers: !args.no_peers,
+        sticky: std::env::current_exe()
+            .map_err(|e| Failure(format!("cannot find the sticky binary: {e}")))?,
+        scripts: scripts(),
+    };
+    let report = bench::e2e::run(&opts, |msg| eprintln!("bench: {msg}")).map_err(Failure)?;
+    let text = if args.json {
+        bench::e2e::json(&report)
+    } else {
+        bench::e2e::table(&report)
     };
     writeln!(out, "{}", text.trim_end()).map_err(io_err)
 }

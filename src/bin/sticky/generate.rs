@@ -8,7 +8,7 @@ use clap::ValueEnum;
 use num_rational::BigRational;
 
 use sticky::columns;
-use sticky::generate::{dyadic, initial_data, Limits, SplitMix64};
+use sticky::generate::{dyadic_doubles, initial_data, Limits, SplitMix64};
 use sticky::report::io::write_whole;
 use sticky::{scene, InitialData, Scalar};
 
@@ -67,29 +67,27 @@ pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
         write_whole(&path, toml.as_bytes()).map_err(|e| Failure(e.to_string()))?;
         return print_paths(out, &[path]);
     }
-    let (file, bytes, data) = match args.format {
+    let (file, bytes, radius) = match args.format {
         Format::Npy => {
             name.push_str("-f64");
-            let data = dyadic(&data, 32).ok_or_else(|| {
+            let (radius, rows) = dyadic_doubles(&data, 32).ok_or_else(|| {
                 Failure(format!(
                     "the scene of seed {} does not survive snapping to doubles (grid 2^-32); use --format csv or another seed",
                     args.seed
                 ))
             })?;
-            let rows: Vec<(f64, f64)> = data
-                .positions()
-                .iter()
-                .zip(data.velocities())
-                .map(|(x, u)| (x.to_f64_lossy(), u.to_f64_lossy()))
-                .collect();
-            (format!("{name}.npy"), columns::write_npy(&rows), data)
+            (format!("{name}.npy"), columns::write_npy(&rows), radius)
         }
         _ => {
             let csv = columns::write_csv(data.positions(), data.velocities());
-            (format!("{name}.csv"), csv.into_bytes(), data)
+            (
+                format!("{name}.csv"),
+                csv.into_bytes(),
+                data.radius().clone(),
+            )
         }
     };
-    let toml = scene_toml(&name, data.radius(), &file, &data);
+    let toml = scene_toml(&name, &radius, &file, n);
     let scene_path = dir.join(format!("{name}.toml"));
     let data_path = dir.join(&file);
     write_whole(&data_path, &bytes).map_err(|e| Failure(e.to_string()))?;
@@ -115,16 +113,11 @@ fn random(n: usize, seed: u64) -> InitialData<BigRational> {
 }
 
 /// The TOML of a scene whose columns live in `file`.
-fn scene_toml(
-    name: &str,
-    radius: &BigRational,
-    file: &str,
-    data: &InitialData<BigRational>,
-) -> String {
+fn scene_toml(name: &str, radius: &BigRational, file: &str, n: usize) -> String {
     format!(
         "name = {}\ndescription = {}\n\n[particles]\nradius = \"{}\"\ndata = {}\n",
         sticky::text::string(name),
-        sticky::text::string(&format!("{} random particles (sticky generate)", data.n())),
+        sticky::text::string(&format!("{n} random particles (sticky generate)")),
         radius.render(),
         sticky::text::string(file)
     )

@@ -29,6 +29,11 @@
 //! Timings are whole calls measured with `std::time::Instant` (median of the
 //! repetitions); they are reports, never test assertions. Memory is the
 //! growth of the resident set during the call (peak minus before).
+//!
+//! [`e2e`]: the end-to-end rows (`sticky bench --e2e`), whole `sticky` and
+//! scipy processes from file to answer to file.
+
+pub mod e2e;
 
 use std::path::Path;
 use std::process::Command;
