@@ -24,6 +24,6 @@ for f in $FILES; do set -- "$@" --file "$f"; done
 # shellcheck disable=SC2086 # TESTS is a list of test-name filters
 exec cargo mutants "$@" \
     --profile mutants --no-default-features --cargo-arg=--lib \
-    --timeout 60 --jobs 1 \
+    --timeout "${TIMEOUT:-60}" --jobs 1 \
     --output target/mutants-report \
     -- -- $TESTS
