@@ -157,13 +157,46 @@ impl ExactDiv {
 }
 
 /// Scales on machine words: `None` when an intermediate value overflows.
+/// Positions and velocities are read and scaled on two threads when there
+/// are many ([`PARALLEL_MIN`]).
 pub(crate) fn scale_words(data: &InitialData<BigRational>) -> Option<Scaled> {
     let read = |v: &[BigRational]| v.iter().map(small).collect::<Option<Vec<_>>>();
-    scale_pairs(
-        small(&data.two_r())?,
-        &read(data.positions())?,
-        &read(data.velocities())?,
-    )
+    let two_r = small(&data.two_r())?;
+    let (x, u) = both(
+        data.n() >= PARALLEL_MIN,
+        || scale_positions(two_r, &read(data.positions())?),
+        || scale_velocities(&read(data.velocities())?),
+    );
+    let ((x, dx), (u, du)) = (x?, u?);
+    Some(Scaled {
+        x,
+        u,
+        dx: BigInt::from(dx),
+        du: BigInt::from(du),
+    })
+}
+
+/// Above this many particles the two columns are scaled on two threads.
+pub(crate) const PARALLEL_MIN: usize = 1 << 15;
+
+/// `(a(), b())`, on two threads when `parallel`.
+pub(crate) fn both<A: Send, B: Send>(
+    parallel: bool,
+    a: impl FnOnce() -> A + Send,
+    b: impl FnOnce() -> B + Send,
+) -> (A, B) {
+    if !parallel {
+        return (a(), b());
+    }
+    std::thread::scope(|s| {
+        let second = s.spawn(b);
+        let first = a();
+        // A panic on the second thread is a panic of this call.
+        let second = second
+            .join()
+            .unwrap_or_else(|e| std::panic::resume_unwind(e));
+        (first, second)
+    })
 }
 
 /// A rational as a (numerator, positive denominator) pair of machine words.
@@ -190,6 +223,19 @@ impl Pair for (i64, u64) {
 /// `p/d` with `d > 0`, in any terms): the streaming readers of
 /// [`crate::fast::stream`] give their columns this way, with no `BigRational`.
 pub(crate) fn scale_pairs<P: Pair>(two_r: (i128, u128), xs: &[P], us: &[P]) -> Option<Scaled> {
+    let (x, dx) = scale_positions(two_r, xs)?;
+    let (u, du) = scale_velocities(us)?;
+    Some(Scaled {
+        x,
+        u,
+        dx: BigInt::from(dx),
+        du: BigInt::from(du),
+    })
+}
+
+/// The translated positions `X_i` over their least common denominator
+/// `D_x` (see [`scale_pairs`]).
+fn scale_positions<P: Pair>(two_r: (i128, u128), xs: &[P]) -> Option<(Vec<i128>, u128)> {
     let (rn, rd) = two_r;
     // D = lcm(denominators of x⁰, denominator of 2r).
     let mut den = Denominators::new();
@@ -223,9 +269,12 @@ pub(crate) fn scale_pairs<P: Pair>(two_r: (i128, u128), xs: &[P], us: &[P]) -> O
             *v = div.apply(*v);
         }
     }
-    let dx = den.lcm / g;
-    // The same for u⁰, with the gcd step: pairs in any terms give the
-    // least common denominator too.
+    Some((x, den.lcm / g))
+}
+
+/// The velocities `U_i` over their least common denominator `D_u` (the
+/// gcd step too: pairs in any terms give the least common denominator).
+fn scale_velocities<P: Pair>(us: &[P]) -> Option<(Vec<i128>, u128)> {
     let mut den = Denominators::new();
     for q in us {
         den.add(q.wide().1)?;
@@ -249,12 +298,7 @@ pub(crate) fn scale_pairs<P: Pair>(two_r: (i128, u128), xs: &[P], us: &[P]) -> O
             *v = div.apply(*v);
         }
     }
-    Some(Scaled {
-        x,
-        u,
-        dx: BigInt::from(dx),
-        du: BigInt::from(den.lcm / g),
-    })
+    Some((u, den.lcm / g))
 }
 
 /// The same scaling on `BigInt`, for any data.

@@ -73,7 +73,11 @@
 //!   entries are dropped when they come out), taken out 16 at a time so that
 //!   the cache misses of coming events overlap;
 //! * the exact order is restored in a small window around the earliest
-//!   candidate (see `run`): the queue only needs approximate keys.
+//!   candidate (see `run`): the queue only needs approximate keys;
+//! * from 2^15 particles on, the two halves run at once on two threads and
+//!   the whole history is rebuilt from theirs and from the one cluster
+//!   that crosses the cut (`split`: the clusters of the whole are the
+//!   halves' clusters but for that one, `prop:proj-micro`).
 //!
 //! Every event costs O(1) node accesses and O(1) amortized queue work (an
 //! entry moves at most 16 times between buckets); candidates whose times
@@ -95,10 +99,12 @@ use crate::trajectory::Trajectory;
 
 mod events;
 mod queue;
+mod split;
 mod sums;
 mod time;
 
-use events::{run, History, JOIN_NEVER, JOIN_ZERO, MAX_N};
+use events::{History, JOIN_NEVER, JOIN_ZERO, MAX_N};
+use split::run_split;
 use sums::{max_abs, within_bound, Words};
 pub use time::FILTER;
 
@@ -165,9 +171,9 @@ impl IntegerTrajectory {
             .checked_mul(max_abs(&words))
             .is_some_and(|b| b < 1u128 << 63);
         let hist = match (&words, narrow_sums) {
-            (Words::I64(x, u), true) => run::<i64, i64>(x, u),
-            (Words::I64(x, u), false) => run::<i64, i128>(x, u),
-            (Words::I128(x, u), _) => run::<i128, i128>(x, u),
+            (Words::I64(x, u), true) => run_split::<i64, i64>(x, u),
+            (Words::I64(x, u), false) => run_split::<i64, i128>(x, u),
+            (Words::I128(x, u), _) => run_split::<i128, i128>(x, u),
         };
         IntegerTrajectory {
             inner: Inner::Integer(Box::new(IntegerHistory {
@@ -263,9 +269,9 @@ pub(crate) fn history_words(x: &[i64], u: &[i64], dx: i128, du: i128) -> Option<
     }
     let narrow_sums = (n as u128).checked_mul(m).is_some_and(|b| b < 1u128 << 63);
     let hist = if narrow_sums {
-        run::<i64, i64>(x, u)
+        run_split::<i64, i64>(x, u)
     } else {
-        run::<i64, i128>(x, u)
+        run_split::<i64, i128>(x, u)
     };
     Some(WordHistory { hist, dx, du })
 }

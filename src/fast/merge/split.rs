@@ -1,0 +1,642 @@
+//! The event loop on two halves at once: each half's history computed
+//! alone (two threads), then the history of the whole rebuilt from them
+//! and from the one cluster that crosses the cut.
+//!
+//! **Why the halves' histories are almost the whole one.** At every time
+//! `t` the clusters are the blocks of the isotonic regression of
+//! `x̃⁰ + t u⁰` (`prop:proj-micro`, `eq:proj-micro-x`), and the pool
+//! adjacent violators algorithm may pool in any order: started from the
+//! blocks of the left half `L` and of the right half `R`, it can only pool
+//! across the cut, so the clusters of the whole at `t` are those of the
+//! halves except one *run* `[p(t), q(t))` around the cut, a union of a
+//! suffix of `L`'s clusters and a prefix of `R`'s (or no run). Clusters
+//! only grow, so the run only grows. Hence a cluster `C` formed at `t` in a
+//! half's history is formed at `t`, from the same parts, in the whole's
+//! history iff `C` is not inside the run at `t` (a part inside the run
+//! before `t` would put `C` inside it at `t`); and a pair `(j, j + 1)`
+//! joins in the whole at the earlier of its half's join time and the time
+//! the run first holds both particles.
+//!
+//! **The run's growth.** Let `N_L` be the left half's cluster at time `T`
+//! ending at `p − 1` (the run's left neighbour) and `N_R` the right half's
+//! cluster starting at `q`. Until the run meets `N_L`, `N_L` and the
+//! clusters to its left move as in the left half alone: the left half's
+//! history is valid for them. (If in the left half alone `N_L` met a
+//! cluster `X` of the run at `s`, then `N_L ∪ X` is a cluster of the half
+//! at `s` and the run, a union of such clusters holding `X`, holds `N_L`:
+//! the run meets `N_L` at `s` or before.) So the run grows at the earliest
+//! of: the run meeting `N_L` or `N_R` (the two halves' last and first
+//! clusters meeting each other while there is no run), computed from the
+//! cluster sums as in [`super::events::run`]; and between those events
+//! `N_L`, `N_R` grow outwards at their halves' join times. Every step
+//! walks particles that join `N_L`, `N_R` or the run for good: the whole
+//! repair is linear in the size of the final run, plus one pass over the
+//! halves' histories.
+
+use std::cmp::Ordering;
+
+use super::events::{run, History, JOIN_NEVER, JOIN_ZERO};
+use super::sums::{meeting, Node, SumWord};
+use super::time::Time;
+
+/// Below this many particles one thread runs the whole (the threads and
+/// the repair cost more than they save).
+pub(super) const SPLIT_MIN: usize = 1 << 15;
+
+/// The history of `x`, `u` (as [`run`]), on two threads when `n` is at
+/// least [`SPLIT_MIN`].
+pub(super) fn run_split<T, W>(x: &[T], u: &[T]) -> History
+where
+    T: Copy + PartialEq + Into<W> + Sync,
+    W: SumWord,
+{
+    let n = x.len();
+    if n < SPLIT_MIN {
+        return run::<T, W>(x, u);
+    }
+    match cut(x, u, n / 2) {
+        Some(m) => run_halves::<T, W>(x, u, m),
+        None => run::<T, W>(x, u),
+    }
+}
+
+/// The first `m ≥ from`, `0 < m < n`, where particles `m − 1` and `m` are
+/// not in one initial cluster (a contact with equal velocities).
+pub(super) fn cut<T: PartialEq>(x: &[T], u: &[T], from: usize) -> Option<usize> {
+    (from.max(1)..x.len()).find(|&m| x[m - 1] != x[m] || u[m - 1] != u[m])
+}
+
+/// The history of the whole from the histories of `..m` and `m..`, each
+/// computed alone (the right one on a second thread); `0 < m < n` and the
+/// pair `(m − 1, m)` is not an initial contact with equal velocities.
+pub(super) fn run_halves<T, W>(x: &[T], u: &[T], m: usize) -> History
+where
+    T: Copy + PartialEq + Into<W> + Sync,
+    W: SumWord,
+{
+    let (left, right) = std::thread::scope(|s| {
+        let right = s.spawn(|| run::<T, W>(&x[m..], &u[m..]));
+        let left = run::<T, W>(&x[..m], &u[..m]);
+        // A panic of the right half is a panic of this call.
+        let right = right
+            .join()
+            .unwrap_or_else(|e| std::panic::resume_unwind(e));
+        (left, right)
+    });
+    let halves = Halves {
+        m,
+        left: &left,
+        right: &right,
+    };
+    let growth = grow_run::<T, W>(x, u, &halves);
+    assemble(&halves, &growth, x.len())
+}
+
+/// The two halves' histories, `left` of particles `..m`, `right` of `m..`
+/// (numbered from 0).
+struct Halves<'a> {
+    m: usize,
+    left: &'a History,
+    right: &'a History,
+}
+
+/// A join code of a half as a time: `None` for never.
+fn code_time(h: &History, code: u32) -> Option<Time> {
+    match code {
+        JOIN_NEVER => None,
+        JOIN_ZERO => Some(Time::new(0, 1)),
+        k => {
+            let (gap, closing) = h.instants[k as usize];
+            Some(Time::new(gap, closing))
+        }
+    }
+}
+
+/// Where a time `t` falls among each half's instants: `le[s]` of half
+/// `s`'s instants are at `t` or before, `lt[s]` before `t` (the instants
+/// are increasing, so a join code compares with `t` as an index).
+#[derive(Debug, Clone, Copy)]
+struct Cut {
+    le: [u32; 2],
+    lt: [u32; 2],
+}
+
+impl Halves<'_> {
+    /// Where `t` falls among the halves' instants.
+    fn cut(&self, t: &Time) -> Cut {
+        let at = |h: &History, strict: bool| {
+            h.instants.partition_point(|&(gap, closing)| {
+                let c = Time::new(gap, closing).cmp(t);
+                c == Ordering::Less || (!strict && c == Ordering::Equal)
+            }) as u32
+        };
+        Cut {
+            le: [at(self.left, false), at(self.right, false)],
+            lt: [at(self.left, true), at(self.right, true)],
+        }
+    }
+    /// The half and join code of the pair `(j, j + 1)` (`None` for the pair
+    /// across the cut, which no half joins).
+    fn code(&self, j: usize) -> Option<(usize, u32)> {
+        match j.cmp(&(self.m - 1)) {
+            Ordering::Less => Some((0, self.left.join[j])),
+            Ordering::Equal => None,
+            Ordering::Greater => Some((1, self.right.join[j - self.m])),
+        }
+    }
+    /// The half's join time of the pair `(j, j + 1)`.
+    fn join(&self, j: usize) -> Option<Time> {
+        let (side, code) = self.code(j)?;
+        code_time(if side == 0 { self.left } else { self.right }, code)
+    }
+    /// Did the pair `(j, j + 1)` join in its half at the time of `cut` or
+    /// before?
+    fn joined_by(&self, j: usize, cut: &Cut) -> bool {
+        self.code(j).is_some_and(|(side, code)| {
+            code == JOIN_ZERO || (code != JOIN_NEVER && code < cut.le[side])
+        })
+    }
+    /// Did the pair `(j, j + 1)` join in its half before the time of `cut`?
+    fn joined_before(&self, j: usize, cut: &Cut) -> bool {
+        self.code(j).is_some_and(|(side, code)| {
+            code == JOIN_ZERO || (code != JOIN_NEVER && code < cut.lt[side])
+        })
+    }
+}
+
+/// One growth of the run: at `t` the run `[p_old, q_old)` (empty when
+/// `p_old = q_old = m`) became `[p, q)`.
+#[derive(Debug, Clone, Copy)]
+struct Growth {
+    t: Time,
+    cut: Cut,
+    p: usize,
+    q: usize,
+    p_old: usize,
+    q_old: usize,
+}
+
+impl Growth {
+    /// The pairs `(j, j + 1)` the run holds from `t` on and not before,
+    /// left to right: those of the clusters it took in and the pairs
+    /// between them and the old run.
+    fn new_pairs(&self) -> impl Iterator<Item = usize> {
+        let right = if self.p_old == self.q_old {
+            self.q_old
+        } else {
+            self.q_old - 1
+        };
+        (self.p..self.p_old).chain(right..self.q - 1)
+    }
+}
+
+/// A cluster `[first, end)` with its sums, as a node for [`meeting`].
+#[derive(Clone, Copy)]
+struct Span<W> {
+    first: usize,
+    end: usize,
+    node: Node<W>,
+}
+
+impl<W: SumWord> Span<W> {
+    fn empty(at: usize) -> Self {
+        Span {
+            first: at,
+            end: at,
+            node: Node::default(),
+        }
+    }
+    fn add<T: Copy + Into<W>>(&mut self, x: &[T], u: &[T], i: usize) {
+        self.node.sum_x += x[i].into();
+        self.node.sum_u += u[i].into();
+        self.node.size += 1;
+    }
+    fn absorb(&mut self, other: &Span<W>) {
+        self.first = self.first.min(other.first);
+        self.end = self.end.max(other.end);
+        self.node.sum_x += other.node.sum_x;
+        self.node.sum_u += other.node.sum_u;
+        self.node.size += other.node.size;
+    }
+    fn is_empty(&self) -> bool {
+        self.first == self.end
+    }
+}
+
+/// The left half's cluster at `t` holding particle `end − 1` (`end > 0`).
+fn left_cluster<T: Copy + Into<W>, W: SumWord>(
+    x: &[T],
+    u: &[T],
+    h: &Halves,
+    end: usize,
+    t: &Cut,
+) -> Span<W> {
+    let mut s = Span::empty(end);
+    s.first -= 1;
+    s.add(x, u, end - 1);
+    extend_left(x, u, h, &mut s, t);
+    s
+}
+
+/// Extends `s` leftwards over the pairs joined by `t`.
+fn extend_left<T: Copy + Into<W>, W: SumWord>(
+    x: &[T],
+    u: &[T],
+    h: &Halves,
+    s: &mut Span<W>,
+    t: &Cut,
+) {
+    while s.first > 0 && h.joined_by(s.first - 1, t) {
+        s.first -= 1;
+        s.add(x, u, s.first);
+    }
+}
+
+/// The right half's cluster at `t` starting at particle `first < n`.
+fn right_cluster<T: Copy + Into<W>, W: SumWord>(
+    x: &[T],
+    u: &[T],
+    h: &Halves,
+    first: usize,
+    t: &Cut,
+) -> Span<W> {
+    let mut s = Span::empty(first);
+    s.end += 1;
+    s.add(x, u, first);
+    extend_right(x, u, h, &mut s, t);
+    s
+}
+
+/// Extends `s` rightwards over the pairs joined by `t`.
+fn extend_right<T: Copy + Into<W>, W: SumWord>(
+    x: &[T],
+    u: &[T],
+    h: &Halves,
+    s: &mut Span<W>,
+    t: &Cut,
+) {
+    while s.end < x.len() && h.joined_by(s.end - 1, t) {
+        s.add(x, u, s.end);
+        s.end += 1;
+    }
+}
+
+/// The earlier of two optional times.
+fn earlier(a: Option<Time>, b: Option<Time>) -> Option<Time> {
+    match (a, b) {
+        (Some(a), Some(b)) => Some(if b.cmp(&a) == Ordering::Less { b } else { a }),
+        (a, None) => a,
+        (None, b) => b,
+    }
+}
+
+fn equal(a: &Option<Time>, t: &Time) -> bool {
+    a.as_ref().is_some_and(|a| a.cmp(t) == Ordering::Equal)
+}
+
+/// Every growth of the run, in time order (see the module docs).
+fn grow_run<T: Copy + Into<W>, W: SumWord>(x: &[T], u: &[T], h: &Halves) -> Vec<Growth> {
+    let (n, m) = (x.len(), h.m);
+    let zero = h.cut(&Time::new(0, 1));
+    let mut out = Vec::new();
+    let mut run = Span::<W>::empty(m);
+    // The run's neighbours (empty at the ends of the line).
+    let mut nl = left_cluster(x, u, h, m, &zero);
+    let mut nr = right_cluster(x, u, h, m, &zero);
+    loop {
+        // N_L, N_R growing outwards in their halves.
+        let sl = (!nl.is_empty() && nl.first > 0)
+            .then(|| h.join(nl.first - 1))
+            .flatten();
+        let sr = (!nr.is_empty() && nr.end < n)
+            .then(|| h.join(nr.end - 1))
+            .flatten();
+        // The run meeting them (the two neighbours meeting, while no run).
+        let (tl, tr) = if run.is_empty() {
+            let t = (!nl.is_empty() && !nr.is_empty())
+                .then(|| meeting(&nl.node, &nr.node))
+                .flatten();
+            (t, t)
+        } else {
+            (
+                (!nl.is_empty())
+                    .then(|| meeting(&nl.node, &run.node))
+                    .flatten(),
+                (!nr.is_empty())
+                    .then(|| meeting(&run.node, &nr.node))
+                    .flatten(),
+            )
+        };
+        let Some(t) = earlier(earlier(sl, sr), earlier(tl, tr)) else {
+            break;
+        };
+        let cut = h.cut(&t);
+        if equal(&sl, &t) {
+            extend_left(x, u, h, &mut nl, &cut);
+        }
+        if equal(&sr, &t) {
+            extend_right(x, u, h, &mut nr, &cut);
+        }
+        let (meet_l, meet_r) = (equal(&tl, &t), equal(&tr, &t));
+        if !(meet_l || meet_r) {
+            continue;
+        }
+        let (p_old, q_old) = (run.first, run.end);
+        if meet_l {
+            run.absorb(&nl);
+            nl = if run.first > 0 {
+                left_cluster(x, u, h, run.first, &cut)
+            } else {
+                Span::empty(0)
+            };
+        }
+        if meet_r {
+            run.absorb(&nr);
+            nr = if run.end < n {
+                right_cluster(x, u, h, run.end, &cut)
+            } else {
+                Span::empty(n)
+            };
+        }
+        out.push(Growth {
+            t,
+            cut,
+            p: run.first,
+            q: run.end,
+            p_old,
+            q_old,
+        });
+    }
+    out
+}
+
+/// The first particle of impulse `k` of `h`.
+fn first_of(h: &History, k: usize) -> u32 {
+    h.parts[h.impulses[k].1 as usize]
+}
+
+/// The parts (bounds) of impulse `k` of `h`.
+fn parts_of(h: &History, k: usize) -> &[u32] {
+    let stop = h
+        .impulses
+        .get(k + 1)
+        .map_or(h.parts.len(), |&(_, o)| o as usize);
+    &h.parts[h.impulses[k].1 as usize..stop]
+}
+
+/// The run's extent `[p, q)` at the time of instant `i` of half `side`
+/// (after the growths at that time): the last growth at a time `t` with
+/// `lt[side] ≤ i`, i.e. `t ≤` that instant.
+fn run_at(growth: &[Growth], m: usize, side: usize, i: u32) -> (usize, usize) {
+    let k = growth.partition_point(|g| g.cut.lt[side] <= i);
+    k.checked_sub(1)
+        .map_or((m, m), |k| (growth[k].p, growth[k].q))
+}
+
+/// Which impulses of a half stay (their cluster is outside the run when
+/// formed), and which of its instants are still used.
+fn kept(
+    h: &History,
+    growth: &[Growth],
+    m: usize,
+    side: usize,
+    inside: impl Fn(usize, (usize, usize)) -> bool,
+) -> (Vec<bool>, Vec<bool>) {
+    let (p_end, q_end) = growth.last().map_or((m, m), |g| (g.p, g.q));
+    let mut used = vec![false; h.instants.len()];
+    let keep: Vec<bool> = (0..h.impulses.len())
+        .map(|k| {
+            let first = first_of(h, k) as usize + side * m;
+            let instant = h.impulses[k].0 as usize;
+            let stays = !(p_end..q_end).contains(&first)
+                || !inside(first, run_at(growth, m, side, instant as u32));
+            used[instant] |= stays;
+            stays
+        })
+        .collect();
+    (keep, used)
+}
+
+/// The history of the whole (see the module docs).
+fn assemble(h: &Halves, growth: &[Growth], n: usize) -> History {
+    let m = h.m;
+    let (keep_l, used_l) = kept(h.left, growth, m, 0, |f, (p, _)| f >= p);
+    let (keep_r, used_r) = kept(h.right, growth, m, 1, |f, (_, q)| f < q);
+    // The instants still used, merged in time order (equal times are one
+    // instant).
+    let mut hist = History {
+        instants: Vec::with_capacity(h.left.instants.len() + h.right.instants.len()),
+        impulses: Vec::with_capacity(h.left.impulses.len() + h.right.impulses.len()),
+        parts: Vec::with_capacity(h.left.parts.len() + h.right.parts.len()),
+        join: Vec::with_capacity(n.saturating_sub(1)),
+    };
+    let mut map_l = vec![JOIN_NEVER; h.left.instants.len()];
+    let mut map_r = vec![JOIN_NEVER; h.right.instants.len()];
+    let mut map_g = vec![JOIN_NEVER; growth.len()];
+    {
+        let next_used = |used: &[bool], mut i: usize| {
+            while i < used.len() && !used[i] {
+                i += 1;
+            }
+            i
+        };
+        let at = |hist: &History, i: usize| {
+            hist.instants
+                .get(i)
+                .map(|&(gap, closing)| Time::new(gap, closing))
+        };
+        let (mut il, mut ir, mut ig) = (next_used(&used_l, 0), next_used(&used_r, 0), 0);
+        let (mut tl, mut tr) = (at(h.left, il), at(h.right, ir));
+        loop {
+            // The earliest head: left, right or both (equal times).
+            let (mut t, mut from_l, mut from_r) = match (tl, tr) {
+                (Some(a), Some(b)) => match a.cmp(&b) {
+                    Ordering::Less => (a, true, false),
+                    Ordering::Greater => (b, false, true),
+                    Ordering::Equal => (a, true, true),
+                },
+                (Some(a), None) => (a, true, false),
+                (None, Some(b)) => (b, false, true),
+                (None, None) => match growth.get(ig) {
+                    Some(gr) => (gr.t, false, false),
+                    None => break,
+                },
+            };
+            let mut from_g = false;
+            if let Some(gr) = growth.get(ig) {
+                match gr.t.cmp(&t) {
+                    Ordering::Less => (t, from_l, from_r, from_g) = (gr.t, false, false, true),
+                    Ordering::Equal => from_g = true,
+                    Ordering::Greater => {}
+                }
+            }
+            let g = hist.instants.len() as u32;
+            hist.instants.push((t.gap, t.closing));
+            if from_l {
+                map_l[il] = g;
+                il = next_used(&used_l, il + 1);
+                tl = at(h.left, il);
+            }
+            if from_r {
+                map_r[ir] = g;
+                ir = next_used(&used_r, ir + 1);
+                tr = at(h.right, ir);
+            }
+            if from_g {
+                map_g[ig] = g;
+                ig += 1;
+            }
+        }
+    }
+    // Impulses by instant, then first particle: the left half's, the
+    // run's, the right half's.
+    let (mut kl, mut kr, mut kg) = (0, 0, 0);
+    let skip = |keep: &[bool], mut k: usize| {
+        while k < keep.len() && !keep[k] {
+            k += 1;
+        }
+        k
+    };
+    kl = skip(&keep_l, kl);
+    kr = skip(&keep_r, kr);
+    for g in 0..hist.instants.len() as u32 {
+        while kl < keep_l.len() && map_l[h.left.impulses[kl].0 as usize] == g {
+            hist.impulses.push((g, hist.parts.len() as u32));
+            hist.parts.extend_from_slice(parts_of(h.left, kl));
+            kl = skip(&keep_l, kl + 1);
+        }
+        if kg < growth.len() && map_g[kg] == g {
+            hist.impulses.push((g, hist.parts.len() as u32));
+            growth_parts(h, &growth[kg], &mut hist.parts);
+            kg += 1;
+        }
+        while kr < keep_r.len() && map_r[h.right.impulses[kr].0 as usize] == g {
+            hist.impulses.push((g, hist.parts.len() as u32));
+            let shift = m as u32;
+            hist.parts
+                .extend(parts_of(h.right, kr).iter().map(|&b| b + shift));
+            kr = skip(&keep_r, kr + 1);
+        }
+    }
+    // Join codes: the halves', renumbered; the run's where it came first.
+    let renumber = |code: u32, map: &[u32]| match code {
+        JOIN_NEVER | JOIN_ZERO => code,
+        k => map[k as usize],
+    };
+    hist.join
+        .extend(h.left.join.iter().map(|&c| renumber(c, &map_l)));
+    hist.join.push(JOIN_NEVER);
+    hist.join
+        .extend(h.right.join.iter().map(|&c| renumber(c, &map_r)));
+    for (gr, &g) in growth.iter().zip(&map_g) {
+        for j in gr.new_pairs() {
+            if !h.joined_before(j, &gr.cut) {
+                hist.join[j] = g;
+            }
+        }
+    }
+    hist
+}
+
+/// The parts of the cluster the run became at `gr.t`: the halves' clusters
+/// just before `gr.t` on both sides, and the run before it as one part.
+fn growth_parts(h: &Halves, gr: &Growth, parts: &mut Vec<u32>) {
+    parts.push(gr.p as u32);
+    for j in gr.new_pairs() {
+        if !h.joined_before(j, &gr.cut) {
+            parts.push(j as u32 + 1);
+        }
+    }
+    parts.push(gr.q as u32);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fast::scaling::scale_i128;
+    use crate::generate::{initial_data, Limits, SplitMix64};
+
+    /// Equal histories; instants compared as fractions (a half may keep
+    /// another unreduced pair for the same time).
+    fn same(a: &History, b: &History) -> Result<(), String> {
+        if a.instants.len() != b.instants.len() {
+            return Err(format!(
+                "{} instants against {}",
+                a.instants.len(),
+                b.instants.len()
+            ));
+        }
+        for (k, (p, q)) in a.instants.iter().zip(&b.instants).enumerate() {
+            if Time::new(p.0, p.1).cmp_exact(&Time::new(q.0, q.1)) != Ordering::Equal {
+                return Err(format!("instant {k}: {p:?} against {q:?}"));
+            }
+        }
+        if a.impulses != b.impulses {
+            return Err("impulses differ".into());
+        }
+        if a.parts != b.parts {
+            return Err("parts differ".into());
+        }
+        if a.join != b.join {
+            return Err(format!("join {:?} against {:?}", a.join, b.join));
+        }
+        Ok(())
+    }
+
+    #[test]
+    fn every_cut_gives_the_whole_history() {
+        let mut rng = SplitMix64::new(77);
+        let mut cuts = 0;
+        let mut runs = 0;
+        for k in 0..300 {
+            // Small denominators and speeds: many equal times, chains of
+            // simultaneous meetings, contacts.
+            let data = initial_data(
+                &rng.bytes(400),
+                Limits {
+                    max_n: 2 + k % 60,
+                    max_den: 1 + (k % 4) as u32,
+                    max_speed: 1 + (k % 5) as u32,
+                },
+            );
+            let Some(s) = scale_i128(&data) else {
+                continue;
+            };
+            let whole = run::<i128, i128>(&s.x, &s.u);
+            for m in 1..s.x.len() {
+                if cut(&s.x, &s.u, m) != Some(m) {
+                    continue;
+                }
+                let split = run_halves::<i128, i128>(&s.x, &s.u, m);
+                if let Err(e) = same(&split, &whole) {
+                    panic!("scene {k}, cut {m}: {e}\nx = {:?}\nu = {:?}", s.x, s.u);
+                }
+                cuts += 1;
+                runs += usize::from(split.join[m - 1] != JOIN_NEVER);
+            }
+        }
+        // The run across the cut formed often enough to be tested.
+        assert!(cuts > 2000 && runs > 500, "{cuts} cuts, {runs} runs");
+    }
+
+    #[test]
+    fn two_threads_above_the_threshold() {
+        // Past SPLIT_MIN `run_split` takes two threads; the history is the
+        // one-thread history all the same.
+        let mut rng = SplitMix64::new(4);
+        let data = initial_data(
+            &rng.bytes(1 << 20),
+            Limits {
+                max_n: 3 * SPLIT_MIN,
+                max_den: 3,
+                max_speed: 4,
+            },
+        );
+        let s = scale_i128(&data).expect("small data");
+        assert!(s.x.len() >= SPLIT_MIN && cut(&s.x, &s.u, s.x.len() / 2).is_some());
+        let split = run_split::<i128, i128>(&s.x, &s.u);
+        let whole = run::<i128, i128>(&s.x, &s.u);
+        same(&split, &whole).unwrap();
+        assert!(whole.impulses.len() > SPLIT_MIN / 2);
+    }
+}
