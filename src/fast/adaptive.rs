@@ -320,8 +320,11 @@ mod tests {
     /// need more than 512 bits and stay well inside the `f64` range. At every
     /// collision instant and between: the answer equals the exact kernel's,
     /// the certified path answers almost every probe (not the budget's
-    /// fallback), most decisions are taken in `f64` (measured: 22 % exact,
+    /// fallback), most decisions are taken in `f64` (measured: 23 % exact,
     /// the ties and near-ties), and some are left to the exact comparison.
+    /// Half the cases are boosted so that the free-flight values cancel at
+    /// a probed instant: there the inputs' rounding dominates, and a bound
+    /// without its `E` term certifies wrong decisions.
     /// The oracle battery above shifts its big-width scenes by `2^700`, where
     /// no decision is within `f64` resolution, so it never reaches the `f64`
     /// certificate: this test checks it (a bound made smaller decides a
@@ -363,6 +366,28 @@ mod tests {
                     })
                     .collect();
                 InitialData::new(data.radius().clone(), x, data.velocities().to_vec()).unwrap()
+            };
+            // Every other pair of cases, a Galilean boost that leaves the
+            // collision instants alone: x⁰ + Mτ, u⁰ − M (M = 10^8), so that
+            // at the probed instant τ the free-flight values cancel M and
+            // the rounding of the inputs (the bound's `E` term), not that
+            // of the sums, is what the certificate must cover.
+            let data = if k % 4 >= 2 && !times.is_empty() {
+                let tau = &times[times.len() / 2];
+                let m = q(100_000_000, 1);
+                // With near-ties of 10^-11 … 10^-7 (below the inputs'
+                // rounding, ~10^-8 here, above the sums').
+                let mut d = 0u64;
+                let x = (data.positions().iter().zip(0u64..))
+                    .map(|(x, i)| {
+                        d += (i * 104_729 + k) % 9973;
+                        x + &m * tau + q(d as i64, 100_000_000_000)
+                    })
+                    .collect();
+                let u = data.velocities().iter().map(|u| u - &m).collect();
+                InitialData::new(data.radius().clone(), x, u).unwrap()
+            } else {
+                data
             };
             let d = IntegerData::new(&data);
             for t in &times {
