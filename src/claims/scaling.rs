@@ -356,6 +356,28 @@ pub fn discretisation_u(budget: Budget) -> Result<Vec<ScalingReport>, Violation>
     })
 }
 
+/// `cond:Linfty`: `x⁰_N − x⁰_0 + sup_i |u⁰_i| ≤ C'_0` with `C'_0`
+/// independent of N, for the quantile sample (the smallest such constant at
+/// each N, with the artificial particle `x⁰_0 = x⁰_1 − 1/N − δ`, `δ = 1`).
+pub fn cond_linfty(budget: Budget) -> Result<Vec<ScalingReport>, Violation> {
+    run("cond:Linfty", budget, Verdict::Bounded, |r| {
+        Some(r.c0_prime.clone())
+    })
+}
+
+/// The proposition "Eulerian formulation", momentum equation, for the
+/// particles: `max_φ |R_mom^N(φ)| → 0` (`O(1/N)` by the identity of
+/// [`crate::limit::eulerian`]) over the test family of the datum, up to
+/// `T`.
+pub fn eulerian_momentum(budget: Budget) -> Result<Vec<ScalingReport>, Violation> {
+    run(
+        "prop:eulerian-formulation#momentum",
+        budget,
+        Verdict::ToZero,
+        |r| Some(r.momentum.clone()),
+    )
+}
+
 /// `prop:cvg1` as printed: `X̃_N → X` in `C([0,T] × [0,1])`, measured at
 /// `t = 0`: `sup_{w ∈ [1/N,1]} |X̃_N(0,w) − X⁰(w)|`.
 pub fn cvg1_uniform(budget: Budget) -> Result<Vec<ScalingReport>, Violation> {
@@ -431,7 +453,9 @@ mod tests {
             disc_u: Some(v.clone()),
             uniform_x0: v.clone(),
             cvg_x: Some(v.clone()),
-            cvg_lambda: Some(v),
+            cvg_lambda: Some(v.clone()),
+            c0_prime: v.clone(),
+            momentum: v,
         }
     }
 
