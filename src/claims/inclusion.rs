@@ -193,7 +193,8 @@ fn contraction<S: Scalar>(case: &Case<S>, name: &str, other: &InitialData<S>) ->
         return Ok(());
     };
     let traj2 = crate::trajectory::Trajectory::new(other.clone());
-    let mut times: Vec<S> = case.times.clone();
+    let mut times: Vec<S> = vec![S::zero()];
+    times.extend(case.times.iter().cloned());
     for imp in case.traj.impulses().iter().chain(traj2.impulses()) {
         if imp.t <= *t_end {
             times.push(imp.t.clone());
