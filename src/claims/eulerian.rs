@@ -10,7 +10,7 @@
 //!   window `[t₀, t₁]`, `Q = ((x − c)/L)^m`). Computed, not assumed: on each
 //!   time piece between consecutive collision instants (cut at `t₀`, `t₁`)
 //!   the state at the piece's left end gives `x_i(τ) = x_i(a) + (τ − a) u_i(a)`,
-//!   the integrand is a polynomial in `τ` (degree ≤ 8 + m), integrated
+//!   the integrand is a polynomial in `τ` (degree ≤ 7 + m), integrated
 //!   exactly. It vanishes only if the positions the engine reports at each
 //!   instant are those reached by moving with the velocities it reports
 //!   (`x_i` Lipschitz with derivative `u_i`), the proof's "differentiating
