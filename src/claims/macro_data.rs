@@ -25,6 +25,9 @@ use super::Violation;
 use crate::generate::{macro_datum, SplitMix64};
 use crate::initial::InitialData;
 use crate::limit::continuum::{Continuum, Profile, Segment};
+use crate::limit::eulerian::{
+    particle_momentum_residuals, support_window, test_family, TestFunction,
+};
 use crate::quantile::MacroDatum;
 use crate::scalar::Scalar;
 use crate::scene::{self, SceneKind};
@@ -54,6 +57,9 @@ pub struct MacroCase {
     pub profiles: Vec<(Q, Option<Profile<Q>>)>,
     /// `X⁰`, `U⁰` as the continuum profile at `t = 0`.
     pub initial: Option<Profile<Q>>,
+    /// The test functions `φ = B(t)Q(x)` of the weak residuals
+    /// ([`test_family`] on the datum's [`support_window`]).
+    pub tests: Vec<TestFunction<Q>>,
 }
 
 /// What is measured on one datum at one N (every value exact).
@@ -86,6 +92,14 @@ pub struct Row {
     /// `max |∫_0^1 (Λ_N(t) − Λ(t)) φ|` over the comparison times with a
     /// rational profile and `φ ∈ {1, w}`.
     pub cvg_lambda: Option<Q>,
+    /// `C'_0 = (x⁰_N − x⁰_0) + sup_i |u⁰_i|`, the smallest constant of
+    /// `cond:Linfty` for the sample (artificial particle `x⁰_0 = x⁰_1 − 1/N − δ`,
+    /// `δ = 1`, as in `prop:Linf-micro`).
+    pub c0_prime: Q,
+    /// `max_φ |R_mom^N(φ)|` over [`MacroCase::tests`] (the particles' weak
+    /// momentum residual, [`particle_momentum_residuals`]), plus the bound on
+    /// its dyadic accumulation error: an upper bound of the exact value.
+    pub momentum: Q,
 }
 
 /// One datum measured across N.
@@ -156,12 +170,15 @@ fn case(name: String, datum: MacroDatum, t_end: Q) -> MacroCase {
         })
         .collect();
     let initial = c.profile(&Q::zero()).ok().and_then(|p| p.to_rational());
+    let (center, scale) = support_window(&c, &t_end);
+    let tests = test_family(&t_end, &center, &scale);
     MacroCase {
         name,
         datum,
         t_end,
         profiles,
         initial,
+        tests,
     }
 }
 
@@ -409,10 +426,19 @@ fn l2_sq(v: &[Q], p: &Profile<Q>, coef: fn(&Segment<Q>) -> &[Q; 2]) -> Q {
 }
 
 fn row(c: &MacroCase, n: usize, id: &'static str) -> Result<Row, Violation> {
+    let data = admissible_sample(&c.datum, n)
+        .map_err(|e| Violation::new(id, format!("{}, N = {n}: {e}", c.name)))?;
+    row_of(c, &crate::fast::merge::trajectory(&data), id)
+}
+
+/// The [`Row`] of one datum at one N from its computed history `traj`
+/// (unit tests pass a corrupted history here, to show the scaling
+/// checkers reject it).
+fn row_of(c: &MacroCase, traj: &Trajectory<Q>, id: &'static str) -> Result<Row, Violation> {
+    let data = traj.data();
+    let n = data.n();
     let fail = |e: String| Violation::new(id, format!("{}, N = {n}: {e}", c.name));
-    let data = admissible_sample(&c.datum, n).map_err(fail)?;
     let u0 = data.velocities().to_vec();
-    let traj = crate::fast::merge::trajectory(&data);
     let nn = Q::from_usize(n);
     let alpha = c.t_end.clone() / Q::from_i64(2);
     let (mut lambda_sup, mut l2, mut tv_late, mut u_sup) =
@@ -457,7 +483,20 @@ fn row(c: &MacroCase, n: usize, id: &'static str) -> Result<Row, Violation> {
             }
         }
     }
-    let (pressure_abs, pressure_signed) = pressure(&traj, &c.t_end);
+    let (pressure_abs, pressure_signed) = pressure(traj, &c.t_end);
+    // cond:Linfty: x⁰_N − x⁰_0 = x⁰_N − x⁰_1 + 1/N + δ (δ = 1).
+    let x0 = data.positions();
+    let spread0 = x0[n - 1].clone() - &x0[0] + nn.recip() + Q::one();
+    let c0_prime = spread0 + u0.iter().fold(Q::zero(), |m, v| max(m, abs(v.clone())));
+    let residuals =
+        particle_momentum_residuals(traj, &c.tests, &c.t_end).map_err(|e| fail(e.to_string()))?;
+    let rounding = Q::from_float(residuals.rounding_bound)
+        .ok_or_else(|| fail("rounding bound not finite".into()))?;
+    let momentum = residuals
+        .values
+        .into_iter()
+        .fold(Q::zero(), |m, v| max(m, abs(v)))
+        + rounding;
     let (qx, qu) = c.datum.quantiles(n).map_err(|e| fail(e.to_string()))?;
     let (disc_x, disc_u) = match &c.initial {
         Some(p) => (Some(l2_sq(&qx, p, |s| &s.x)), Some(l2_sq(&qu, p, |s| &s.u))),
@@ -476,6 +515,8 @@ fn row(c: &MacroCase, n: usize, id: &'static str) -> Result<Row, Violation> {
         uniform_x0: uniform_x0(&c.datum, &qx),
         cvg_x,
         cvg_lambda,
+        c0_prime,
+        momentum,
     })
 }
 
@@ -543,6 +584,48 @@ mod tests {
             ab,
             jumps.iter().fold(Q::zero(), |x, y| x + abs(y.clone())) / nn
         );
+    }
+
+    /// `prop:pressure-bound` (sign-aware): a history whose collisions list
+    /// their parts' velocities right to left (a plausible bug of the event
+    /// merge) has negative pressure jumps; measured through the same
+    /// [`row_of`] as the true history, the scaling checker rejects it
+    /// (a check of `Σ|[λ_i]|` alone, or of its square, would not).
+    #[test]
+    fn a_history_with_negative_pressure_jumps_is_rejected() {
+        use crate::contact::Impulse;
+        const ID: &str = "prop:pressure-bound";
+        let c = &cases("test").unwrap()[0];
+        let mut good = Vec::new();
+        let mut bad = Vec::new();
+        for n in [4usize, 8, 16] {
+            let data = admissible_sample(&c.datum, n).unwrap();
+            let traj = crate::fast::merge::trajectory(&data);
+            let imps: Vec<Impulse<Q>> = traj
+                .impulses()
+                .iter()
+                .map(|imp| {
+                    let mut pv = imp.part_velocities.clone();
+                    pv.reverse();
+                    Impulse {
+                        part_velocities: pv,
+                        ..imp.clone()
+                    }
+                })
+                .collect();
+            let reversed = Trajectory::from_parts(data.clone(), traj.join_times().to_vec(), imps);
+            good.push(row_of(c, &traj, ID).unwrap());
+            bad.push(row_of(c, &reversed, ID).unwrap());
+        }
+        let table = |rows: Vec<Row>| {
+            vec![Series {
+                name: c.name.clone(),
+                rows,
+            }]
+        };
+        super::super::scaling::pressure_on(&table(good)).unwrap();
+        let err = super::super::scaling::pressure_on(&table(bad)).unwrap_err();
+        assert!(err.witness.contains("not a non-negative measure"), "{err}");
     }
 
     #[test]

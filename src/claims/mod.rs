@@ -25,8 +25,11 @@ use crate::state::State;
 use crate::trajectory::Trajectory;
 
 pub mod continuum;
+pub mod density;
 pub mod discrete;
+pub mod eulerian;
 pub mod fuzz;
+pub mod inclusion;
 pub mod ledger;
 pub mod linf;
 pub mod macro_data;

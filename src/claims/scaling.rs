@@ -356,6 +356,39 @@ pub fn discretisation_u(budget: Budget) -> Result<Vec<ScalingReport>, Violation>
     })
 }
 
+/// `cond:Linfty`: `x⁰_N − x⁰_0 + sup_i |u⁰_i| ≤ C'_0` with `C'_0`
+/// independent of N, for the quantile sample (the smallest such constant at
+/// each N, with the artificial particle `x⁰_0 = x⁰_1 − 1/N − δ`, `δ = 1`).
+pub fn cond_linfty(budget: Budget) -> Result<Vec<ScalingReport>, Violation> {
+    cond_linfty_on(&macro_data::table(budget.max_n, "cond:Linfty")?)
+}
+
+/// [`cond_linfty`] on a given table.
+pub fn cond_linfty_on(table: &[Series]) -> Result<Vec<ScalingReport>, Violation> {
+    judge_all("cond:Linfty", table, Verdict::Bounded, |r| {
+        Some(r.c0_prime.clone())
+    })
+}
+
+/// The proposition "Eulerian formulation", momentum equation, for the
+/// particles: `max_φ |R_mom^N(φ)| → 0` (`O(1/N)` by the identity of
+/// [`crate::limit::eulerian`]) over the test family of the datum, up to
+/// `T`.
+pub fn eulerian_momentum(budget: Budget) -> Result<Vec<ScalingReport>, Violation> {
+    const ID: &str = "prop:eulerian-formulation#momentum";
+    eulerian_momentum_on(&macro_data::table(budget.max_n, ID)?)
+}
+
+/// [`eulerian_momentum`] on a given table.
+pub fn eulerian_momentum_on(table: &[Series]) -> Result<Vec<ScalingReport>, Violation> {
+    judge_all(
+        "prop:eulerian-formulation#momentum",
+        table,
+        Verdict::ToZero,
+        |r| Some(r.momentum.clone()),
+    )
+}
+
 /// `prop:cvg1` as printed: `X̃_N → X` in `C([0,T] × [0,1])`, measured at
 /// `t = 0`: `sup_{w ∈ [1/N,1]} |X̃_N(0,w) − X⁰(w)|`.
 pub fn cvg1_uniform(budget: Budget) -> Result<Vec<ScalingReport>, Violation> {
@@ -431,7 +464,9 @@ mod tests {
             disc_u: Some(v.clone()),
             uniform_x0: v.clone(),
             cvg_x: Some(v.clone()),
-            cvg_lambda: Some(v),
+            cvg_lambda: Some(v.clone()),
+            c0_prime: v.clone(),
+            momentum: v,
         }
     }
 
@@ -442,6 +477,35 @@ mod tests {
             rows: vec![row(4, Q::zero()), row(8, Q::zero())],
         }];
         assert!(judge_all("t", &t, Verdict::Bounded, |r| Some(r.tv_late.clone())).is_err());
+    }
+
+    /// The measured table at N = 4 … 64 with one column scaled by N (a
+    /// plausible bug: a factor 1/N forgotten).
+    fn scaled(f: fn(&mut Row, Q)) -> Vec<Series> {
+        let mut t = (*macro_data::table(64, "test").unwrap()).clone();
+        for s in &mut t {
+            for r in &mut s.rows {
+                let n = Q::from_usize(r.n);
+                f(r, n);
+            }
+        }
+        t
+    }
+
+    #[test]
+    fn cond_linfty_rejects_an_unscaled_sample() {
+        cond_linfty_on(&macro_data::table(64, "test").unwrap()).unwrap();
+        // Positions sampled at i instead of i/N: the spread grows like N.
+        let t = scaled(|r, n| r.c0_prime = r.c0_prime.clone() * n);
+        assert!(cond_linfty_on(&t).is_err());
+    }
+
+    #[test]
+    fn the_momentum_residual_must_decay() {
+        eulerian_momentum_on(&macro_data::table(64, "test").unwrap()).unwrap();
+        // The pressure atoms not divided by N: R_mom^N no longer → 0.
+        let t = scaled(|r, n| r.momentum = r.momentum.clone() * n);
+        assert!(eulerian_momentum_on(&t).is_err());
     }
 
     #[test]

@@ -1,0 +1,284 @@
+//! The proposition "Eulerian formulation" (§3.4, unlabelled: ledger ids
+//! `prop:eulerian-formulation#…`): `(ρ, ρu, p)` defined by push-forward is a
+//! distributional solution of the constrained Euler system `eq:macro-euler`
+//! with `∂_x u < 1/t`.
+//!
+//! * **Mass, particles** ([`mass`], per case): the weak residual
+//!   `R_mass^N(φ) = ∫∫ (∂_t φ + u ∂_x φ) ρ = (1/N) Σ_i ∫_0^T (∂_t φ + u_i ∂_x φ)(t, x_i(t)) dt`
+//!   is exactly 0 for the test functions `φ = B(t) Q(x)` of
+//!   [`crate::limit::eulerian::TestFunction`] (`B` the `C³` bump of a
+//!   window `[t₀, t₁]`, `Q = ((x − c)/L)^m`). Computed, not assumed: on each
+//!   time piece between consecutive collision instants (cut at `t₀`, `t₁`)
+//!   the state at the piece's left end gives `x_i(τ) = x_i(a) + (τ − a) u_i(a)`,
+//!   the integrand is a polynomial in `τ` (degree ≤ 7 + m), integrated
+//!   exactly. It vanishes only if the positions the engine reports at each
+//!   instant are those reached by moving with the velocities it reports
+//!   (`x_i` Lipschitz with derivative `u_i`), the proof's "differentiating
+//!   under the integral sign".
+//! * **Momentum, particles**: `O(1/N)`, a scaling claim
+//!   ([`super::scaling::eulerian_momentum`], `limit::eulerian`'s exact
+//!   residual).
+//! * **Oleinik, continuum** ([`oleinik`]): `t ∂_x u < 1` on the support
+//!   (`∂_x u = ∂_w U/∂_w X` on each segment) and `t ∂_x u ≤ 1` across the
+//!   vacuum gaps (`u` interpolated linearly through the gap, `[U]/[X]`), by
+//!   [`crate::limit::eulerian::oleinik_margin`], on the rational profiles of
+//!   the 18 macroscopic data.
+
+use num_rational::BigRational;
+
+use super::{Case, Violation};
+use crate::limit::eulerian::{oleinik_margin, TestFunction};
+use crate::scalar::Scalar;
+
+type R = Result<(), Violation>;
+
+const MASS: &str = "prop:eulerian-formulation#mass";
+
+fn mul<S: Scalar>(a: &[S], b: &[S]) -> Vec<S> {
+    let mut out = vec![S::zero(); a.len() + b.len() - 1];
+    for (i, x) in a.iter().enumerate() {
+        for (j, y) in b.iter().enumerate() {
+            out[i + j] = out[i + j].clone() + &(x.clone() * y);
+        }
+    }
+    out
+}
+
+fn add_into<S: Scalar>(acc: &mut Vec<S>, p: &[S]) {
+    if acc.len() < p.len() {
+        acc.resize(p.len(), S::zero());
+    }
+    for (a, x) in acc.iter_mut().zip(p) {
+        *a = a.clone() + x;
+    }
+}
+
+/// `∫_0^h p(τ) dτ`.
+fn integral<S: Scalar>(p: &[S], h: &S) -> S {
+    let mut hk = h.clone();
+    let mut total = S::zero();
+    for (k, c) in p.iter().enumerate() {
+        total = total + &(c.clone() * &hk / &S::from_usize(k + 1));
+        hk = hk * h;
+    }
+    total
+}
+
+/// `((y₀ + τ v)/L)^m` as a polynomial in `τ`.
+fn power<S: Scalar>(y0: &S, v: &S, scale: &S, m: u32) -> Vec<S> {
+    let lin = [y0.clone() / scale, v.clone() / scale];
+    let mut p = vec![S::one()];
+    for _ in 0..m {
+        p = mul(&p, &lin);
+    }
+    p
+}
+
+/// `(B, B')` on `[a, b] ⊂ [t₀, t₁]` as polynomials in `τ = t − a`.
+fn bump<S: Scalar>(f: &TestFunction<S>, a: &S) -> (Vec<S>, Vec<S>) {
+    let w = f.t1.clone() - &f.t0;
+    let k = S::from_i64(4) / &(w.clone() * &w);
+    let (p, q) = (a.clone() - &f.t0, f.t1.clone() - a);
+    // b = k (p + τ)(q − τ), b' = k (q − p − 2τ).
+    let b = vec![
+        k.clone() * &p * &q,
+        k.clone() * &(q.clone() - &p),
+        -k.clone(),
+    ];
+    let db = vec![k.clone() * &(q - &p), -(k * &S::from_i64(2))];
+    let b2 = mul(&b, &b);
+    let b3 = mul(&b2, &b);
+    let big_b = mul(&b3, &b);
+    let d_big_b: Vec<S> = mul(&b3, &db)
+        .into_iter()
+        .map(|c| c * &S::from_i64(4))
+        .collect();
+    (big_b, d_big_b)
+}
+
+/// `R_mass^N(φ)` over `[t₀, t₁]`, piece by piece (see the module
+/// documentation).
+fn mass_residual<S: Scalar>(case: &Case<S>, f: &TestFunction<S>) -> Result<S, Violation> {
+    let mut cuts = vec![f.t0.clone()];
+    for imp in case.traj.impulses() {
+        if imp.t > f.t0 && imp.t < f.t1 && cuts.last() != Some(&imp.t) {
+            cuts.push(imp.t.clone());
+        }
+    }
+    cuts.push(f.t1.clone());
+    let m = f.degree;
+    let mut total = S::zero();
+    for w in cuts.windows(2) {
+        let (a, b) = (&w[0], &w[1]);
+        let s = case
+            .state(a)
+            .map_err(|e| Violation::new(MASS, e.to_string()))?;
+        // Σ_i Q(x_i(τ)) and Σ_i u_i Q'(x_i(τ)).
+        let mut s0: Vec<S> = Vec::new();
+        let mut s1: Vec<S> = Vec::new();
+        for (x, u) in s.positions.iter().zip(&s.velocities) {
+            let y0 = x.clone() - &f.center;
+            add_into(&mut s0, &power(&y0, u, &f.scale, m));
+            let dq: Vec<S> = power(&y0, u, &f.scale, m - 1)
+                .into_iter()
+                .map(|c| c * u * &S::from_i64(i64::from(m)) / &f.scale)
+                .collect();
+            add_into(&mut s1, &dq);
+        }
+        let (big_b, d_big_b) = bump(f, a);
+        let mut integrand = mul(&d_big_b, &s0);
+        add_into(&mut integrand, &mul(&big_b, &s1));
+        total = total + &integral(&integrand, &(b.clone() - a));
+    }
+    Ok(total / &S::from_usize(case.n()))
+}
+
+/// The test functions of the mass check: windows `[0, T]` and
+/// `[T/4, 3T/4]` (`T` the last probe time), degrees 2 and 3, centred at
+/// `x⁰_1`, scale 1.
+fn mass_tests<S: Scalar>(case: &Case<S>) -> Vec<TestFunction<S>> {
+    let Some(t_end) = case.times.last().filter(|t| **t > S::zero()) else {
+        return Vec::new();
+    };
+    let q = |k: i64| t_end.clone() * &S::from_i64(k) / &S::from_i64(4);
+    let mut out = Vec::new();
+    for (t0, t1) in [(S::zero(), t_end.clone()), (q(1), q(3))] {
+        for degree in [2, 3] {
+            out.push(TestFunction {
+                t0: t0.clone(),
+                t1: t1.clone(),
+                center: case.data().positions()[0].clone(),
+                scale: S::one(),
+                degree,
+            });
+        }
+    }
+    out
+}
+
+/// `prop:eulerian-formulation#mass` for the particles: `R_mass^N(φ) = 0`
+/// exactly (see the module documentation).
+pub fn mass<S: Scalar>(case: &Case<S>) -> R {
+    for f in mass_tests(case) {
+        let r = mass_residual(case, &f)?;
+        if !r.is_zero() {
+            return Err(Violation::new(
+                MASS,
+                format!(
+                    "N = {}: R_mass^N(φ) = {} ≠ 0 for φ = {}",
+                    case.n(),
+                    r.render(),
+                    f.name()
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// `prop:eulerian-formulation#oleinik` on the continuum: on every rational
+/// profile at `t > 0`, `t ∂_x u < 1` on each segment (the support) and the
+/// margin over the vacuum gaps too, `t [U]/[X] ≤ 1`
+/// ([`oleinik_margin`]); `u` jumping upwards with no gap fails.
+pub fn oleinik() -> R {
+    type Q = BigRational;
+    const ID: &str = "prop:eulerian-formulation#oleinik";
+    let mut checked = 0usize;
+    for c in super::macro_data::cases(ID)? {
+        for (t, p) in &c.profiles {
+            let Some(p) = p else { continue };
+            checked += 1;
+            let Some(margin) = oleinik_margin(p, t, &Q::zero()) else {
+                return Err(Violation::new(
+                    ID,
+                    format!(
+                        "{}, t = {}: u jumps upwards with no vacuum gap (∂_x u = +∞)",
+                        c.name,
+                        t.render()
+                    ),
+                ));
+            };
+            if margin > Q::one() {
+                return Err(Violation::new(
+                    ID,
+                    format!(
+                        "{}, t = {}: t sup ∂_x u = {} > 1",
+                        c.name,
+                        t.render(),
+                        margin.render()
+                    ),
+                ));
+            }
+            for s in &p.segments {
+                if t.clone() * &s.u[1] >= s.x[1] {
+                    return Err(Violation::new(
+                        ID,
+                        format!(
+                            "{}, t = {}: on the image of [{}, {}], t ∂_x u = t ∂_w U/∂_w X = {} ≥ 1",
+                            c.name,
+                            t.render(),
+                            s.w0.render(),
+                            s.w1.render(),
+                            (t.clone() * &s.u[1] / &s.x[1]).render()
+                        ),
+                    ));
+                }
+            }
+        }
+    }
+    if checked == 0 {
+        return Err(Violation::new(ID, "vacuous: no rational continuum profile"));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::initial::InitialData;
+    use crate::rational::ratio as q;
+
+    type Q = BigRational;
+
+    #[test]
+    fn polynomial_integral_is_exact() {
+        // ∫_0^2 (1 + 3τ²) dτ = 2 + 8 = 10.
+        assert_eq!(integral(&[q(1, 1), q(0, 1), q(3, 1)], &q(2, 1)), q(10, 1));
+        let (b, db) = bump(
+            &TestFunction {
+                t0: q(0, 1),
+                t1: q(1, 1),
+                center: q(0, 1),
+                scale: q(1, 1),
+                degree: 2,
+            },
+            &q(0, 1),
+        );
+        // B(1/2) = 1, B'(1/2) = 0.
+        let at = |p: &[Q], x: Q| p.iter().rev().fold(Q::zero(), |a, c| a * &x + c);
+        assert_eq!(at(&b, q(1, 2)), q(1, 1));
+        assert_eq!(at(&db, q(1, 2)), q(0, 1));
+    }
+
+    #[test]
+    fn the_particles_conserve_mass_and_a_lagging_state_does_not() {
+        let data = InitialData::with_paper_radius(
+            vec![q(0, 1), q(1, 1), q(3, 1)],
+            vec![q(1, 1), q(-1, 1), q(-2, 1)],
+        )
+        .unwrap();
+        let case = Case::new(data, None);
+        mass(&case).unwrap();
+        // Positions of t/2 reported at t, with the velocities of t.
+        fn lag(d: &InitialData<Q>, s: &mut crate::state::State<Q>) {
+            let h = s.t.clone() / Q::from_i64(2);
+            s.positions = crate::projection::state_at(d, &h).unwrap().positions;
+        }
+        assert!(mass(&case.clone().tampered(lag)).is_err());
+    }
+
+    #[test]
+    fn the_continuum_satisfies_the_eulerian_oleinik_inequality() {
+        oleinik().unwrap();
+    }
+}
