@@ -15,6 +15,7 @@ use sticky::columns::{write_npy, CSV_HEADER};
 use sticky::fast::kernel::{state_at, IntegerData};
 use sticky::fast::stream::Lean;
 use sticky::generate::{initial_data, Limits, SplitMix64};
+use sticky::initial::InitialData;
 use sticky::report::json;
 
 fn dir(tag: &str) -> PathBuf {
@@ -124,6 +125,39 @@ fn write_csv_scene(
     path
 }
 
+/// A random scene (N ≤ 60, varied denominators) shifted by a negative
+/// offset, as column strings in every spelling `text` knows.
+fn random_rows(
+    rng: &mut SplitMix64,
+    case: usize,
+) -> (InitialData<BigRational>, Vec<(String, String)>) {
+    let data = initial_data(
+        &rng.bytes(300),
+        Limits {
+            max_n: 1 + case % 60,
+            max_den: [8, 10, 1000, 40][case % 4],
+            max_speed: 16,
+        },
+    );
+    // Shift every position by a negative offset (negative values).
+    let offset = q(
+        -((rng.next_u64() % 1000) as i64),
+        1 + (rng.next_u64() % 50) as i64,
+    );
+    let rows = data
+        .positions()
+        .iter()
+        .zip(data.velocities())
+        .map(|(x, u)| {
+            (
+                text(&(x + &offset), rng.next_u64()),
+                text(u, rng.next_u64()),
+            )
+        })
+        .collect();
+    (data, rows)
+}
+
 #[test]
 fn csv_scenes_give_the_same_bytes() {
     let d = dir("csv");
@@ -131,30 +165,7 @@ fn csv_scenes_give_the_same_bytes() {
     let mut taken = 0;
     let mut events_taken = 0;
     for case in 0..120 {
-        let data = initial_data(
-            &rng.bytes(300),
-            Limits {
-                max_n: 1 + case % 60,
-                max_den: [8, 10, 1000, 40][case % 4],
-                max_speed: 16,
-            },
-        );
-        // Shift every position by a negative offset (negative values).
-        let offset = q(
-            -((rng.next_u64() % 1000) as i64),
-            1 + (rng.next_u64() % 50) as i64,
-        );
-        let rows: Vec<(String, String)> = data
-            .positions()
-            .iter()
-            .zip(data.velocities())
-            .map(|(x, u)| {
-                (
-                    text(&(x + &offset), rng.next_u64()),
-                    text(u, rng.next_u64()),
-                )
-            })
-            .collect();
+        let (data, rows) = random_rows(&mut rng, case);
         let radius = sticky::rational::render_exact(data.radius());
         let path = write_csv_scene(&d, &format!("c{case}"), Some(&radius), &rows);
         events_taken += usize::from(events_agree(&path));
@@ -447,29 +458,7 @@ fn inline_toml_scenes_give_the_same_bytes() {
     let mut taken = 0;
     let mut events_taken = 0;
     for case in 0..120u64 {
-        let data = initial_data(
-            &rng.bytes(300),
-            Limits {
-                max_n: 1 + case as usize % 60,
-                max_den: [8, 10, 1000, 40][case as usize % 4],
-                max_speed: 16,
-            },
-        );
-        let offset = q(
-            -((rng.next_u64() % 1000) as i64),
-            1 + (rng.next_u64() % 50) as i64,
-        );
-        let rows: Vec<(String, String)> = data
-            .positions()
-            .iter()
-            .zip(data.velocities())
-            .map(|(x, u)| {
-                (
-                    text(&(x + &offset), rng.next_u64()),
-                    text(u, rng.next_u64()),
-                )
-            })
-            .collect();
+        let (data, rows) = random_rows(&mut rng, case as usize);
         let radius = sticky::rational::render_exact(data.radius());
         let radius = (case % 5 != 4).then_some(radius.as_str());
         let path = write_inline_scene(&d, &format!("t{case}"), radius, &rows, case);

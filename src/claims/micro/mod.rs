@@ -100,6 +100,39 @@ fn positive_times<S: Scalar>(case: &Case<S>) -> impl Iterator<Item = &S> {
 
 pub use crate::trajectory::probe_times;
 
+/// `⟨g, v⟩ ≤ 0` on the generators `v` of the tangent cone `T_xK`:
+/// `±(1, …, 1)`, `±s_j` for a pair apart and `s_j` for a contact, with
+/// `s_j = Σ_{k > j} e_k` (`eq:ineg-projortho`, and the inclusion
+/// `ξ ∈ ∂I_K(x)` of Appendix C). `None` when it holds on all of them, else
+/// the first generator that fails, described with `name` for `g`.
+pub(crate) fn tangent_cone_violation<S: Scalar>(
+    name: &str,
+    g: &[S],
+    x: &[S],
+    two_r: &S,
+) -> Option<String> {
+    let total = g.iter().fold(S::zero(), |a, v| a + v);
+    if !total.is_zero() {
+        return Some(format!("⟨{name}, ±1⟩ = ±{} ≠ 0", total.render()));
+    }
+    let mut tail = total; // Σ_{k > j} g_k, for j = 0 first
+    for j in 0..g.len().saturating_sub(1) {
+        tail = tail - &g[j];
+        let contact = x[j + 1].clone() - &x[j] == *two_r;
+        if (contact && tail > S::zero()) || (!contact && !tail.is_zero()) {
+            return Some(format!(
+                "⟨{name}, s_{}⟩ = {} with particles {} and {} {}",
+                j + 1,
+                tail.render(),
+                j + 1,
+                j + 2,
+                if contact { "in contact" } else { "apart" }
+            ));
+        }
+    }
+    None
+}
+
 /// Runs the core section-2 checkers (`prop:proj-micro`, `eq:dyn-micro`,
 /// `prop:micro-pressure`) on one trajectory at the probe times (all of them,
 /// or a spread of `limit` collision instants); returns the number of checks

@@ -4,7 +4,7 @@
 //! history equals `x(t) = P_K(x⁰ + t u⁰)`, `u(t) = P_{H_{x(t)}}(u⁰)`, and the
 //! steps of their proofs.
 
-use super::{dot, positive_times, render_state, render_vec, state, sub, R};
+use super::{dot, positive_times, render_state, render_vec, state, sub, tangent_cone_violation, R};
 use crate::claims::{Case, Violation};
 use crate::cluster::{contact_clusters, project_h};
 use crate::error::Error;
@@ -296,36 +296,8 @@ pub fn ineg_projortho<S: Scalar>(case: &Case<S>) -> R {
     for t in &case.times {
         let s = state(case, t, ID)?;
         let g = sub(case.data().velocities(), &s.velocities);
-        let total = g.iter().fold(S::zero(), |a, x| a + x);
-        if !total.is_zero() {
-            return Err(Violation::new(
-                ID,
-                format!("t = {}: ⟨u⁰ − u, ±1⟩ = ±{} ≠ 0", t.render(), total.render()),
-            ));
-        }
-        let mut tail = total; // Σ_{k > j} g_k, for j = 0 first
-        for j in 0..g.len().saturating_sub(1) {
-            tail = tail - &g[j];
-            let contact = s.positions[j + 1].clone() - &s.positions[j] == two_r;
-            let bad = if contact {
-                tail > S::zero()
-            } else {
-                !tail.is_zero()
-            };
-            if bad {
-                return Err(Violation::new(
-                    ID,
-                    format!(
-                        "t = {}: ⟨u⁰ − u, s_{}⟩ = {} with particles {} and {} {}",
-                        t.render(),
-                        j + 1,
-                        tail.render(),
-                        j + 1,
-                        j + 2,
-                        if contact { "in contact" } else { "apart" }
-                    ),
-                ));
-            }
+        if let Some(what) = tangent_cone_violation("u⁰ − u", &g, &s.positions, &two_r) {
+            return Err(Violation::new(ID, format!("t = {}: {what}", t.render())));
         }
     }
     Ok(())
