@@ -18,7 +18,7 @@
 //! the loop produced it. The block means `ΣY / (k D_y)` are reduced to lowest
 //! terms only when asked for ([`Blocks::mean_y`], [`Blocks::mean_u`],
 //! [`state_at`]), so that a caller who needs a few of them does not pay for a
-//! gcd per block. On 512 bits the result is sparse ([`Sparse`]): a block of
+//! gcd per block. On 512 bits the result is sparse (`Sparse`): a block of
 //! one entry is stored as that entry's index and its sums are recomputed
 //! from the data when asked for, since writing a 96-byte block per particle
 //! cost more in page faults on fresh memory than the loop's arithmetic.
