@@ -55,6 +55,23 @@ fn datum(xt: &[i64], u: &[i64]) -> Option<InitialData<Rational64>> {
     InitialData::new(q(1, 2 * n), positions, velocities).ok()
 }
 
+/// Case claims whose exact computation leaves `i64` on this domain, with the
+/// reason; every other engine (`BigRational`) still checks them, and the
+/// symbolic prover proves them for all real data at N ≤ 2.
+const NOT_FIXED_WIDTH: [(&str, &str); 1] = [(
+    "prop:eulerian-formulation#mass",
+    "the exact weak residual integrates degree-10 polynomials in t between collisions: \
+     products of the grid's denominators overflow Ratio<i64> (a panic, not a wrap) within the first data enumerated",
+)];
+
+/// The registry without [`NOT_FIXED_WIDTH`].
+fn fixed_width_claims() -> Vec<Claim<Rational64>> {
+    registry::<Rational64>()
+        .into_iter()
+        .filter(|c| NOT_FIXED_WIDTH.iter().all(|(id, _)| *id != c.id))
+        .collect()
+}
+
 /// The harness body shared by Kani and the exhaustive run: every case
 /// claim (or its correction) must hold on this datum.
 fn verify_datum(claims: &[Claim<Rational64>], data: InitialData<Rational64>) {
@@ -145,7 +162,7 @@ fn verify_claims_exhaustive() {
             speed: 3,
         }
     };
-    let count = enumerate(domain, |d| verify_datum(&registry::<Rational64>(), d));
+    let count = enumerate(domain, |d| verify_datum(&fixed_width_claims(), d));
     eprintln!("verify_claims_exhaustive: {count} data checked exhaustively on {domain:?}");
     // The count is part of the statement of what was proved.
     if !full {
@@ -219,13 +236,13 @@ mod kani_harnesses {
     #[cfg_attr(kani, kani::proof)]
     #[cfg_attr(kani, kani::unwind(24))]
     fn verify_claims_n2() {
-        verify_datum(&registry::<Rational64>(), any_datum::<2>());
+        verify_datum(&fixed_width_claims(), any_datum::<2>());
     }
 
     #[cfg_attr(kani, kani::proof)]
     #[cfg_attr(kani, kani::unwind(24))]
     fn verify_claims_n3() {
-        verify_datum(&registry::<Rational64>(), any_datum::<3>());
+        verify_datum(&fixed_width_claims(), any_datum::<3>());
     }
 }
 
