@@ -29,7 +29,7 @@
 //! solution at fixed times. Here `ξ` is read from the multipliers `λ` (the
 //! discrete `∂_w Λ`), and the contraction is checked on the whole interval.
 
-use super::micro::{augmented_lambda, tangent_cone_violation};
+use super::micro::{augmented_lambda, dot, sub, tangent_cone_violation};
 use super::{Case, Violation};
 use crate::generate::SplitMix64;
 use crate::initial::InitialData;
@@ -42,16 +42,6 @@ const ID: &str = "app:uniqueness#monotone-inclusion";
 
 fn fail<T>(what: String) -> Result<T, Violation> {
     Err(Violation::new(ID, what))
-}
-
-fn dot<S: Scalar>(a: &[S], b: &[S]) -> S {
-    a.iter()
-        .zip(b)
-        .fold(S::zero(), |acc, (x, y)| acc + &(x.clone() * y))
-}
-
-fn sub<S: Scalar>(a: &[S], b: &[S]) -> Vec<S> {
-    a.iter().zip(b).map(|(x, y)| x.clone() - y).collect()
 }
 
 /// `ξ_i = N(λ_i − λ_{i−1})`, `i = 1 … N`, from the state's multipliers.

@@ -84,7 +84,7 @@ pub fn norm2<S: Scalar>(a: &[S]) -> S {
     dot(a, a) / S::from_usize(a.len().max(1))
 }
 
-fn sub<S: Scalar>(a: &[S], b: &[S]) -> Vec<S> {
+pub(crate) fn sub<S: Scalar>(a: &[S], b: &[S]) -> Vec<S> {
     a.iter().zip(b).map(|(x, y)| x.clone() - y).collect()
 }
 
