@@ -39,6 +39,7 @@ fn bench_reports_every_method() {
         "adaptive",
         "adaptive_bigdata",
         "events",
+        "events_columns",
         "events_lowest",
         "events_generic",
     ] {

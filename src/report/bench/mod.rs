@@ -21,7 +21,10 @@
 //! * `bigrational_naive` — the generic PAVA on `BigRational` (measured on
 //!   N/10 particles and reported per particle, saying so);
 //! * `events` — the full exact event-driven trajectory on the integer engine
-//!   ([`crate::fast::merge::IntegerTrajectory::new`]); `events_lowest` the
+//!   ([`crate::fast::merge::IntegerTrajectory::new`], from the
+//!   `BigRational` data: the scaling to common denominators included);
+//!   `events_columns` the same history from the scaled `i64` columns, the
+//!   path `sticky events` takes on a CSV, NPY or TOML file; `events_lowest` the
 //!   conversion of that history to a `Trajectory<BigRational>`;
 //!   `events_generic` the generic engine on `BigRational`
 //!   ([`crate::trajectory::Trajectory::new`], on N/10 particles).
@@ -271,6 +274,7 @@ pub fn run(opts: &BenchOptions, t: &BigRational, scripts: &Path) -> BenchReport 
         "adaptive",
         "adaptive_bigdata",
         "events",
+        "events_columns",
         "events_lowest",
         "events_generic",
     ];
@@ -356,6 +360,41 @@ pub fn run(opts: &BenchOptions, t: &BigRational, scripts: &Path) -> BenchReport 
                 traj.instants()
             );
             acc[at("events")].push(ns / nf, mib);
+            // The path `sticky events` takes on a CSV, NPY or TOML file:
+            // the history straight from the scaled integer columns (read
+            // from the file into machine words, `fast::stream`), no
+            // `BigRational` datum. The columns are prepared untimed, like
+            // the kernel rows' `IntegerData`.
+            let columns = crate::fast::scaling::scale_i128(&data).and_then(|s| {
+                let narrow = |v: &[i128]| {
+                    v.iter()
+                        .map(|&a| i64::try_from(a).ok())
+                        .collect::<Option<Vec<i64>>>()
+                };
+                Some((
+                    narrow(&s.x)?,
+                    narrow(&s.u)?,
+                    num_traits::ToPrimitive::to_i128(&s.dx)?,
+                    num_traits::ToPrimitive::to_i128(&s.du)?,
+                ))
+            });
+            match columns {
+                Some((x, u, dx, du)) => {
+                    let (ns, mib, h) =
+                        measured(|| crate::fast::merge::history_words(&x, &u, dx, du));
+                    acc[at("events_columns")].note = format!(
+                        "the same history from the scaled i64 columns, as `sticky events` computes it from a CSV, NPY or TOML file ({})",
+                        if h.is_some() { "integer engine" } else { "bound failed: not measured" }
+                    );
+                    if h.is_some() {
+                        acc[at("events_columns")].push(ns / nf, mib);
+                    }
+                }
+                None => {
+                    acc[at("events_columns")].note =
+                        "the scene's scaled columns do not fit i64: not measured".into();
+                }
+            }
             let (ns, mib, t) = measured(|| traj.into_trajectory());
             std::hint::black_box(t.impulses().len());
             acc[at("events_lowest")].note =
@@ -368,7 +407,7 @@ pub fn run(opts: &BenchOptions, t: &BigRational, scripts: &Path) -> BenchReport 
             );
             acc[at("events_generic")].push(ns / naive_n as f64, mib);
         } else {
-            for name in ["events", "events_lowest", "events_generic"] {
+            for name in ["events", "events_columns", "events_lowest", "events_generic"] {
                 acc[at(name)].note = "skipped (--quick)".into();
             }
         }
