@@ -38,3 +38,10 @@ fn replay_kernels_inputs() {
     let n = replay("kernels", sticky::claims::fuzz::kernels);
     eprintln!("replayed {n} kernels inputs");
 }
+
+#[test]
+fn replay_lean_toml_inputs() {
+    let n = replay("lean_toml", sticky::claims::fuzz::lean_toml);
+    assert!(n > 0, "no lean_toml seeds");
+    eprintln!("replayed {n} lean_toml inputs");
+}

@@ -43,6 +43,52 @@ pub fn scene_parser(bytes: &[u8]) {
     }
 }
 
+/// Fuzz target `lean_toml`: the streaming path's TOML reader
+/// ([`crate::scene::inline_scene`], a strict subset of TOML read straight
+/// into machine words) against the general parser ([`crate::scene::parse`]),
+/// on any bytes. Whenever the lean reader takes a text: if the general
+/// parser accepts it, both give the same radius, positions and velocities,
+/// value for value; if the general parser rejects it, the streaming path
+/// must decline it too ([`crate::fast::stream::Lean`] validates the same
+/// data), so that the general path's error message is the one shown.
+/// Panics on any difference.
+pub fn lean_toml(bytes: &[u8]) {
+    use crate::fast::stream::Lean;
+    use num_bigint::BigInt;
+    let Some(lean) = crate::scene::inline_scene(bytes) else {
+        return;
+    };
+    // The lean reader takes ASCII only.
+    let Ok(text) = std::str::from_utf8(bytes) else {
+        panic!("the lean reader took bytes that are not UTF-8");
+    };
+    let as_ratio = |&(p, d): &(i64, u64)| BigRational::new(BigInt::from(p), BigInt::from(d));
+    match crate::scene::parse(text) {
+        Ok(scene) => {
+            let d = &scene.data;
+            let xs: Vec<BigRational> = lean.positions.iter().map(as_ratio).collect();
+            let us: Vec<BigRational> = lean.velocities.iter().map(as_ratio).collect();
+            assert!(xs == d.positions(), "positions differ:\n{text}");
+            assert!(us == d.velocities(), "velocities differ:\n{text}");
+            if let Some(r) = &lean.radius {
+                assert!(r == d.radius(), "radius differs:\n{text}");
+            }
+        }
+        Err(e) => {
+            let taken = Lean::new(
+                lean.radius,
+                lean.charged_bits,
+                lean.positions,
+                lean.velocities,
+            );
+            assert!(
+                taken.is_none(),
+                "the streaming path takes a scene the general parser rejects ({e}):\n{text}"
+            );
+        }
+    }
+}
+
 /// Fuzz target `kernels`: the oracle battery ([`crate::fast::battery`])
 /// on every exact engine of [`crate::fast::engine::ENGINES`]. The first two
 /// bytes pick a scale `2^s` and an offset `2^o + 1/3` (so that the data land

@@ -147,7 +147,7 @@ impl Lean {
 
     /// The scene of radius `radius` (`None`: `1/(2N)`) with columns `xs`,
     /// `us`, `charged_bits` already charged against the number budget.
-    fn new(
+    pub(crate) fn new(
         radius: Option<BigRational>,
         charged_bits: u64,
         xs: Vec<Small>,

@@ -407,7 +407,12 @@ pub fn run(opts: &BenchOptions, t: &BigRational, scripts: &Path) -> BenchReport 
             );
             acc[at("events_generic")].push(ns / naive_n as f64, mib);
         } else {
-            for name in ["events", "events_columns", "events_lowest", "events_generic"] {
+            for name in [
+                "events",
+                "events_columns",
+                "events_lowest",
+                "events_generic",
+            ] {
                 acc[at(name)].note = "skipped (--quick)".into();
             }
         }
