@@ -416,7 +416,18 @@ fn write_inline_scene(
 ) -> PathBuf {
     let nl = if style % 4 == 2 { "\r\n" } else { "\n" };
     let array = |v: Vec<&String>| -> String {
-        let items: Vec<String> = v.iter().map(|s| format!("\"{s}\"")).collect();
+        // Some styles write the integer values as TOML integers.
+        let bare = |s: &str| style % 7 == 5 && s.parse::<i64>().is_ok_and(|v| v.to_string() == s);
+        let items: Vec<String> = v
+            .iter()
+            .map(|s| {
+                if bare(s) {
+                    s.to_string()
+                } else {
+                    format!("\"{s}\"")
+                }
+            })
+            .collect();
         match style % 4 {
             1 => format!(
                 "[{nl}  {},{nl}] # end",
@@ -523,16 +534,24 @@ fn inline_toml_off_words_or_invalid_declines() {
     );
     assert!(Lean::load(&long).is_none());
     assert!(sticky::scene::load(&long).is_ok());
-    // TOML integers and escapes: valid TOML the reader leaves to the
-    // general path.
+    // Plain TOML integers are read; an integer with `_` and escapes are
+    // valid TOML the reader leaves to the general path.
     let ints = d.join("ints.toml");
     std::fs::write(
         &ints,
         "[particles]\npositions = [0, 1]\nvelocities = [\"1\", \"0\"]\n",
     )
     .unwrap();
-    assert!(Lean::load(&ints).is_none());
-    assert!(sticky::scene::load(&ints).is_ok());
+    assert!(Lean::load(&ints).is_some());
+    assert_eq!(streamed(&ints, &q(1, 1)), Some(general(&ints, &q(1, 1))));
+    let underscored = d.join("underscored.toml");
+    std::fs::write(
+        &underscored,
+        "[particles]\npositions = [0, 1_0]\nvelocities = [\"1\", \"0\"]\n",
+    )
+    .unwrap();
+    assert!(Lean::load(&underscored).is_none());
+    assert!(sticky::scene::load(&underscored).is_ok());
     let esc = d.join("esc.toml");
     std::fs::write(
         &esc,

@@ -7,14 +7,16 @@
 //! writes and people type: ASCII text; comments; bare keys; basic strings
 //! without escapes (`"1/3"`); the top-level keys `name`, `description`,
 //! `t_end` (strings) before one `[particles]` header with `radius`
-//! (a string), `positions` and `velocities` (arrays of strings, over any
-//! number of lines, a trailing comma allowed). Every number is read by
+//! (a string), `positions` and `velocities` (arrays of strings and plain
+//! decimal integers such as `-3`, over any number of lines, a trailing
+//! comma allowed). Every number is read by
 //! [`parse_small`] after the white space [`crate::rational::parse_exact`]
 //! trims.
 //!
 //! **Same results.** Whatever it accepts is a valid TOML document that
 //! [`super::parse`] reads to the same keys and values; anything else (an
-//! escape, a literal or multi-line string, a TOML integer, a dotted or
+//! escape, a literal or multi-line string, an integer with `_` or a
+//! `0x`-style prefix, a float, a dotted or
 //! quoted key, another table, a repeated key, a `data` file, a number off
 //! words or malformed) gives `None`, and the general path reads the file
 //! (with the error of record when there is one).
@@ -141,7 +143,36 @@ impl<'a> Cursor<'a> {
         Some(s)
     }
 
-    /// An array of strings, each read by `f`.
+    /// A TOML decimal integer in its plainest form, `[+-]?` then digits
+    /// without a leading zero (`0`, `-0`, `+0` allowed); its text without
+    /// the `+`. An underscore, a `0x`/`0o`/`0b` prefix, a float or anything
+    /// else that is not plain gives `None`.
+    fn integer(&mut self) -> Option<&'a [u8]> {
+        let start = self.i;
+        let sign = matches!(self.peek(), Some(b'+' | b'-'));
+        if sign {
+            self.i += 1;
+        }
+        let digits = self.i;
+        while self.peek().is_some_and(|c| c.is_ascii_digit()) {
+            self.i += 1;
+        }
+        let body = &self.b[digits..self.i];
+        let ends = matches!(
+            self.peek(),
+            None | Some(b' ' | b'\t' | b',' | b']' | b'#' | b'\n' | b'\r')
+        );
+        if body.is_empty() || !ends || (body.len() > 1 && body[0] == b'0') {
+            return None;
+        }
+        Some(if self.b[start] == b'+' {
+            body
+        } else {
+            &self.b[start..self.i]
+        })
+    }
+
+    /// An array of strings and plain integers, each read by `f`.
     fn array(&mut self, mut f: impl FnMut(&'a [u8]) -> Option<()>) -> Option<()> {
         if self.peek() != Some(b'[') {
             return None;
@@ -152,7 +183,12 @@ impl<'a> Cursor<'a> {
             if self.peek() == Some(b']') {
                 break;
             }
-            f(self.string()?)?;
+            let item = if self.peek() == Some(b'"') {
+                self.string()?
+            } else {
+                self.integer()?
+            };
+            f(item)?;
             self.space()?;
             match self.peek()? {
                 b',' => self.i += 1,
@@ -299,6 +335,14 @@ mod tests {
         assert_eq!(s.positions, vec![(0, 1), (1, 32), (3, 20)]);
         assert_eq!(s.velocities, vec![(1, 1), (-1, 1), (1, 4)]);
         assert_eq!(s.radius, Some(BigRational::new(1.into(), 64.into())));
+        // Plain TOML integers, mixed with strings as TOML 1.0 allows.
+        let text = b"[particles]\npositions = [0, +2, \"7/2\", 5 ,9]\nvelocities = [-0, -1,\n\"1/3\", 12, -7 # last\n]\n";
+        let s = inline_scene(text).unwrap();
+        assert_eq!(s.positions, vec![(0, 1), (2, 1), (7, 2), (5, 1), (9, 1)]);
+        assert_eq!(
+            s.velocities,
+            vec![(0, 1), (-1, 1), (1, 3), (12, 1), (-7, 1)]
+        );
     }
 
     #[test]
@@ -306,7 +350,14 @@ mod tests {
         let ok = "[particles]\npositions = [\"0\", \"1\"]\nvelocities = [\"0\", \"0\"]\n";
         assert!(inline_scene(ok.as_bytes()).is_some());
         for bad in [
-            ok.replace("\"1\"]", "1]"),                      // TOML integer
+            ok.replace("\"1\"]", "1_0]"),                    // TOML integer with _
+            ok.replace("\"1\"]", "0x1]"),                    // hex integer
+            ok.replace("\"1\"]", "01]"),                     // leading zero
+            ok.replace("\"1\"]", "1.5]"),                    // TOML float
+            ok.replace("\"1\"]", "1e3]"),                    // TOML float
+            ok.replace("\"1\"]", "inf]"),                    // TOML float
+            ok.replace("\"1\"]", "-]"),                      // no digits
+            ok.replace("\"1\"]", "99999999999999999999]"),   // off i64
             ok.replace("\"1\"", "\"\\u0031\""),              // an escape
             ok.replace("\"1\"", "'1'"),                      // literal string
             ok.replace("\"1\"", "\"99999999999999999999\""), // off words
