@@ -495,6 +495,66 @@ mod tests {
         }
     }
 
+    /// The integer history is the generic one — impulses (times, parts,
+    /// velocities), join times, the rebuilt initial data, the counts of
+    /// events and instants — on small random scenes with many equal times,
+    /// chains of simultaneous meetings and contacts, scaled so that each
+    /// word size runs: `i64` data with `i64` and `i128` sums, `i128` data.
+    #[test]
+    fn small_random_histories_equal_the_generic() {
+        let mut rng = SplitMix64::new(99);
+        let mut engines = [0; 3];
+        for k in 0..240 {
+            let data = initial_data(
+                &rng.bytes(200),
+                Limits {
+                    max_n: 2 + k % 30,
+                    max_den: 1 + (k % 4) as u32,
+                    max_speed: 1 + (k % 5) as u32,
+                },
+            );
+            // Shift every position by 2^s: X_i beyond i64 (s = 70) and
+            // N·M beyond 2^63 (s = 59, most scenes) without changing the history.
+            let shift = [None, Some(59), Some(70)][k % 3];
+            let data = match shift {
+                None => data,
+                Some(s) => {
+                    let off = big(&(BigInt::one() << s));
+                    let x = data.positions().iter().map(|p| p + &off).collect();
+                    InitialData::new(data.radius().clone(), x, data.velocities().to_vec()).unwrap()
+                }
+            };
+            let it = IntegerTrajectory::new(&data);
+            let s = scale_i128(&data).unwrap();
+            let m =
+                s.x.iter()
+                    .chain(&s.u)
+                    .map(|v| v.unsigned_abs())
+                    .max()
+                    .unwrap();
+            // 0: i64 data and sums; 1: i64 data, i128 sums; 2: i128 data.
+            let class = if m >= 1 << 63 {
+                2
+            } else {
+                usize::from(m * data.n() as u128 >= 1 << 63)
+            };
+            engines[class] += 1;
+            let want_engine = [Engine::Int64, Engine::Int64, Engine::Int128][class];
+            assert_eq!(it.engine(), want_engine, "scene {k}");
+            let (events, instants) = (it.events(), it.instants());
+            let got = it.into_trajectory();
+            let want = Trajectory::new(data.clone());
+            assert_eq!(got.data(), want.data(), "scene {k}");
+            assert_eq!(got.impulses(), want.impulses(), "scene {k}");
+            assert_eq!(got.join_times(), want.join_times(), "scene {k}");
+            assert_eq!(events, want.impulses().len(), "scene {k}");
+            let mut times: Vec<_> = want.impulses().iter().map(|i| &i.t).collect();
+            times.dedup();
+            assert_eq!(instants, times.len(), "scene {k}");
+        }
+        assert!(engines.iter().all(|&c| c >= 40), "{engines:?}");
+    }
+
     #[test]
     fn degenerate_scenes_agree() {
         // N = 1.
