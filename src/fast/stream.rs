@@ -458,3 +458,178 @@ impl LeanBlocks<'_> {
             .collect()
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fast::kernel::{state_at, IntegerData};
+    use crate::generate::{initial_data, Limits, SplitMix64};
+    use crate::initial::InitialData;
+    use crate::rational::ratio as q;
+    use crate::trajectory::{probe_times, Trajectory};
+
+    /// The value of `v`, checked to be in lowest terms with `den > 0`.
+    fn value(v: &Exact) -> BigRational {
+        if let Exact::Small(n, d) = *v {
+            assert!(
+                d > 0 && gcd(n.unsigned_abs(), d.unsigned_abs()) == 1,
+                "{v:?}"
+            );
+        }
+        let (n, d) = v.numer_denom();
+        BigRational::new(n, d)
+    }
+
+    /// `data` as word pairs, the radius given (`None`: the paper's `1/(2N)`).
+    fn lean(data: &InitialData<BigRational>, radius: bool) -> Option<Lean> {
+        let pair = |q: &BigRational| Some((q.numer().to_i64()?, q.denom().to_u64()?));
+        let col = |v: &[BigRational]| v.iter().map(pair).collect::<Option<Vec<_>>>();
+        let r = radius.then(|| data.radius().clone());
+        Lean::new(r, 0, col(data.positions())?, col(data.velocities())?)
+    }
+
+    /// The streaming path's state — positions, velocities, multipliers,
+    /// clusters, row by row as well — is the kernel's at every probe time
+    /// (collision instants and between), each value in lowest terms, and
+    /// its event history is the generic event merge's.
+    #[test]
+    fn lean_state_and_history_are_the_kernels() {
+        let mut rng = SplitMix64::new(31);
+        for k in 0..120 {
+            let data = initial_data(
+                &rng.bytes(200),
+                Limits {
+                    max_n: 1 + k % 25,
+                    max_den: 1 + (k % 6) as u32,
+                    max_speed: 1 + (k % 7) as u32,
+                },
+            );
+            let n = data.n();
+            let l = lean(&data, true).expect("small data on words");
+            assert_eq!((l.n(), l.radius()), (n, data.radius()));
+            let d = IntegerData::new(&data);
+            let history = Trajectory::new(data.clone());
+            for t in probe_times(&history, Some(6)) {
+                let want = state_at(&d, &t).unwrap();
+                let b = l.blocks_at(&t).expect("within the i128 bound");
+                assert_eq!((b.t(), b.n()), (&t, n));
+                let collect = |visit: &dyn Fn(&mut dyn FnMut(&Exact) -> io::Result<()>)| {
+                    let mut v = Vec::new();
+                    visit(&mut |e| {
+                        v.push(value(e));
+                        Ok(())
+                    });
+                    v
+                };
+                let xs = collect(&|f| b.positions(f).unwrap());
+                let us = collect(&|f| b.velocities(f).unwrap());
+                let ls = collect(&|f| b.multipliers(f).unwrap());
+                assert_eq!(xs, want.positions, "scene {k}, t = {t}");
+                assert_eq!(us, want.velocities, "scene {k}, t = {t}");
+                assert_eq!(ls, want.multipliers, "scene {k}, t = {t}");
+                assert_eq!(b.clusters(), want.clusters, "scene {k}, t = {t}");
+                let mut rows = 0;
+                b.rows(|i, x, u, lambda| {
+                    assert_eq!(i, rows);
+                    assert_eq!((value(x), value(u)), (xs[i].clone(), us[i].clone()));
+                    assert_eq!(lambda.map(value), ls.get(i).cloned());
+                    rows += 1;
+                    Ok(())
+                })
+                .unwrap();
+                assert_eq!(rows, n);
+            }
+            let mut events = Vec::new();
+            l.history()
+                .expect("within the merge's bound")
+                .for_each_event(|t, first, size, parts| {
+                    events.push((value(t), first, size, parts.to_vec()));
+                    Ok(())
+                })
+                .unwrap();
+            let want: Vec<_> = history
+                .impulses()
+                .iter()
+                .map(|i| {
+                    let parts = i.parts.iter().map(|c| c.size as u32).collect();
+                    (i.t.clone(), i.cluster.first, i.cluster.size, parts)
+                })
+                .collect();
+            assert_eq!(events, want, "scene {k}");
+        }
+    }
+
+    /// Without a radius the scene takes the paper's `r = 1/(2N)`; data that
+    /// `InitialData::new` refuses (overlap, crossing velocities at a
+    /// contact), columns of different lengths, no particles, a negative time
+    /// and values beyond the number budget are declined (`None`).
+    #[test]
+    fn lean_declines_what_the_general_path_refuses() {
+        let xs = vec![(0, 1), (1, 2), (3, 1)];
+        let us = vec![(1, 1), (-1, 3), (0, 1)];
+        let l = Lean::new(None, 0, xs.clone(), us.clone()).unwrap();
+        assert_eq!(l.radius(), &q(1, 6));
+        let general = InitialData::with_paper_radius(
+            vec![q(0, 1), q(1, 2), q(3, 1)],
+            vec![q(1, 1), q(-1, 3), q(0, 1)],
+        )
+        .unwrap();
+        let t = q(1, 5);
+        let b = l.blocks_at(&t).unwrap();
+        let mut got = Vec::new();
+        b.positions(|v| {
+            got.push(value(v));
+            Ok(())
+        })
+        .unwrap();
+        assert_eq!(
+            got,
+            state_at(&IntegerData::new(&general), &t).unwrap().positions
+        );
+        assert!(l.blocks_at(&q(-1, 5)).is_none());
+        // r = 1/4: 0 and 1/3 overlap.
+        assert!(Lean::new(Some(q(1, 4)), 0, xs.clone(), us.clone()).is_none());
+        // A contact (0, 1/2 at r = 1/4) with crossing velocities.
+        assert!(Lean::new(Some(q(1, 4)), 0, vec![(0, 1), (1, 2)], vec![(1, 1), (0, 1)]).is_none());
+        assert!(Lean::new(Some(q(1, 4)), 0, vec![(0, 1), (1, 2)], vec![(0, 1), (1, 1)]).is_some());
+        assert!(Lean::new(Some(q(1, 4)), 0, vec![(0, 1), (1, 2)], vec![(0, 1), (0, 1)]).is_some());
+        assert!(Lean::new(None, 0, xs.clone(), us[..2].to_vec()).is_none());
+        assert!(Lean::new(None, 0, Vec::new(), Vec::new()).is_none());
+        assert!(Lean::new(Some(q(0, 1)), 0, xs.clone(), us.clone()).is_none());
+        // The number budget: charged bits push the total over it.
+        assert!(Lean::new(None, MAX_NUMBER_BITS - 10, xs.clone(), us.clone()).is_none());
+        let cost: u64 = [(0, 1), (1, 2), (3, 1), (1, 1), (-1, 3), (0, 1)]
+            .iter()
+            .map(|&(p, d): &(i64, u64)| bits_u(p.unsigned_abs().into()) + bits_u(d.into()) + 64)
+            .sum();
+        assert!(Lean::new(None, MAX_NUMBER_BITS - cost, xs.clone(), us.clone()).is_some());
+        assert!(Lean::new(None, MAX_NUMBER_BITS - cost + 1, xs, us).is_none());
+    }
+
+    /// `Exact`: lowest terms, the contract's rendering (`p/q`, `p` when
+    /// `q = 1`) and the nearest double.
+    #[test]
+    fn exact_values_render_and_round() {
+        assert_eq!(Exact::ratio(0, 7), Exact::Small(0, 1));
+        assert_eq!(Exact::ratio(6, 4), Exact::Small(3, 2));
+        assert_eq!(Exact::ratio(-6, 3), Exact::Small(-2, 1));
+        assert_eq!(Exact::ratio(5, 3), Exact::Small(5, 3));
+        let text = |v: &Exact| {
+            let mut out = Vec::new();
+            v.write(&mut out).unwrap();
+            String::from_utf8(out).unwrap()
+        };
+        assert_eq!(text(&Exact::ratio(-6, 4)), "-3/2");
+        assert_eq!(text(&Exact::ratio(8, 4)), "2");
+        let big = BigRational::new(BigInt::from(1) << 130, BigInt::from(3));
+        assert_eq!(text(&Exact::Big(big.clone())), big.to_string());
+        assert_eq!(Exact::ratio(1, 3).to_f64_lossy(), 1.0 / 3.0);
+        assert_eq!(Exact::ratio(-7, 2).to_f64_lossy(), -3.5);
+        // Beyond 2^53 the division of doubles would round twice.
+        let (n, d) = ((1i128 << 60) + 1, 3i128);
+        let want = crate::scalar::Scalar::to_f64_lossy(&q(n as i64, d as i64));
+        assert_eq!(Exact::Small(n, d).to_f64_lossy(), want);
+        assert_eq!(Exact::Small(1 << 53, 1).to_f64_lossy(), 2f64.powi(53));
+        assert_eq!(Exact::Big(big.clone()).to_f64_lossy(), 2f64.powi(130) / 3.0);
+    }
+}
