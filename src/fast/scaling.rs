@@ -451,6 +451,19 @@ mod tests {
         for (v, w) in x.iter().zip(data.shifted_positions()) {
             assert_eq!(BigRational::new(v.clone(), dx.clone()), w);
         }
+        // Three of them: the lcm is above 2^64 (the 128-bit divisions) and
+        // every scaled value fits `i128`: the word scaling takes it.
+        let three =
+            InitialData::new(q(1, 2), data.positions()[..3].to_vec(), vec![q(0, 1); 3]).unwrap();
+        let s = scale_words(&three).unwrap();
+        is_the_scaling(&s, &three);
+        assert_eq!(
+            s.dx,
+            primes[..3]
+                .iter()
+                .map(|&p| BigInt::from(p))
+                .product::<BigInt>()
+        );
         // Two of them: the lcm fits 64 bits, the word scaling takes it.
         let two = InitialData::new(
             q(1, 2),
