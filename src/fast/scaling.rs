@@ -451,6 +451,22 @@ mod tests {
         for (v, w) in x.iter().zip(data.shifted_positions()) {
             assert_eq!(BigRational::new(v.clone(), dx.clone()), w);
         }
+        // Denominators 2, 4, …, 2^60: the running lcm must stay the lcm
+        // (2^60), not a multiple of it, or the word scaling overflows.
+        let dyadic = InitialData::new(
+            q(1, 2),
+            (1..=60)
+                .map(|i| q(i128::from(i) * 2, 1) + q(1, 1 << i))
+                .collect(),
+            (1..=60).map(|i| q(1, 1 << (60 - i))).collect(),
+        )
+        .unwrap();
+        let s = scale_words(&dyadic).unwrap();
+        is_the_scaling(&s, &dyadic);
+        assert_eq!(
+            (s.dx.clone(), s.du.clone()),
+            (BigInt::from(1u64 << 60), BigInt::from(1u64 << 59))
+        );
         // Three of them: the lcm is above 2^64 (the 128-bit divisions) and
         // every scaled value fits `i128`: the word scaling takes it.
         let three =
