@@ -632,4 +632,48 @@ mod tests {
         assert_eq!(Exact::Small(1 << 53, 1).to_f64_lossy(), 2f64.powi(53));
         assert_eq!(Exact::Big(big.clone()).to_f64_lossy(), 2f64.powi(130) / 3.0);
     }
+
+    /// `Lean::load` reads a `[particles]` scene whose columns are in a CSV
+    /// or an NPY file into the same scaled columns as the values given
+    /// directly; a directory, a missing file and a scene that is not a
+    /// column scene are declined.
+    #[test]
+    fn load_reads_csv_and_npy_scenes() {
+        let dir = std::env::temp_dir().join(format!("sticky-lean-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let scene = |name: &str, data: &str| {
+            let path = dir.join(format!("{name}.toml"));
+            let text = format!("[particles]\nradius = \"1/8\"\ndata = \"{data}\"\n");
+            std::fs::write(&path, text).unwrap();
+            path
+        };
+        std::fs::write(
+            dir.join("a.csv"),
+            format!("{}\n0,1\n1/2,-1/4\n3,0\n", crate::columns::CSV_HEADER),
+        )
+        .unwrap();
+        let rows = [(0.0, 1.0), (0.5, -0.25), (3.0, 0.0)];
+        std::fs::write(dir.join("a.npy"), crate::columns::write_npy(&rows)).unwrap();
+        let want = Lean::new(
+            Some(q(1, 8)),
+            0,
+            vec![(0, 1), (1, 2), (3, 1)],
+            vec![(1, 1), (-1, 4), (0, 1)],
+        )
+        .unwrap();
+        for data in ["a.csv", "a.npy"] {
+            let l = Lean::load(&scene(&data.replace('.', "-"), data))
+                .unwrap_or_else(|| panic!("{data}"));
+            assert_eq!(
+                (&l.x, &l.u, l.dx, l.du, &l.radius, l.two_r),
+                (&want.x, &want.u, want.dx, want.du, &want.radius, want.two_r),
+                "{data}"
+            );
+        }
+        assert!(Lean::load(&dir).is_none());
+        assert!(Lean::load(&dir.join("missing.toml")).is_none());
+        std::fs::write(dir.join("a.txt"), "0,1\n").unwrap();
+        assert!(Lean::load(&scene("txt", "a.txt")).is_none());
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 }
