@@ -578,7 +578,18 @@ mod tests {
             .collect();
         let u: Vec<BigRational> = (0..10).map(|i| q(5 - i, 1)).collect();
         let data = InitialData::new(q(1, 4), x, u).unwrap();
-        assert_eq!(agree(&data).engine(), Engine::BigRational);
+        let it = agree(&data);
+        assert_eq!(it.engine(), Engine::BigRational);
+        // The counts of the generic history: clusters formed, and distinct
+        // instants (two clusters formed at t = 1/2, which meet later).
+        let want = Trajectory::new(data.clone());
+        let mut times: Vec<_> = want.impulses().iter().map(|i| &i.t).collect();
+        times.dedup();
+        assert!(times.len() >= 2 && times.len() < want.impulses().len());
+        assert_eq!(
+            (it.events(), it.instants()),
+            (want.impulses().len(), times.len())
+        );
         // Values far beyond i128.
         let huge = big(&(BigInt::one() << 140u32));
         let data = InitialData::new(
