@@ -676,4 +676,73 @@ mod tests {
         assert!(Lean::load(&scene("txt", "a.txt")).is_none());
         std::fs::remove_dir_all(&dir).unwrap();
     }
+
+    /// The event history of `l` (time, first, size, part sizes).
+    fn lean_events(l: &Lean) -> Vec<(BigRational, usize, usize, Vec<u32>)> {
+        let mut events = Vec::new();
+        l.history()
+            .expect("within the merge's bound")
+            .for_each_event(|t, first, size, parts| {
+                events.push((value(t), first, size, parts.to_vec()));
+                Ok(())
+            })
+            .unwrap();
+        events
+    }
+
+    /// The same, from the generic event merge on `data`.
+    fn generic_events(
+        data: InitialData<BigRational>,
+    ) -> Vec<(BigRational, usize, usize, Vec<u32>)> {
+        Trajectory::new(data)
+            .impulses()
+            .iter()
+            .map(|i| {
+                let parts = i.parts.iter().map(|c| c.size as u32).collect();
+                (i.t.clone(), i.cluster.first, i.cluster.size, parts)
+            })
+            .collect()
+    }
+
+    /// Word columns near the top of `i64`: cluster sums beyond `i64` (the
+    /// merge must take `i128` sums when `N·max|X| ≥ 2^63`, the boundary
+    /// included) and event times whose `gap·D_u` leaves `i128` (reduced on
+    /// `BigInt`): the history is still the generic one.
+    #[test]
+    fn large_word_histories_are_the_generic() {
+        let big = |v: i128| BigRational::from_integer(BigInt::from(v));
+        // N·M = 2 · 2^62 = 2^63: two particles in contact, one cluster.
+        let xs = vec![(1i64 << 62, 1u64), ((1 << 62) + 1, 1)];
+        let l = Lean::new(Some(q(1, 2)), 0, xs, vec![(0, 1), (0, 1)]).unwrap();
+        assert!(lean_events(&l).is_empty());
+        assert_eq!(l.x, [1 << 62, 1 << 62]);
+        // Eight particles 2^60 apart, velocities (100 s₁ + 10 s₂ + s₃)/2^62
+        // (D_u = 2^62; s₁, s₂, s₃ = ±1 alternating by particle, by pair, by
+        // half): pairs meet, then pairs of pairs, then the halves, whose
+        // `gap = k_L k_R (X̄_R − X̄_L) = 16 · 2^62` gives `gap·D_u = 2^128`.
+        // And N·M > 2^63: sums in `i128`.
+        let n = 8;
+        let positions: Vec<_> = (0..n).map(|i| big(i * (1 << 60))).collect();
+        let sign = |b: bool| if b { 1 } else { -1 };
+        let velocities: Vec<_> = (0..n)
+            .map(|i| {
+                let v = 100 * sign(i % 2 == 0) + 10 * sign(i / 2 % 2 == 0) + sign(i < 4);
+                BigRational::new(BigInt::from(v), BigInt::from(1u64 << 62))
+            })
+            .collect();
+        let data = InitialData::new(q(1, 2), positions, velocities).unwrap();
+        let l = lean(&data, true).unwrap();
+        assert_eq!(l.du, 1 << 62);
+        let m =
+            l.x.iter()
+                .chain(&l.u)
+                .map(|v| v.unsigned_abs())
+                .max()
+                .unwrap();
+        assert!(u128::from(m) * n as u128 > 1 << 63);
+        let events = lean_events(&l);
+        assert_eq!(events.len(), 7, "{events:?}");
+        assert_eq!(events[6].1..events[6].2, 0..8);
+        assert_eq!(events, generic_events(data));
+    }
 }
