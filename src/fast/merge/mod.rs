@@ -555,6 +555,33 @@ mod tests {
         assert!(engines.iter().all(|&c| c >= 40), "{engines:?}");
     }
 
+    /// Event times whose unreduced `gap·D_u` leaves `i128` are reduced on
+    /// `BigInt`: eight particles 2^60 apart, velocities
+    /// `(100 s₁ + 10 s₂ + s₃)/2^62` (`s₁`, `s₂`, `s₃ = ±1` alternating by
+    /// particle, by pair, by half): pairs meet, then pairs of pairs, then
+    /// the halves, with `gap = 16 · 2^62` and `D_u = 2^62`.
+    #[test]
+    fn event_times_beyond_machine_products() {
+        let sign = |b: bool| if b { 1 } else { -1 };
+        let x = (0..8).map(|i| big(&(BigInt::from(i) << 60u32))).collect();
+        let u = (0..8)
+            .map(|i| {
+                let v = 100 * sign(i % 2 == 0) + 10 * sign(i / 2 % 2 == 0) + sign(i < 4);
+                BigRational::new(BigInt::from(v), BigInt::one() << 62u32)
+            })
+            .collect();
+        let data = InitialData::new(q(1, 2), x, u).unwrap();
+        let it = IntegerTrajectory::new(&data);
+        assert_eq!(
+            (it.engine(), it.events(), it.instants()),
+            (Engine::Int64, 7, 3)
+        );
+        let got = it.into_trajectory();
+        let want = Trajectory::new(data);
+        assert_eq!(got.impulses(), want.impulses());
+        assert_eq!(got.join_times(), want.join_times());
+    }
+
     #[test]
     fn degenerate_scenes_agree() {
         // N = 1.
