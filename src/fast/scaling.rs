@@ -500,7 +500,8 @@ mod tests {
     /// particles: the same answer.
     #[test]
     fn two_threads_scale_the_same() {
-        let n = PARALLEL_MIN + 3;
+        let n = 32_771;
+        assert!(n >= PARALLEL_MIN);
         let q = |n: i64, d: i64| BigRational::new(n.into(), d.into());
         let positions = (0..n as i64)
             .map(|i| q(2 * i, 1) + q(1, 1 + i % 9))
