@@ -598,10 +598,9 @@ mod tests {
         assert!(Lean::new(Some(q(0, 1)), 0, xs.clone(), us.clone()).is_none());
         // The number budget: charged bits push the total over it.
         assert!(Lean::new(None, MAX_NUMBER_BITS - 10, xs.clone(), us.clone()).is_none());
-        let cost: u64 = [(0, 1), (1, 2), (3, 1), (1, 1), (-1, 3), (0, 1)]
-            .iter()
-            .map(|&(p, d): &(i64, u64)| bits_u(p.unsigned_abs().into()) + bits_u(d.into()) + 64)
-            .sum();
+        // The six numbers cost their bits (numerators 0, 1, 2, 1, 1, 0;
+        // denominators 1, 2, 1, 1, 2, 1) and 64 each: 5 + 8 + 384.
+        let cost = 397;
         assert!(Lean::new(None, MAX_NUMBER_BITS - cost, xs.clone(), us.clone()).is_some());
         assert!(Lean::new(None, MAX_NUMBER_BITS - cost + 1, xs, us).is_none());
     }
@@ -744,5 +743,34 @@ mod tests {
         assert_eq!(events.len(), 7, "{events:?}");
         assert_eq!(events[6].1..events[6].2, 0..8);
         assert_eq!(events, generic_events(data));
+    }
+
+    /// `blocks_at` answers exactly where the kernel's `i128` bound
+    /// `b_Y + b_K < 128` holds (`b_Y = max(bits a + bits max|X|,
+    /// bits b + bits max|U|) + 1`), and then with the kernel's state.
+    #[test]
+    fn blocks_at_answers_within_the_i128_bound() {
+        let big = |v: i128| BigRational::from_integer(BigInt::from(v));
+        // X = (0, 2^61 − 1, 2^62 − 2): 62 bits; U = (1, 0, −1); b_K = 2.
+        let data = InitialData::new(
+            q(1, 2),
+            vec![big(0), big(1 << 61), big(1 << 62)],
+            vec![q(1, 1), q(0, 1), q(-1, 1)],
+        )
+        .unwrap();
+        let l = lean(&data, true).unwrap();
+        let d = IntegerData::new(&data);
+        let at = |e: u32| BigRational::new(BigInt::from(1), BigInt::from(1i128 << e));
+        // t = 1/2^61: a = 2^61, b_Y = 62 + 62 + 1 = 125, 125 + 2 < 128.
+        let b = l.blocks_at(&at(61)).expect("within the bound");
+        let mut xs = Vec::new();
+        b.positions(|v| {
+            xs.push(value(v));
+            Ok(())
+        })
+        .unwrap();
+        assert_eq!(xs, state_at(&d, &at(61)).unwrap().positions);
+        // t = 1/2^62: a = 2^62 (63 bits), 126 + 2 = 128: declined.
+        assert!(l.blocks_at(&at(62)).is_none());
     }
 }

@@ -582,6 +582,33 @@ mod tests {
         assert_eq!(got.join_times(), want.join_times());
     }
 
+    /// Pairs whose meeting times agree to 12 digits or more but differ (the
+    /// float filter cannot order them: the exact window decides), in both
+    /// orders and with a third pair between them: the generic history.
+    #[test]
+    fn near_ties_merge_in_time_order() {
+        let x = |v: i128| BigRational::from_integer(BigInt::from(v));
+        let base = 1i128 << 50;
+        for (da, db, dc) in [(1, 0, 2), (0, 1, 2), (2, 1, 0), (0, 2, 1), (1, 1, 0)] {
+            // Pair k: particle at rest at gap g_k to the right of one moving
+            // at speed 1, far from the others: they meet at t = g_k.
+            let gaps = [base + da, base + db, base + dc];
+            let mut pos = Vec::new();
+            for (k, g) in gaps.iter().enumerate() {
+                let left = 4 * base * k as i128;
+                pos.extend([x(left), x(left + 1 + g)]);
+            }
+            let vel = (0..6).map(|i| q(1 - (i % 2) as i64, 1)).collect();
+            let data = InitialData::new(q(1, 2), pos, vel).unwrap();
+            let it = IntegerTrajectory::new(&data);
+            assert_ne!(it.engine(), Engine::BigRational);
+            let got = it.into_trajectory();
+            let want = Trajectory::new(data);
+            assert_eq!(got.impulses(), want.impulses(), "gaps {gaps:?}");
+            assert_eq!(got.join_times(), want.join_times(), "gaps {gaps:?}");
+        }
+    }
+
     #[test]
     fn degenerate_scenes_agree() {
         // N = 1.
