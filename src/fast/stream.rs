@@ -629,6 +629,12 @@ mod tests {
         let want = crate::scalar::Scalar::to_f64_lossy(&q(n as i64, d as i64));
         assert_eq!(Exact::Small(n, d).to_f64_lossy(), want);
         assert_eq!(Exact::Small(1 << 53, 1).to_f64_lossy(), 2f64.powi(53));
+        // A numerator beyond 2^53 whose rounding before the division moves
+        // the quotient to another double: 579832826712306748/510 =
+        // 1136927111200601.466…, whose nearest double is …601.5; rounding
+        // the numerator first gives …601.25.
+        let (n, d) = (579_832_826_712_306_748i128, 510i128);
+        assert_eq!(Exact::Small(n, d).to_f64_lossy(), 1_136_927_111_200_601.5);
         assert_eq!(Exact::Big(big.clone()).to_f64_lossy(), 2f64.powi(130) / 3.0);
     }
 
