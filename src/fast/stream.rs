@@ -468,6 +468,9 @@ mod tests {
     use crate::rational::ratio as q;
     use crate::trajectory::{probe_times, Trajectory};
 
+    /// A visitor of values, as `LeanBlocks` calls it.
+    type Sink<'a> = dyn FnMut(&Exact) -> io::Result<()> + 'a;
+
     /// The value of `v`, checked to be in lowest terms with `den > 0`.
     fn value(v: &Exact) -> BigRational {
         if let Exact::Small(n, d) = *v {
@@ -513,7 +516,7 @@ mod tests {
                 let want = state_at(&d, &t).unwrap();
                 let b = l.blocks_at(&t).expect("within the i128 bound");
                 assert_eq!((b.t(), b.n()), (&t, n));
-                let collect = |visit: &dyn Fn(&mut dyn FnMut(&Exact) -> io::Result<()>)| {
+                let collect = |visit: &dyn Fn(&mut Sink)| {
                     let mut v = Vec::new();
                     visit(&mut |e| {
                         v.push(value(e));
