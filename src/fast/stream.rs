@@ -638,6 +638,11 @@ mod tests {
         // the numerator first gives …601.25.
         let (n, d) = (579_832_826_712_306_748i128, 510i128);
         assert_eq!(Exact::Small(n, d).to_f64_lossy(), 1_136_927_111_200_601.5);
+        // The same with the denominator beyond 2^53.
+        let (n, d) = (41_260_899_282i128, 996_700_932_334_889_006i128);
+        let want = crate::scalar::Scalar::to_f64_lossy(&BigRational::new(n.into(), d.into()));
+        assert_ne!(want, n as f64 / d as f64);
+        assert_eq!(Exact::Small(n, d).to_f64_lossy(), want);
         assert_eq!(Exact::Big(big.clone()).to_f64_lossy(), 2f64.powi(130) / 3.0);
     }
 
@@ -724,13 +729,14 @@ mod tests {
         let l = Lean::new(Some(q(1, 2)), 0, xs, vec![(0, 1), (0, 1)]).unwrap();
         assert!(lean_events(&l).is_empty());
         assert_eq!(l.x, [1 << 62, 1 << 62]);
-        // Eight particles 2^60 apart, velocities (100 s₁ + 10 s₂ + s₃)/2^62
-        // (D_u = 2^62; s₁, s₂, s₃ = ±1 alternating by particle, by pair, by
-        // half): pairs meet, then pairs of pairs, then the halves, whose
-        // `gap = k_L k_R (X̄_R − X̄_L) = 16 · 2^62` gives `gap·D_u = 2^128`.
+        // Eight particles 2^58 apart, at 1/3 past the integers (D_x = 3),
+        // velocities (100 s₁ + 10 s₂ + s₃)/2^62 (D_u = 2^62; s₁, s₂, s₃ = ±1
+        // alternating by particle, by pair, by half): pairs meet, then pairs
+        // of pairs, then the halves, whose `gap = k_L k_R (X̄_R − X̄_L) =
+        // 16 · 3 · 2^60` gives `gap·D_u > 2^127`.
         // And N·M > 2^63: sums in `i128`.
         let n = 8;
-        let positions: Vec<_> = (0..n).map(|i| big(i * (1 << 60))).collect();
+        let positions: Vec<_> = (0..n).map(|i| big(i * (1 << 58)) + q(1, 3)).collect();
         let sign = |b: bool| if b { 1 } else { -1 };
         let velocities: Vec<_> = (0..n)
             .map(|i| {
@@ -740,7 +746,7 @@ mod tests {
             .collect();
         let data = InitialData::new(q(1, 2), positions, velocities).unwrap();
         let l = lean(&data, true).unwrap();
-        assert_eq!(l.du, 1 << 62);
+        assert_eq!((l.dx, l.du), (3, 1 << 62));
         let m =
             l.x.iter()
                 .chain(&l.u)

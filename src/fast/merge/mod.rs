@@ -556,14 +556,17 @@ mod tests {
     }
 
     /// Event times whose unreduced `gap·D_u` leaves `i128` are reduced on
-    /// `BigInt`: eight particles 2^60 apart, velocities
-    /// `(100 s₁ + 10 s₂ + s₃)/2^62` (`s₁`, `s₂`, `s₃ = ±1` alternating by
-    /// particle, by pair, by half): pairs meet, then pairs of pairs, then
-    /// the halves, with `gap = 16 · 2^62` and `D_u = 2^62`.
+    /// `BigInt`: eight particles 2^58 apart at 1/3 past the integers
+    /// (`D_x = 3`), velocities `(100 s₁ + 10 s₂ + s₃)/2^62` (`s₁`, `s₂`,
+    /// `s₃ = ±1` alternating by particle, by pair, by half): pairs meet, then
+    /// pairs of pairs, then the halves, with `gap = 16 · 3 · 2^60` and
+    /// `D_u = 2^62`.
     #[test]
     fn event_times_beyond_machine_products() {
         let sign = |b: bool| if b { 1 } else { -1 };
-        let x = (0..8).map(|i| big(&(BigInt::from(i) << 60u32))).collect();
+        let x = (0..8)
+            .map(|i| big(&(BigInt::from(i) << 58u32)) + q(1, 3))
+            .collect();
         let u = (0..8)
             .map(|i| {
                 let v = 100 * sign(i % 2 == 0) + 10 * sign(i / 2 % 2 == 0) + sign(i < 4);
