@@ -788,4 +788,46 @@ mod tests {
         // t = 1/2^62: a = 2^62 (63 bits), 126 + 2 = 128: declined.
         assert!(l.blocks_at(&at(62)).is_none());
     }
+
+    /// Denominators whose product leaves `i128` while every scaled value
+    /// fits `i64` (`D_x = p₁ p₂ ≈ 2^100`, `D_u = 2^30`, so `D_y = q D_x D_u`
+    /// is beyond `i128`): the block means and positions are reduced on
+    /// `BigInt`, and are still the kernel's.
+    #[test]
+    fn lean_values_beyond_i128_denominators() {
+        let (p1, p2) = (1_125_899_906_842_597i64, 1_125_899_906_842_589i64);
+        let xs = vec![
+            (0, 1),
+            (p1 + 1, p1 as u64),
+            (2 * p2 + 1, p2 as u64),
+            (3 * p2 + 2, p2 as u64),
+        ];
+        let us = vec![(3, 1 << 30), (-5, 1 << 30), (1, 1 << 29), (-1, 1 << 30)];
+        let l = Lean::new(Some(q(1, 2)), 0, xs.clone(), us.clone()).unwrap();
+        assert!(l.dx > 1 << 99);
+        assert!(l.blocks_at(&q(1, 3)).is_none());
+        let rat = |&(p, d): &(i64, u64)| BigRational::new(p.into(), d.into());
+        let data = InitialData::new(
+            q(1, 2),
+            xs.iter().map(rat).collect(),
+            us.iter().map(rat).collect(),
+        )
+        .unwrap();
+        let d = IntegerData::new(&data);
+        // `b = p D_x` must fit a word: t = 0 (then `D_y = D_x D_u`).
+        let t = q(0, 1);
+        let want = state_at(&d, &t).unwrap();
+        let b = l.blocks_at(&t).expect("within the i128 bound");
+        let mut rows = 0;
+        b.rows(|i, x, u, lambda| {
+            assert_eq!(value(x), want.positions[i], "t = {t}, i = {i}");
+            assert_eq!(value(u), want.velocities[i], "t = {t}, i = {i}");
+            assert_eq!(lambda.map(value), want.multipliers.get(i).cloned());
+            rows += 1;
+            Ok(())
+        })
+        .unwrap();
+        assert_eq!(rows, 4);
+        assert_eq!(b.clusters(), want.clusters);
+    }
 }
