@@ -796,19 +796,21 @@ mod tests {
     #[test]
     fn lean_values_beyond_i128_denominators() {
         let (p1, p2) = (1_125_899_906_842_597i64, 1_125_899_906_842_589i64);
+        // 2r = 1/3; x̃ = (0, 1/p₁, 1/p₂, 1/p₂): particles 2 and 3 in contact
+        // with one velocity (one block of two at t = 0).
         let xs = vec![
             (0, 1),
-            (p1 + 1, p1 as u64),
-            (2 * p2 + 1, p2 as u64),
-            (3 * p2 + 2, p2 as u64),
+            (p1 + 3, 3 * p1 as u64),
+            (2 * p2 + 3, 3 * p2 as u64),
+            (p2 + 1, p2 as u64),
         ];
-        let us = vec![(3, 1 << 30), (-5, 1 << 30), (1, 1 << 29), (-1, 1 << 30)];
-        let l = Lean::new(Some(q(1, 2)), 0, xs.clone(), us.clone()).unwrap();
+        let us = vec![(3, 1 << 30), (-5, 1 << 30), (-1, 1 << 30), (-1, 1 << 30)];
+        let l = Lean::new(Some(q(1, 6)), 0, xs.clone(), us.clone()).unwrap();
         assert!(l.dx > 1 << 99);
         assert!(l.blocks_at(&q(1, 3)).is_none());
         let rat = |&(p, d): &(i64, u64)| BigRational::new(p.into(), d.into());
         let data = InitialData::new(
-            q(1, 2),
+            q(1, 6),
             xs.iter().map(rat).collect(),
             us.iter().map(rat).collect(),
         )
@@ -829,5 +831,6 @@ mod tests {
         .unwrap();
         assert_eq!(rows, 4);
         assert_eq!(b.clusters(), want.clusters);
+        assert_eq!(b.runs.iter().map(|r| r.k).collect::<Vec<_>>(), [1, 1, 2]);
     }
 }
