@@ -10,8 +10,9 @@
 # own unit tests only (`cargo test --lib` filtered to the modules named in
 # TESTS), which run in well under a second: a mutant that survives them is a
 # gap in those tests, whatever the slower suites would have said.
-# The report lands in target/mutants-report/mutants.out/ (outcomes.json,
-# caught.txt, missed.txt, timeout.txt, unviable.txt).
+# The report lands in $OUTPUT/mutants.out/ (default target/mutants-report;
+# outcomes.json, caught.txt, missed.txt, timeout.txt, unviable.txt). Extra
+# cargo-mutants options (e.g. `--iterate`, `-F NAME`) go in MUTANTS_ARGS.
 set -eu
 cd "$(dirname "$0")/.."
 # A target directory of its own: cargo-mutants builds in a copy of the tree,
@@ -21,9 +22,9 @@ FILES="${*:-src/projection.rs src/trajectory.rs src/contact.rs src/cluster.rs}"
 TESTS="${TESTS:-projection:: trajectory:: contact:: cluster::}"
 set --
 for f in $FILES; do set -- "$@" --file "$f"; done
-# shellcheck disable=SC2086 # TESTS is a list of test-name filters
+# shellcheck disable=SC2086 # TESTS and MUTANTS_ARGS are lists of words
 exec cargo mutants "$@" \
     --profile mutants --no-default-features --cargo-arg=--lib \
     --timeout "${TIMEOUT:-60}" --jobs 1 \
-    --output target/mutants-report \
+    --output "${OUTPUT:-target/mutants-report}" ${MUTANTS_ARGS:-} \
     -- -- $TESTS

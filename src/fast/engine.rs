@@ -266,4 +266,111 @@ mod tests {
         assert_eq!(by_name("events").map(|e| e.name()), Some("merge"));
         assert!(by_name("nope").is_none());
     }
+
+    /// The names are the command line's interface (`--engine NAME`): stable,
+    /// in the documented order, the oracle first. Every summary is one line
+    /// that names the numbers the engine runs on.
+    #[test]
+    fn names_and_summaries_are_the_interface() {
+        let names: Vec<&str> = ENGINES.iter().map(|e| e.name()).collect();
+        assert_eq!(
+            names,
+            [
+                "generic-projection",
+                "generic-events",
+                "kernel",
+                "adaptive",
+                "merge"
+            ]
+        );
+        for e in ENGINES {
+            let s = e.summary();
+            assert!(!s.contains('\n'), "{s}");
+            assert!(
+                s.contains("BigRational") || s.contains("integers"),
+                "{}: {s}",
+                e.name()
+            );
+        }
+        let mut summaries: Vec<&str> = ENGINES.iter().map(|e| e.summary()).collect();
+        summaries.sort_unstable();
+        summaries.dedup();
+        assert_eq!(summaries.len(), ENGINES.len());
+    }
+
+    /// Every engine, prepared once, gives the oracle's state at every probe
+    /// time; exactly the history engines give a trajectory, and it is the
+    /// generic event merge's (impulses, join times).
+    #[test]
+    fn prepared_engines_give_the_oracle_state_and_history() {
+        use crate::trajectory::probe_times;
+        let q = |n: i64, d: i64| BigRational::new(n.into(), d.into());
+        // Two collisions at different instants, one cluster that stays
+        // apart, a contact at t = 0 that separates.
+        let data = InitialData::new(
+            q(1, 4),
+            vec![q(0, 1), q(1, 1), q(3, 1), q(9, 2), q(6, 1), q(13, 2)],
+            vec![q(2, 1), q(0, 1), q(-1, 1), q(0, 1), q(1, 1), q(3, 1)],
+        )
+        .unwrap();
+        let oracle = Trajectory::new(data.clone());
+        assert!(oracle.impulses().len() >= 2);
+        let times = probe_times(&oracle, None);
+        for e in ENGINES {
+            let p = e.prepare(&data);
+            for t in &times {
+                assert_eq!(
+                    p.state_at(t).unwrap(),
+                    projection::state_at(&data, t).unwrap(),
+                    "{} at {t}",
+                    e.name()
+                );
+            }
+            let history = matches!(e.name(), "generic-events" | "merge");
+            match p.trajectory() {
+                Some(h) => {
+                    assert!(history, "{}", e.name());
+                    assert_eq!(h.impulses(), oracle.impulses(), "{}", e.name());
+                    assert_eq!(h.join_times(), oracle.join_times(), "{}", e.name());
+                }
+                None => assert!(!history, "{}", e.name()),
+            }
+        }
+    }
+
+    /// The work estimate is `N · ⌈b/64⌉²` with `b` the bits of the largest
+    /// denominator, wherever it is (radius, positions, velocities), and the
+    /// cap refuses exactly the data above it (this test assumes
+    /// `$STICKY_MAX_WORK` unset: the default cap `2^29`).
+    #[test]
+    fn work_estimate_and_its_cap() {
+        use num_bigint::BigInt;
+        let over = |bits: usize| BigRational::new(1.into(), BigInt::from(1) << bits);
+        let int = |n: i64| BigRational::from_integer(n.into());
+        // `n` particles, the denominator `2^bits` in the radius (`at = 0`),
+        // the positions (1) or the velocities (2); elsewhere denominators of
+        // at most 2 bits (r = 1/2).
+        let scene = |n: usize, bits: usize, at: usize| {
+            let d = |k: usize| if k == at { over(bits) } else { int(0) };
+            let radius = if at == 0 { over(bits) } else { over(1) };
+            let positions = (0..n as i64).map(|i| int(2 * i) + d(1)).collect();
+            let velocities = (0..n).map(|_| d(2)).collect();
+            InitialData::new(radius, positions, velocities).unwrap()
+        };
+        assert_eq!(largest_denominator_bits(&scene(3, 0, 2)), 2); // r = 1/2
+        for at in 0..3 {
+            // 2^129 has 130 bits: 3 words.
+            assert_eq!(largest_denominator_bits(&scene(3, 129, at)), 130);
+            assert_eq!(work_estimate(&scene(5, 129, at)), 5 * 9);
+        }
+        assert_eq!(MAX_WORK, 1 << 29);
+        // N · w² = 2 · (2^14)² = 2^29: at the cap, accepted; one more particle
+        // or one more word, refused.
+        let words = |w: usize| 64 * w - 1;
+        assert_eq!(work_estimate(&scene(2, words(1 << 14), 2)), MAX_WORK);
+        assert!(check_work(&scene(2, words(1 << 14), 2)).is_ok());
+        assert!(check_work(&scene(3, words(1 << 14), 2)).is_err());
+        let e = check_work(&scene(2, words((1 << 14) + 1), 2)).unwrap_err();
+        assert!(e.to_string().contains("N = 2"), "{e}");
+    }
 }

@@ -107,4 +107,45 @@ mod tests {
         );
         assert_eq!(narrowed(&[1i128 << 63], |v| i64::try_from(*v).ok()), None);
     }
+
+    /// `pair_bound(N)` is the largest block size or product of two adjacent
+    /// block sizes: `max(N, max_{a + b ≤ N} a b)`, no more, no less.
+    #[test]
+    fn pair_bound_is_the_largest_pair_product() {
+        for n in 1..200usize {
+            let pairs = (1..n).map(|a| a * (n - a)).max().unwrap_or(0);
+            assert_eq!(pair_bound(n), n.max(pairs) as u128, "N = {n}");
+        }
+    }
+
+    /// Checked products agree with the exact product: `Some` exactly when
+    /// it fits `i128`, on both paths (factors within `i64` and beyond).
+    #[test]
+    fn checked_products_are_exact() {
+        let mut rng = SplitMix64::new(29);
+        for _ in 0..5000 {
+            let mut v = || {
+                (rng.next_u64() as i128 | (rng.next_u64() as i128) << 64) >> (rng.next_u64() % 128)
+            };
+            let (a, b) = (v(), v());
+            let exact = BigInt::from(a) * BigInt::from(b);
+            let fits = exact >= BigInt::from(i128::MIN) && exact <= BigInt::from(i128::MAX);
+            assert_eq!(
+                a.mul_small(b).map(BigInt::from),
+                fits.then_some(exact),
+                "{a} · {b}"
+            );
+        }
+        for (a, b) in [
+            (i128::from(i64::MIN), i128::from(i64::MIN)),
+            (i128::from(i64::MAX), -3),
+            (-1, i128::MIN + 1),
+            (2, i128::MAX / 2),
+        ] {
+            assert_eq!(a.mul_small(b), a.checked_mul(b));
+            assert!(a.mul_small(b).is_some());
+        }
+        assert_eq!((-1i128).mul_small(i128::MIN), None);
+        assert_eq!((1i128 << 64).mul_small(1 << 63), None);
+    }
 }

@@ -938,4 +938,56 @@ mod tests {
             }
         }
     }
+
+    /// Two `Blocks` are equal exactly when their clusters and their means
+    /// (`x̃` and `u`) are, whatever the width the sums are held in; no
+    /// particles, no blocks.
+    #[test]
+    fn blocks_equal_by_clusters_and_means() {
+        let run = |k: u64, sy: i128, su: i128| Run { k, sy, su };
+        let big = |v: &[Run<i128>]| {
+            Sums::Big(
+                v.iter()
+                    .map(|r| Run {
+                        k: r.k,
+                        sy: BigInt::from(r.sy),
+                        su: BigInt::from(r.su),
+                    })
+                    .collect(),
+            )
+        };
+        let blocks = |s: Sums| Blocks::new(s, BigInt::from(6), BigInt::from(3));
+        // Means (y, u): (1/6, 1/3), (1/2, 2/3), then the same scaled by 2.
+        let a = [run(1, 1, 1), run(2, 6, 4)];
+        assert_eq!(blocks(Sums::I128(a.to_vec())), blocks(big(&a)));
+        let scaled = [run(1, 1, 1), run(2, 6, 4)].map(|r| run(r.k, 2 * r.sy, 2 * r.su));
+        let scaled = Blocks::new(
+            Sums::I128(scaled.to_vec()),
+            BigInt::from(12),
+            BigInt::from(6),
+        );
+        assert_eq!(blocks(Sums::I128(a.to_vec())), scaled);
+        // Other clusters, the same means: one block of three at (1/6, 1/3)
+        // against blocks of one and two at (1/6, 1/3).
+        let one = blocks(Sums::I128(vec![run(3, 3, 3)]));
+        let two = blocks(Sums::I128(vec![run(1, 1, 1), run(2, 2, 2)]));
+        assert_eq!(one.clusters().len(), 1);
+        assert_ne!(one, two);
+        assert_ne!(two, one);
+        // The same clusters and positions, another velocity.
+        let other_u = [run(1, 1, 1), run(2, 6, 2)];
+        assert_ne!(
+            blocks(Sums::I128(a.to_vec())),
+            blocks(Sums::I128(other_u.to_vec()))
+        );
+        // The same clusters and velocities, another position.
+        let other_y = [run(1, 1, 1), run(2, 8, 4)];
+        assert_ne!(
+            blocks(Sums::I128(a.to_vec())),
+            blocks(Sums::I128(other_y.to_vec()))
+        );
+        assert!(blocks(Sums::I128(Vec::new())).is_empty());
+        assert!(!blocks(Sums::I128(a.to_vec())).is_empty());
+        assert_eq!(blocks(big(&a)).len(), 2);
+    }
 }

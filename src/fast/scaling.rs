@@ -332,7 +332,187 @@ pub(crate) fn scale_i128(data: &InitialData<BigRational>) -> Option<Scaled> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::generate::SplitMix64;
+    use crate::generate::{initial_data, Limits, SplitMix64};
+    use num_traits::{One, Zero};
+
+    /// `s` is the data on their least common denominators: `x[i] / dx` are
+    /// the translated positions, `u[i] / du` the velocities (`df:translat-x`),
+    /// and no common factor is left (`gcd(dx, X_0, …) = 1`, the same for `du`).
+    fn is_the_scaling(s: &Scaled, data: &InitialData<BigRational>) {
+        let shifted = data.shifted_positions();
+        for (col, d, want) in [
+            (&s.x, &s.dx, &shifted[..]),
+            (&s.u, &s.du, data.velocities()),
+        ] {
+            assert_eq!(col.len(), want.len());
+            let mut g = d.clone();
+            for (v, w) in col.iter().zip(want) {
+                assert_eq!(&BigRational::new(BigInt::from(*v), d.clone()), w);
+                g = g.gcd(&BigInt::from(*v));
+            }
+            assert!(g.is_one(), "common factor {g} left in {col:?} / {d}");
+        }
+    }
+
+    /// Both scalings, the machine-word one and the `BigInt` one, give the
+    /// least common denominators on random data: many denominators sharing
+    /// a memo slot, contacts, large and tiny radii, and the same numbers
+    /// given as pairs in any terms (the streaming readers' input).
+    #[test]
+    fn words_and_bigint_scale_to_the_least_common_denominators() {
+        let mut rng = SplitMix64::new(23);
+        let mut words = 0;
+        for k in 0..300 {
+            let max_den = [1, 8, 200, 1 << 20, u32::MAX][k % 5];
+            let data = initial_data(
+                &rng.bytes(80),
+                Limits {
+                    max_n: 1 + k % 25,
+                    max_den,
+                    max_speed: 1000,
+                },
+            );
+            let lcm = |v: &[BigRational]| v.iter().fold(BigInt::one(), |l, q| l.lcm(q.denom()));
+            let mut xs = data.positions().to_vec();
+            xs.push(data.two_r());
+            let Some(s) = scale_words(&data) else {
+                // Refused only when a common denominator is far beyond
+                // machine words (the numerators here are below 2^20).
+                assert!(lcm(&xs).bits() > 100 || lcm(data.velocities()).bits() > 100);
+                continue;
+            };
+            words += 1;
+            is_the_scaling(&s, &data);
+            assert_eq!(
+                scale_i128(&data).map(|t| (t.x, t.u, t.dx, t.du)),
+                Some((s.x.clone(), s.u.clone(), s.dx.clone(), s.du.clone()))
+            );
+            let (bx, bu, bdx, bdu) = scale_big(&data);
+            let big = |v: &[i128]| v.iter().map(|&a| BigInt::from(a)).collect::<Vec<_>>();
+            assert_eq!((big(&s.x), big(&s.u), &s.dx, &s.du), (bx, bu, &bdx, &bdu));
+            // The same numbers as pairs in non-lowest terms, `(p m, d m)`.
+            let m = 1 + i128::from(rng.next_u64() % 7);
+            let pair = |q: &BigRational| {
+                (
+                    q.numer().to_i128().unwrap() * m,
+                    q.denom().to_u128().unwrap() * m as u128,
+                )
+            };
+            let xs: Vec<_> = data.positions().iter().map(pair).collect();
+            let us: Vec<_> = data.velocities().iter().map(pair).collect();
+            let p = scale_pairs(pair(&data.two_r()), &xs, &us).unwrap();
+            assert_eq!(
+                (p.x, p.u, p.dx, p.du),
+                (s.x.clone(), s.u.clone(), s.dx.clone(), s.du.clone())
+            );
+            // And as 64-bit pairs, when they fit.
+            let narrow = |v: &[(i128, u128)]| {
+                v.iter()
+                    .map(|&(p, d)| Some((i64::try_from(p).ok()?, u64::try_from(d).ok()?)))
+                    .collect::<Option<Vec<_>>>()
+            };
+            if let (Some(xs), Some(us)) = (narrow(&xs), narrow(&us)) {
+                let p = scale_pairs(pair(&data.two_r()), &xs, &us).unwrap();
+                assert_eq!((p.x, p.u), (s.x, s.u));
+            }
+        }
+        assert!(words > 250, "{words}");
+    }
+
+    /// Data whose common denominator overflows machine words: the word
+    /// scaling refuses them, the `BigInt` one is still the scaling, and the
+    /// `i128` scaling is given exactly when its values fit.
+    #[test]
+    fn overflow_is_refused_not_wrapped() {
+        let q = |n: i128, d: u64| BigRational::new(BigInt::from(n), BigInt::from(d));
+        // Five distinct primes near 2^31: their lcm is above 2^150.
+        let primes = [
+            2147483647u64,
+            2147483629,
+            2147483587,
+            2147483579,
+            2147483563,
+        ];
+        let positions: Vec<_> = (0..5).map(|i| q(3 * i as i128 + 1, primes[i])).collect();
+        let positions: Vec<_> = positions
+            .iter()
+            .enumerate()
+            .map(|(i, p)| p + q(4 * i as i128, 1))
+            .collect();
+        let data = InitialData::new(q(1, 2), positions, vec![q(0, 1); 5]).unwrap();
+        assert!(scale_words(&data).is_none());
+        assert!(scale_i128(&data).is_none());
+        let (x, u, dx, du) = scale_big(&data);
+        assert_eq!(
+            dx,
+            primes.iter().map(|&p| BigInt::from(p)).product::<BigInt>()
+        );
+        assert!(u.iter().all(Zero::is_zero) && du.is_one());
+        for (v, w) in x.iter().zip(data.shifted_positions()) {
+            assert_eq!(BigRational::new(v.clone(), dx.clone()), w);
+        }
+        // Denominators 2, 4, …, 2^60: the running lcm must stay the lcm
+        // (2^60), not a multiple of it, or the word scaling overflows.
+        let dyadic = InitialData::new(
+            q(1, 2),
+            (1..=60)
+                .map(|i| q(i128::from(i) * 2, 1) + q(1, 1 << i))
+                .collect(),
+            (1..=60).map(|i| q(1, 1 << (60 - i))).collect(),
+        )
+        .unwrap();
+        let s = scale_words(&dyadic).unwrap();
+        is_the_scaling(&s, &dyadic);
+        assert_eq!(
+            (s.dx.clone(), s.du.clone()),
+            (BigInt::from(1u64 << 60), BigInt::from(1u64 << 59))
+        );
+        // Three of them: the lcm is above 2^64 (the 128-bit divisions) and
+        // every scaled value fits `i128`: the word scaling takes it.
+        let three =
+            InitialData::new(q(1, 2), data.positions()[..3].to_vec(), vec![q(0, 1); 3]).unwrap();
+        let s = scale_words(&three).unwrap();
+        is_the_scaling(&s, &three);
+        assert_eq!(
+            s.dx,
+            primes[..3]
+                .iter()
+                .map(|&p| BigInt::from(p))
+                .product::<BigInt>()
+        );
+        // Two of them: the lcm fits 64 bits, the word scaling takes it.
+        let two = InitialData::new(
+            q(1, 2),
+            data.positions()[..2].to_vec(),
+            vec![q(1, 3), q(-1, 7)],
+        )
+        .unwrap();
+        let s = scale_words(&two).unwrap();
+        is_the_scaling(&s, &two);
+        assert_eq!(s.du, BigInt::from(21));
+        // Numerators beyond i128 on a small denominator: only `BigInt`.
+        let huge = BigRational::from_integer(BigInt::from(1) << 130);
+        let far = InitialData::new(q(1, 2), vec![q(0, 1), huge], vec![q(0, 1); 2]).unwrap();
+        assert!(scale_words(&far).is_none() && scale_i128(&far).is_none());
+    }
+
+    /// The columns are scaled on two threads above [`PARALLEL_MIN`]
+    /// particles: the same answer.
+    #[test]
+    fn two_threads_scale_the_same() {
+        let n = 32_771;
+        assert!(n >= PARALLEL_MIN);
+        let q = |n: i64, d: i64| BigRational::new(n.into(), d.into());
+        let positions = (0..n as i64)
+            .map(|i| q(2 * i, 1) + q(1, 1 + i % 9))
+            .collect();
+        let velocities = (0..n as i64).map(|i| q(i % 13 - 6, 1 + i % 11)).collect();
+        let data = InitialData::new(q(1, 2), positions, velocities).unwrap();
+        let s = scale_words(&data).unwrap();
+        assert_eq!(s.dx, BigInt::from(2520));
+        assert_eq!(s.du, BigInt::from(27720));
+        is_the_scaling(&s, &data);
+    }
 
     #[test]
     fn exact_division_and_divisibility() {

@@ -271,6 +271,7 @@ mod tests {
             let (wc, wd) = (of(&c), of(&d));
             assert_eq!(wc.wrapping_add(wd).to_bigint(), &c + &d);
             assert_eq!(wc.cmp(&wd), c.cmp(&d));
+            assert_eq!(wc.partial_cmp(&wd), Some(c.cmp(&d)));
             assert_eq!(wc.wrapping_neg().to_bigint(), -&c);
             assert_eq!(wc.resize::<16>().to_bigint(), c);
             if c.bits() < 255 {

@@ -495,6 +495,123 @@ mod tests {
         }
     }
 
+    /// The integer history is the generic one — impulses (times, parts,
+    /// velocities), join times, the rebuilt initial data, the counts of
+    /// events and instants — on small random scenes with many equal times,
+    /// chains of simultaneous meetings and contacts, scaled so that each
+    /// word size runs: `i64` data with `i64` and `i128` sums, `i128` data.
+    #[test]
+    fn small_random_histories_equal_the_generic() {
+        let mut rng = SplitMix64::new(99);
+        let mut engines = [0; 3];
+        for k in 0..240 {
+            let data = initial_data(
+                &rng.bytes(200),
+                Limits {
+                    max_n: 2 + k % 30,
+                    max_den: 1 + (k % 4) as u32,
+                    max_speed: 1 + (k % 5) as u32,
+                },
+            );
+            // Shift every position by 2^s: X_i beyond i64 (s = 70) and
+            // N·M beyond 2^63 (s = 59, most scenes) without changing the history.
+            let shift = [None, Some(59), Some(70)][k % 3];
+            let data = match shift {
+                None => data,
+                Some(s) => {
+                    let off = big(&(BigInt::one() << s));
+                    let x = data.positions().iter().map(|p| p + &off).collect();
+                    InitialData::new(data.radius().clone(), x, data.velocities().to_vec()).unwrap()
+                }
+            };
+            let it = IntegerTrajectory::new(&data);
+            let s = scale_i128(&data).unwrap();
+            let m =
+                s.x.iter()
+                    .chain(&s.u)
+                    .map(|v| v.unsigned_abs())
+                    .max()
+                    .unwrap();
+            // 0: i64 data and sums; 1: i64 data, i128 sums; 2: i128 data.
+            let class = if m >= 1 << 63 {
+                2
+            } else {
+                usize::from(m * data.n() as u128 >= 1 << 63)
+            };
+            engines[class] += 1;
+            let want_engine = [Engine::Int64, Engine::Int64, Engine::Int128][class];
+            assert_eq!(it.engine(), want_engine, "scene {k}");
+            let (events, instants) = (it.events(), it.instants());
+            let got = it.into_trajectory();
+            let want = Trajectory::new(data.clone());
+            assert_eq!(got.data(), want.data(), "scene {k}");
+            assert_eq!(got.impulses(), want.impulses(), "scene {k}");
+            assert_eq!(got.join_times(), want.join_times(), "scene {k}");
+            assert_eq!(events, want.impulses().len(), "scene {k}");
+            let mut times: Vec<_> = want.impulses().iter().map(|i| &i.t).collect();
+            times.dedup();
+            assert_eq!(instants, times.len(), "scene {k}");
+        }
+        assert!(engines.iter().all(|&c| c >= 40), "{engines:?}");
+    }
+
+    /// Event times whose unreduced `gap·D_u` leaves `i128` are reduced on
+    /// `BigInt`: eight particles 2^58 apart at 1/3 past the integers
+    /// (`D_x = 3`), velocities `(100 s₁ + 10 s₂ + s₃)/2^62` (`s₁`, `s₂`,
+    /// `s₃ = ±1` alternating by particle, by pair, by half): pairs meet, then
+    /// pairs of pairs, then the halves, with `gap = 16 · 3 · 2^60` and
+    /// `D_u = 2^62`.
+    #[test]
+    fn event_times_beyond_machine_products() {
+        let sign = |b: bool| if b { 1 } else { -1 };
+        let x = (0..8)
+            .map(|i| big(&(BigInt::from(i) << 58u32)) + q(1, 3))
+            .collect();
+        let u = (0..8)
+            .map(|i| {
+                let v = 100 * sign(i % 2 == 0) + 10 * sign(i / 2 % 2 == 0) + sign(i < 4);
+                BigRational::new(BigInt::from(v), BigInt::one() << 62u32)
+            })
+            .collect();
+        let data = InitialData::new(q(1, 2), x, u).unwrap();
+        let it = IntegerTrajectory::new(&data);
+        assert_eq!(
+            (it.engine(), it.events(), it.instants()),
+            (Engine::Int64, 7, 3)
+        );
+        let got = it.into_trajectory();
+        let want = Trajectory::new(data);
+        assert_eq!(got.impulses(), want.impulses());
+        assert_eq!(got.join_times(), want.join_times());
+    }
+
+    /// Pairs whose meeting times agree to 12 digits or more but differ (the
+    /// float filter cannot order them: the exact window decides), in both
+    /// orders and with a third pair between them: the generic history.
+    #[test]
+    fn near_ties_merge_in_time_order() {
+        let x = |v: i128| BigRational::from_integer(BigInt::from(v));
+        let base = 1i128 << 50;
+        for (da, db, dc) in [(1, 0, 2), (0, 1, 2), (2, 1, 0), (0, 2, 1), (1, 1, 0)] {
+            // Pair k: particle at rest at gap g_k to the right of one moving
+            // at speed 1, far from the others: they meet at t = g_k.
+            let gaps = [base + da, base + db, base + dc];
+            let mut pos = Vec::new();
+            for (k, g) in gaps.iter().enumerate() {
+                let left = 4 * base * k as i128;
+                pos.extend([x(left), x(left + 1 + g)]);
+            }
+            let vel = (0..6).map(|i| q(1 - (i % 2) as i64, 1)).collect();
+            let data = InitialData::new(q(1, 2), pos, vel).unwrap();
+            let it = IntegerTrajectory::new(&data);
+            assert_ne!(it.engine(), Engine::BigRational);
+            let got = it.into_trajectory();
+            let want = Trajectory::new(data);
+            assert_eq!(got.impulses(), want.impulses(), "gaps {gaps:?}");
+            assert_eq!(got.join_times(), want.join_times(), "gaps {gaps:?}");
+        }
+    }
+
     #[test]
     fn degenerate_scenes_agree() {
         // N = 1.
@@ -518,7 +635,18 @@ mod tests {
             .collect();
         let u: Vec<BigRational> = (0..10).map(|i| q(5 - i, 1)).collect();
         let data = InitialData::new(q(1, 4), x, u).unwrap();
-        assert_eq!(agree(&data).engine(), Engine::BigRational);
+        let it = agree(&data);
+        assert_eq!(it.engine(), Engine::BigRational);
+        // The counts of the generic history: clusters formed, and distinct
+        // instants (two clusters formed at t = 1/2, which meet later).
+        let want = Trajectory::new(data.clone());
+        let mut times: Vec<_> = want.impulses().iter().map(|i| &i.t).collect();
+        times.dedup();
+        assert!(times.len() >= 2 && times.len() < want.impulses().len());
+        assert_eq!(
+            (it.events(), it.instants()),
+            (want.impulses().len(), times.len())
+        );
         // Values far beyond i128.
         let huge = big(&(BigInt::one() << 140u32));
         let data = InitialData::new(
