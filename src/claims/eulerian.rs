@@ -77,33 +77,23 @@ fn binomial<S: Scalar>(m: usize, k: usize) -> S {
 /// (binomial expansion), so one pass over the particles serves every test
 /// function of the same centre.
 fn power_sums<S: Scalar>(s: &State<S>, center: &S, d: usize) -> Vec<Vec<S>> {
+    let n = s.positions.len();
+    // yp[j][i] = y_i^j, up[k][i] = u_i^k (j, k ≥ 1; the 0th powers are 1).
+    let y: Vec<S> = s.positions.iter().map(|x| x.clone() - center).collect();
+    let powers = |v: &[S]| -> Vec<Vec<S>> {
+        (0..=d as u32)
+            .map(|j| match j {
+                0 => vec![S::one(); n],
+                1 => v.to_vec(),
+                _ => v.iter().map(|a| a.powi(j)).collect(),
+            })
+            .collect()
+    };
+    let (yp, up) = (powers(&y), powers(&s.velocities));
     let mut m = vec![vec![S::zero(); d + 1]; d + 1];
-    m[0][0] = S::from_usize(s.positions.len());
-    let mut yp = vec![S::one(); d + 1];
-    let mut up = vec![S::one(); d + 1];
-    for (x, u) in s.positions.iter().zip(&s.velocities) {
-        for j in 1..=d {
-            yp[j] = if j == 1 {
-                x.clone() - center
-            } else {
-                yp[j - 1].clone() * &yp[1]
-            };
-            up[j] = if j == 1 {
-                u.clone()
-            } else {
-                up[j - 1].clone() * &up[1]
-            };
-        }
-        for j in 0..=d {
-            for k in 0..=(d - j) {
-                let term = match (j, k) {
-                    (0, 0) => continue,
-                    (_, 0) => yp[j].clone(),
-                    (0, _) => up[k].clone(),
-                    _ => yp[j].clone() * &up[k],
-                };
-                m[j][k] = m[j][k].clone() + &term;
-            }
+    for j in 0..=d {
+        for k in 0..=(d - j) {
+            m[j][k] = S::sum_of_products(&yp[j], &up[k]);
         }
     }
     m

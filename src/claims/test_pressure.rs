@@ -93,12 +93,13 @@ impl<S: Scalar> Integrals<S> {
         let n = s.x.len() - 1;
         let nn = S::from_usize(n);
         let spread = s.x[n].clone() - &s.x[0];
-        let (mut uw, mut utu, mut ux) = (S::zero(), S::zero(), S::zero());
-        for i in 1..=n {
-            uw = uw + &(s.u[i].clone() * &S::from_usize(2 * i - 1));
-            utu = utu + &(s.u[i].clone() * &(s.u[i - 1].clone() + &s.u[i]));
-            ux = ux + &(s.u[i].clone() * &(s.x[i - 1].clone() + &s.x[i]));
-        }
+        // Σ_i u_i (2i − 1), Σ_i u_i (u_{i−1} + u_i), Σ_i u_i (x_{i−1} + x_i).
+        let odd: Vec<S> = (1..=n).map(|i| S::from_usize(2 * i - 1)).collect();
+        let (u, x) = (&s.u[1..], &s.x[1..]);
+        let dot = S::sum_of_products;
+        let uw = dot(u, &odd);
+        let utu = dot(u, &s.u[..n]) + &dot(u, u);
+        let ux = dot(u, &s.x[..n]) + &dot(u, x);
         let two_n = S::from_i64(2) * &nn;
         let u_w = uw / &(two_n.clone() * &nn);
         let b = spread * &u_w - &(ux / &two_n);
@@ -157,6 +158,9 @@ fn sides<S: Scalar>(
             let spread = s.x[n].clone() - &s.x[0];
             let mut sum = S::zero();
             for i in 1..=n {
+                if jumps[i - 1].is_zero() && jumps[i].is_zero() {
+                    continue; // a zero term
+                }
                 let weight = spread.clone() - &(nn.clone() * &(s.x[i].clone() - &s.x[i - 1]));
                 sum = sum
                     + &(weight * &((jumps[i - 1].clone() + &jumps[i]) / (S::from_i64(2) * &nn)));
