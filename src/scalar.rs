@@ -17,8 +17,8 @@ use std::fmt;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
 use num_bigint::BigInt;
-use num_rational::{BigRational, Ratio, Rational64};
 use num_integer::Integer;
+use num_rational::{BigRational, Ratio, Rational64};
 use num_traits::{One, ToPrimitive, Zero};
 
 /// An ordered field (exact or not) the algorithms are generic over.
@@ -272,7 +272,9 @@ mod tests {
     fn plain_sum(a: &[BigRational], b: &[BigRational]) -> BigRational {
         a.iter()
             .zip(b)
-            .fold(<BigRational as Scalar>::zero(), |acc, (x, y)| acc + &(x.clone() * y))
+            .fold(<BigRational as Scalar>::zero(), |acc, (x, y)| {
+                acc + &(x.clone() * y)
+            })
     }
 
     #[test]
@@ -282,8 +284,14 @@ mod tests {
         // lengths (pairs up to the shorter).
         let a: Vec<BigRational> = (1..60).map(|i| q(i * 7 - 200, (i % 9) + 1)).collect();
         let b: Vec<BigRational> = (1..58).map(|i| q(3 - i, 2 * (i % 5) + 1)).collect();
-        assert_eq!(<BigRational as Scalar>::sum_of_products(&a, &b), plain_sum(&a, &b));
-        assert_eq!(<BigRational as Scalar>::sum_of_products(&a, &[]), <BigRational as Scalar>::zero());
+        assert_eq!(
+            <BigRational as Scalar>::sum_of_products(&a, &b),
+            plain_sum(&a, &b)
+        );
+        assert_eq!(
+            <BigRational as Scalar>::sum_of_products(&a, &[]),
+            <BigRational as Scalar>::zero()
+        );
         // 80 distinct 64-bit prime-ish denominators: the partial sum passes
         // SUM_DENOMINATOR_BITS and is reduced and restarted.
         let big: Vec<BigRational> = (0..80u64)
@@ -293,8 +301,14 @@ mod tests {
             })
             .collect();
         let ones = vec![<BigRational as Scalar>::one(); big.len()];
-        assert_eq!(<BigRational as Scalar>::sum_of_products(&big, &ones), plain_sum(&big, &ones));
-        assert_eq!(<BigRational as Scalar>::sum_of_products(&big, &big), plain_sum(&big, &big));
+        assert_eq!(
+            <BigRational as Scalar>::sum_of_products(&big, &ones),
+            plain_sum(&big, &ones)
+        );
+        assert_eq!(
+            <BigRational as Scalar>::sum_of_products(&big, &big),
+            plain_sum(&big, &big)
+        );
     }
 
     #[test]
@@ -303,7 +317,10 @@ mod tests {
         for k in 0..5 {
             let plain = (0..k).fold(<BigRational as Scalar>::one(), |p, _| p * &x);
             assert_eq!(x.powi(k), plain);
-            assert_eq!(Rational64::new(-3, 2).powi(k).to_big_rational(), Some(plain));
+            assert_eq!(
+                Rational64::new(-3, 2).powi(k).to_big_rational(),
+                Some(plain)
+            );
         }
     }
 

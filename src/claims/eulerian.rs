@@ -147,10 +147,7 @@ struct Sums<'a, S> {
 
 impl<S: Scalar> Sums<'_, S> {
     fn at(&mut self, t: &S) -> Result<&[Vec<S>], Violation> {
-        let i = match self
-            .by_time
-            .binary_search_by(|(s, _)| s.total_cmp(t))
-        {
+        let i = match self.by_time.binary_search_by(|(s, _)| s.total_cmp(t)) {
             Ok(i) => i,
             Err(i) => {
                 let s = self

@@ -186,7 +186,13 @@ fn contraction<S: Scalar>(case: &Case<S>, name: &str, other: &InitialData<S>) ->
     times.dedup();
     let data = case.data();
     // The previous time's states, `x¹ − x²` and `‖x¹ − x²‖²` there.
-    let mut prev: Option<(State<S>, State<S>, Vec<S>, S)> = None;
+    struct Prev<S> {
+        s1: State<S>,
+        s2: State<S>,
+        d: Vec<S>,
+        norm: S,
+    }
+    let mut prev: Option<Prev<S>> = None;
     for t in &times {
         let s1 = state(case, data, t)?;
         let s2 = state(case, other, t)?;
@@ -201,7 +207,13 @@ fn contraction<S: Scalar>(case: &Case<S>, name: &str, other: &InitialData<S>) ->
             ));
         }
         let nb = dot(&d, &d);
-        if let Some((a1, a2, da, na)) = &prev {
+        if let Some(Prev {
+            s1: a1,
+            s2: a2,
+            d: da,
+            norm: na,
+        }) = &prev
+        {
             let v = sub(&a1.velocities, &a2.velocities);
             let h = t.clone() - &a1.t;
             // ⟨da + h v, v⟩: the slope at the right end.
@@ -217,7 +229,12 @@ fn contraction<S: Scalar>(case: &Case<S>, name: &str, other: &InitialData<S>) ->
                 ));
             }
         }
-        prev = Some((s1, s2, d, nb));
+        prev = Some(Prev {
+            s1,
+            s2,
+            d,
+            norm: nb,
+        });
     }
     Ok(())
 }
