@@ -28,42 +28,13 @@ use num_rational::BigRational;
 
 use super::{Case, Violation};
 use crate::limit::eulerian::{oleinik_margin, TestFunction};
+use crate::limit::poly::{add_into, integral, mul};
 use crate::scalar::Scalar;
 use crate::state::State;
 
 type R = Result<(), Violation>;
 
 const MASS: &str = "prop:eulerian-formulation#mass";
-
-fn mul<S: Scalar>(a: &[S], b: &[S]) -> Vec<S> {
-    let mut out = vec![S::zero(); a.len() + b.len() - 1];
-    for (i, x) in a.iter().enumerate() {
-        for (j, y) in b.iter().enumerate() {
-            out[i + j] = out[i + j].clone() + &(x.clone() * y);
-        }
-    }
-    out
-}
-
-fn add_into<S: Scalar>(acc: &mut Vec<S>, p: &[S]) {
-    if acc.len() < p.len() {
-        acc.resize(p.len(), S::zero());
-    }
-    for (a, x) in acc.iter_mut().zip(p) {
-        *a = a.clone() + x;
-    }
-}
-
-/// `∫_0^h p(τ) dτ`.
-fn integral<S: Scalar>(p: &[S], h: &S) -> S {
-    let mut hk = h.clone();
-    let mut total = S::zero();
-    for (k, c) in p.iter().enumerate() {
-        total = total + &(c.clone() * &hk / &S::from_usize(k + 1));
-        hk = hk * h;
-    }
-    total
-}
 
 /// `C(m, k)`.
 fn binomial<S: Scalar>(m: usize, k: usize) -> S {
