@@ -17,6 +17,7 @@ use std::fmt;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
 use num_bigint::BigInt;
+use num_integer::Integer;
 use num_rational::{BigRational, Ratio, Rational64};
 use num_traits::{One, ToPrimitive, Zero};
 
@@ -68,6 +69,23 @@ pub trait Scalar:
     /// shortest round-trip decimal for `f64`.
     fn render(&self) -> String;
 
+    /// `Σ_i a_i b_i` (pairs up to the shorter slice): the value of the plain
+    /// loop `0 + a_1 b_1 + a_2 b_2 + …`, which is this default. An exact
+    /// type may compute the same value with fewer reductions.
+    fn sum_of_products(a: &[Self], b: &[Self]) -> Self {
+        a.iter()
+            .zip(b)
+            .fold(Self::zero(), |acc, (x, y)| acc + &(x.clone() * y))
+    }
+
+    /// `self^k` (`1` for `k = 0`): the value of `k − 1` products, which is
+    /// this default. An exact type may skip the reductions.
+    fn powi(&self, k: u32) -> Self {
+        (1..k).fold(if k == 0 { Self::one() } else { self.clone() }, |p, _| {
+            p * self
+        })
+    }
+
     /// The smaller of two values (the left one on ties).
     fn min_of(a: Self, b: Self) -> Self {
         if b.total_cmp(&a) == Ordering::Less {
@@ -110,7 +128,47 @@ impl Scalar for BigRational {
     fn render(&self) -> String {
         self.to_string()
     }
+    /// Over a running common denominator (the lcm of the products'
+    /// denominators, no gcd while a product's denominator divides it) and one
+    /// reduction at the end: `BigRational` addition reduces at every term, and
+    /// those gcds were most of the cost of the claims' inner products. The
+    /// partial sum is reduced and restarted when its denominator passes
+    /// [`SUM_DENOMINATOR_BITS`], so coprime denominators cannot make it grow
+    /// without bound. The value is exact, so it is the plain loop's.
+    fn sum_of_products(a: &[Self], b: &[Self]) -> Self {
+        let mut total: BigRational = Zero::zero();
+        let (mut num, mut den) = (BigInt::zero(), BigInt::one());
+        for (x, y) in a.iter().zip(b) {
+            if Zero::is_zero(x) || Zero::is_zero(y) {
+                continue;
+            }
+            let n = x.numer() * y.numer();
+            let d = x.denom() * y.denom();
+            let (q, r) = den.div_rem(&d);
+            if Zero::is_zero(&r) {
+                num += n * q;
+                continue;
+            }
+            let g = den.gcd(&d);
+            let (dg, deng) = (&d / &g, &den / &g);
+            num = num * &dg + n * deng;
+            den *= dg;
+            if den.bits() > SUM_DENOMINATOR_BITS {
+                total += BigRational::new(std::mem::take(&mut num), den);
+                den = BigInt::one();
+            }
+        }
+        total + BigRational::new(num, den)
+    }
+    /// `p^k / q^k` is already in lowest terms when `p/q` is (no gcd).
+    fn powi(&self, k: u32) -> Self {
+        BigRational::new_raw(self.numer().pow(k), self.denom().pow(k))
+    }
 }
+
+/// The largest denominator, in bits, of the unreduced partial sums of
+/// `BigRational`'s [`Scalar::sum_of_products`].
+const SUM_DENOMINATOR_BITS: u64 = 4096;
 
 impl Scalar for Rational64 {
     const EXACT: bool = true;
@@ -208,6 +266,62 @@ mod tests {
     #[test]
     fn field_laws_bigrational() {
         field_laws::<BigRational>();
+    }
+
+    /// The plain loop, the oracle of [`Scalar::sum_of_products`].
+    fn plain_sum(a: &[BigRational], b: &[BigRational]) -> BigRational {
+        a.iter()
+            .zip(b)
+            .fold(<BigRational as Scalar>::zero(), |acc, (x, y)| {
+                acc + &(x.clone() * y)
+            })
+    }
+
+    #[test]
+    fn bigrational_sum_of_products_is_the_plain_loop() {
+        let q = |n: i64, d: i64| BigRational::new(BigInt::from(n), BigInt::from(d));
+        // Shared, nested and coprime denominators, zeros, signs, unequal
+        // lengths (pairs up to the shorter).
+        let a: Vec<BigRational> = (1..60).map(|i| q(i * 7 - 200, (i % 9) + 1)).collect();
+        let b: Vec<BigRational> = (1..58).map(|i| q(3 - i, 2 * (i % 5) + 1)).collect();
+        assert_eq!(
+            <BigRational as Scalar>::sum_of_products(&a, &b),
+            plain_sum(&a, &b)
+        );
+        assert_eq!(
+            <BigRational as Scalar>::sum_of_products(&a, &[]),
+            <BigRational as Scalar>::zero()
+        );
+        // 80 distinct 64-bit prime-ish denominators: the partial sum passes
+        // SUM_DENOMINATOR_BITS and is reduced and restarted.
+        let big: Vec<BigRational> = (0..80u64)
+            .map(|i| {
+                let d = BigInt::from((1u64 << 63) - 25 - 2 * i);
+                BigRational::new(BigInt::from(i as i64 - 40), d)
+            })
+            .collect();
+        let ones = vec![<BigRational as Scalar>::one(); big.len()];
+        assert_eq!(
+            <BigRational as Scalar>::sum_of_products(&big, &ones),
+            plain_sum(&big, &ones)
+        );
+        assert_eq!(
+            <BigRational as Scalar>::sum_of_products(&big, &big),
+            plain_sum(&big, &big)
+        );
+    }
+
+    #[test]
+    fn powi_is_repeated_product() {
+        let x = BigRational::new(BigInt::from(-6), BigInt::from(4));
+        for k in 0..5 {
+            let plain = (0..k).fold(<BigRational as Scalar>::one(), |p, _| p * &x);
+            assert_eq!(x.powi(k), plain);
+            assert_eq!(
+                Rational64::new(-3, 2).powi(k).to_big_rational(),
+                Some(plain)
+            );
+        }
     }
 
     #[test]

@@ -28,50 +28,61 @@ use num_rational::BigRational;
 
 use super::{Case, Violation};
 use crate::limit::eulerian::{oleinik_margin, TestFunction};
+use crate::limit::poly::{add_into, integral, mul};
 use crate::scalar::Scalar;
+use crate::state::State;
 
 type R = Result<(), Violation>;
 
 const MASS: &str = "prop:eulerian-formulation#mass";
 
-fn mul<S: Scalar>(a: &[S], b: &[S]) -> Vec<S> {
-    let mut out = vec![S::zero(); a.len() + b.len() - 1];
-    for (i, x) in a.iter().enumerate() {
-        for (j, y) in b.iter().enumerate() {
-            out[i + j] = out[i + j].clone() + &(x.clone() * y);
+/// `C(m, k)`.
+fn binomial<S: Scalar>(m: usize, k: usize) -> S {
+    (0..k).fold(S::one(), |c, j| {
+        c * &S::from_usize(m - j) / &S::from_usize(j + 1)
+    })
+}
+
+/// The power sums `M[j][k] = Σ_i y_i^j u_i^k` (`j + k ≤ d`, `y_i = x_i − c`)
+/// of a state: every `Σ_i ((y_i + τ u_i)/L)^m` is a combination of them
+/// (binomial expansion), so one pass over the particles serves every test
+/// function of the same centre.
+fn power_sums<S: Scalar>(s: &State<S>, center: &S, d: usize) -> Vec<Vec<S>> {
+    let n = s.positions.len();
+    // yp[j][i] = y_i^j, up[k][i] = u_i^k (j, k ≥ 1; the 0th powers are 1).
+    let y: Vec<S> = s.positions.iter().map(|x| x.clone() - center).collect();
+    let powers = |v: &[S]| -> Vec<Vec<S>> {
+        (0..=d as u32)
+            .map(|j| match j {
+                0 => vec![S::one(); n],
+                1 => v.to_vec(),
+                _ => v.iter().map(|a| a.powi(j)).collect(),
+            })
+            .collect()
+    };
+    let (yp, up) = (powers(&y), powers(&s.velocities));
+    let mut m = vec![vec![S::zero(); d + 1]; d + 1];
+    for j in 0..=d {
+        for k in 0..=(d - j) {
+            m[j][k] = S::sum_of_products(&yp[j], &up[k]);
         }
     }
-    out
+    m
 }
 
-fn add_into<S: Scalar>(acc: &mut Vec<S>, p: &[S]) {
-    if acc.len() < p.len() {
-        acc.resize(p.len(), S::zero());
-    }
-    for (a, x) in acc.iter_mut().zip(p) {
-        *a = a.clone() + x;
-    }
-}
-
-/// `∫_0^h p(τ) dτ`.
-fn integral<S: Scalar>(p: &[S], h: &S) -> S {
-    let mut hk = h.clone();
-    let mut total = S::zero();
-    for (k, c) in p.iter().enumerate() {
-        total = total + &(c.clone() * &hk / &S::from_usize(k + 1));
-        hk = hk * h;
-    }
-    total
-}
-
-/// `((y₀ + τ v)/L)^m` as a polynomial in `τ`.
-fn power<S: Scalar>(y0: &S, v: &S, scale: &S, m: u32) -> Vec<S> {
-    let lin = [y0.clone() / scale, v.clone() / scale];
-    let mut p = vec![S::one()];
-    for _ in 0..m {
-        p = mul(&p, &lin);
-    }
-    p
+/// `Σ_i Q(x_i(τ))` and `Σ_i u_i Q'(x_i(τ))` as polynomials in `τ`
+/// (`Q = ((x − c)/L)^m`, `x_i(τ) = x_i + τ u_i`) from the power sums:
+/// `Σ_k C(m,k) M[m−k][k] τ^k / L^m` and `Σ_k m C(m−1,k) M[m−1−k][k+1] τ^k / L^m`.
+fn moment_polys<S: Scalar>(sums: &[Vec<S>], scale: &S, m: u32) -> (Vec<S>, Vec<S>) {
+    let m = m as usize;
+    let lm = (0..m).fold(S::one(), |p, _| p * scale);
+    let s0 = (0..=m)
+        .map(|k| binomial::<S>(m, k) * &sums[m - k][k] / &lm)
+        .collect();
+    let s1 = (0..m)
+        .map(|k| S::from_usize(m) * &binomial::<S>(m - 1, k) * &sums[m - 1 - k][k + 1] / &lm)
+        .collect();
+    (s0, s1)
 }
 
 /// `(B, B')` on `[a, b] ⊂ [t₀, t₁]` as polynomials in `τ = t − a`.
@@ -96,9 +107,40 @@ fn bump<S: Scalar>(f: &TestFunction<S>, a: &S) -> (Vec<S>, Vec<S>) {
     (big_b, d_big_b)
 }
 
+/// The power sums ([`power_sums`]) of the state at each time asked for,
+/// computed once and shared by the test functions.
+struct Sums<'a, S> {
+    case: &'a Case<S>,
+    center: S,
+    degree: usize,
+    by_time: Vec<(S, Vec<Vec<S>>)>,
+}
+
+impl<S: Scalar> Sums<'_, S> {
+    fn at(&mut self, t: &S) -> Result<&[Vec<S>], Violation> {
+        let i = match self.by_time.binary_search_by(|(s, _)| s.total_cmp(t)) {
+            Ok(i) => i,
+            Err(i) => {
+                let s = self
+                    .case
+                    .state(t)
+                    .map_err(|e| Violation::new(MASS, e.to_string()))?;
+                let sums = power_sums(&s, &self.center, self.degree);
+                self.by_time.insert(i, (t.clone(), sums));
+                i
+            }
+        };
+        Ok(&self.by_time[i].1)
+    }
+}
+
 /// `R_mass^N(φ)` over `[t₀, t₁]`, piece by piece (see the module
 /// documentation).
-fn mass_residual<S: Scalar>(case: &Case<S>, f: &TestFunction<S>) -> Result<S, Violation> {
+fn mass_residual<S: Scalar>(
+    case: &Case<S>,
+    f: &TestFunction<S>,
+    sums: &mut Sums<'_, S>,
+) -> Result<S, Violation> {
     let mut cuts = vec![f.t0.clone()];
     for imp in case.traj.impulses() {
         if imp.t > f.t0 && imp.t < f.t1 && cuts.last() != Some(&imp.t) {
@@ -110,21 +152,8 @@ fn mass_residual<S: Scalar>(case: &Case<S>, f: &TestFunction<S>) -> Result<S, Vi
     let mut total = S::zero();
     for w in cuts.windows(2) {
         let (a, b) = (&w[0], &w[1]);
-        let s = case
-            .state(a)
-            .map_err(|e| Violation::new(MASS, e.to_string()))?;
-        // Σ_i Q(x_i(τ)) and Σ_i u_i Q'(x_i(τ)).
-        let mut s0: Vec<S> = Vec::new();
-        let mut s1: Vec<S> = Vec::new();
-        for (x, u) in s.positions.iter().zip(&s.velocities) {
-            let y0 = x.clone() - &f.center;
-            add_into(&mut s0, &power(&y0, u, &f.scale, m));
-            let dq: Vec<S> = power(&y0, u, &f.scale, m - 1)
-                .into_iter()
-                .map(|c| c * u * &S::from_i64(i64::from(m)) / &f.scale)
-                .collect();
-            add_into(&mut s1, &dq);
-        }
+        // Σ_i Q(x_i(τ)) and Σ_i u_i Q'(x_i(τ)), from the state at a.
+        let (s0, s1) = moment_polys(sums.at(a)?, &f.scale, m);
         let (big_b, d_big_b) = bump(f, a);
         let mut integrand = mul(&d_big_b, &s0);
         add_into(&mut integrand, &mul(&big_b, &s1));
@@ -159,8 +188,19 @@ fn mass_tests<S: Scalar>(case: &Case<S>) -> Vec<TestFunction<S>> {
 /// `prop:eulerian-formulation#mass` for the particles: `R_mass^N(φ) = 0`
 /// exactly (see the module documentation).
 pub fn mass<S: Scalar>(case: &Case<S>) -> R {
-    for f in mass_tests(case) {
-        let r = mass_residual(case, &f)?;
+    let tests = mass_tests(case);
+    let Some(first) = tests.first() else {
+        return Ok(());
+    };
+    let mut sums = Sums {
+        case,
+        center: first.center.clone(),
+        degree: tests.iter().map(|f| f.degree as usize).max().unwrap_or(0),
+        by_time: Vec::new(),
+    };
+    for f in tests {
+        debug_assert!(f.center == sums.center);
+        let r = mass_residual(case, &f, &mut sums)?;
         if !r.is_zero() {
             return Err(Violation::new(
                 MASS,

@@ -53,6 +53,14 @@ fn xi<S: Scalar>(s: &State<S>) -> Vec<S> {
         .collect()
 }
 
+/// `⟨ξ, d⟩ = N Σ_i (λ_i − λ_{i−1}) d_i` as `N(⟨λ_{1…N}, d⟩ − ⟨λ_{0…N−1}, d⟩)`:
+/// the same value as `dot(&xi(s), d)`, without the differences.
+fn xi_dot<S: Scalar>(s: &State<S>, d: &[S]) -> S {
+    let l = augmented_lambda(s);
+    let n = l.len() - 1;
+    S::from_usize(n) * &(dot(&l[1..], d) - &dot(&l[..n], d))
+}
+
 fn state<S: Scalar>(case: &Case<S>, data: &InitialData<S>, t: &S) -> Result<State<S>, Violation> {
     case.state_of(data, t)
         .map_err(|e| Violation::new(ID, e.to_string()))
@@ -177,12 +185,20 @@ fn contraction<S: Scalar>(case: &Case<S>, name: &str, other: &InitialData<S>) ->
     times.sort_by(|a, b| a.total_cmp(b));
     times.dedup();
     let data = case.data();
-    let mut prev: Option<(State<S>, State<S>)> = None;
+    // The previous time's states, `x¹ − x²` and `‖x¹ − x²‖²` there.
+    struct Prev<S> {
+        s1: State<S>,
+        s2: State<S>,
+        d: Vec<S>,
+        norm: S,
+    }
+    let mut prev: Option<Prev<S>> = None;
     for t in &times {
         let s1 = state(case, data, t)?;
         let s2 = state(case, other, t)?;
         let d = sub(&s1.positions, &s2.positions);
-        let mono = dot(&sub(&xi(&s1), &xi(&s2)), &d);
+        // ⟨ξ¹ − ξ², d⟩ = ⟨ξ¹, d⟩ − ⟨ξ², d⟩.
+        let mono = xi_dot(&s1, &d) - &xi_dot(&s2, &d);
         if mono < S::zero() {
             return fail(format!(
                 "second solution from {name}, t = {}: ⟨ξ¹ − ξ², x¹ − x²⟩ = {} < 0",
@@ -190,18 +206,19 @@ fn contraction<S: Scalar>(case: &Case<S>, name: &str, other: &InitialData<S>) ->
                 mono.render()
             ));
         }
-        if let Some((a1, a2)) = &prev {
-            let da = sub(&a1.positions, &a2.positions);
+        let nb = dot(&d, &d);
+        if let Some(Prev {
+            s1: a1,
+            s2: a2,
+            d: da,
+            norm: na,
+        }) = &prev
+        {
             let v = sub(&a1.velocities, &a2.velocities);
             let h = t.clone() - &a1.t;
-            let end: Vec<S> = da
-                .iter()
-                .zip(&v)
-                .map(|(p, q)| p.clone() + &(h.clone() * q))
-                .collect();
-            let slope_end = dot(&end, &v);
-            let (na, nb) = (dot(&da, &da), dot(&d, &d));
-            if slope_end > S::zero() || nb > na {
+            // ⟨da + h v, v⟩: the slope at the right end.
+            let slope_end = dot(da, &v) + &(h * &dot(&v, &v));
+            if slope_end > S::zero() || nb > *na {
                 return fail(format!(
                     "second solution from {name}: on [{}, {}], (1/2) d/dt‖x¹ − x²‖² at the right end = {}, ‖x¹ − x²‖² goes from {} to {}",
                     a1.t.render(),
@@ -212,7 +229,12 @@ fn contraction<S: Scalar>(case: &Case<S>, name: &str, other: &InitialData<S>) ->
                 ));
             }
         }
-        prev = Some((s1, s2));
+        prev = Some(Prev {
+            s1,
+            s2,
+            d,
+            norm: nb,
+        });
     }
     Ok(())
 }
@@ -248,6 +270,12 @@ mod tests {
     fn the_inclusion_and_the_contraction_hold() {
         monotone_inclusion(&case()).unwrap();
         assert_eq!(second_data(case().data()).len(), 3);
+        let c = case();
+        for t in &c.times {
+            let s = c.state(t).unwrap();
+            let d: Vec<Q> = (0..3).map(|i| q(i * i - 2, i + 1)).collect();
+            assert_eq!(xi_dot(&s, &d), dot(&xi(&s), &d));
+        }
     }
 
     #[test]

@@ -14,6 +14,7 @@
 use num_rational::BigRational;
 
 use super::{scaling, Case, Claim, Kind, Violation};
+use crate::fast::kernel;
 use crate::generate::{initial_data, Limits, SplitMix64};
 use crate::scene::{self, particles_toml};
 
@@ -123,8 +124,11 @@ fn random_bytes(rng: &mut SplitMix64, max_n: usize) -> (Vec<u8>, Limits) {
     (rng.bytes(6 * n + 8), limits)
 }
 
+/// The ledger's cases compute their states with the integer kernel
+/// ([`kernel::state_of_data`]): the projection formula, equal field by field
+/// to the generic one, ~9× cheaper on `N = 1000`.
 fn case_of(bytes: &[u8], limits: Limits) -> Case<BigRational> {
-    Case::new(initial_data(bytes, limits), None)
+    Case::new(initial_data(bytes, limits), None).with_engine(kernel::state_of_data)
 }
 
 /// Greedy shrinking of the generator input while `check` still fails.
@@ -199,7 +203,10 @@ fn shipped_cases() -> Vec<(&'static str, Case<BigRational>)> {
         .filter_map(|(name, text)| {
             let s = scene::parse(text).ok()?;
             let limit = Some(if s.data.n() > 100 { 4 } else { 8 });
-            Some((*name, Case::new(s.data, limit)))
+            Some((
+                *name,
+                Case::new(s.data, limit).with_engine(kernel::state_of_data),
+            ))
         })
         .collect()
 }

@@ -51,6 +51,13 @@ pub use crate::violation::Violation;
 #[doc(hidden)]
 pub type Tamper<S> = fn(&InitialData<S>, &mut State<S>);
 
+/// How a case computes the state at `t` of a datum: the projection formula
+/// `x(t) = P_K(x⁰ + t u⁰)` (`eq:proj-micro-x`) by one exact engine — the
+/// generic [`state_at`] by default, or the same formula on integers
+/// ([`crate::fast::kernel`], equal field by field) set by the ledger with
+/// [`Case::with_engine`].
+pub type StateEngine<S> = fn(&InitialData<S>, &S) -> Result<State<S>, Error>;
+
 /// One initial datum with its whole sticky history and the times at which
 /// claims are evaluated (0, collision instants, midpoints, after the last).
 #[derive(Debug, Clone)]
@@ -59,6 +66,7 @@ pub struct Case<S> {
     pub traj: Trajectory<S>,
     /// The probe times, increasing.
     pub times: Vec<S>,
+    engine: StateEngine<S>,
     tamper: Option<Tamper<S>>,
 }
 
@@ -75,8 +83,15 @@ impl<S: Scalar> Case<S> {
         Case {
             traj,
             times,
+            engine: state_at,
             tamper: None,
         }
+    }
+    /// The same case with its states computed by `engine` (another exact
+    /// engine of the projection formula: the same states, faster).
+    pub fn with_engine(mut self, engine: StateEngine<S>) -> Self {
+        self.engine = engine;
+        self
     }
     /// The same case with every state the checkers read corrupted by
     /// `tamper` (a hand-written mutant of the engines' output; test hook).
@@ -86,14 +101,15 @@ impl<S: Scalar> Case<S> {
         self
     }
     /// The state at `t` from the projection formula
-    /// ([`state_at`], `eq:proj-micro-x`): the state the checkers read.
+    /// ([`state_at`], `eq:proj-micro-x`; computed by the case's
+    /// [`StateEngine`]): the state the checkers read.
     pub fn state(&self, t: &S) -> Result<State<S>, Error> {
         self.state_of(self.data(), t)
     }
     /// The state at `t` of another datum, computed by the same engine as
     /// [`Case::state`] (a second solution, as in a uniqueness argument).
     pub fn state_of(&self, data: &InitialData<S>, t: &S) -> Result<State<S>, Error> {
-        let mut s = state_at(data, t)?;
+        let mut s = (self.engine)(data, t)?;
         if let Some(f) = self.tamper {
             f(data, &mut s);
         }

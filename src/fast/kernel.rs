@@ -668,6 +668,15 @@ pub fn state_at(d: &IntegerData, t: &BigRational) -> Result<State<BigRational>, 
     Ok(state_of_blocks(d, &blocks_at(d, t), t))
 }
 
+/// [`state_at`] for `data`, scaled here ([`IntegerData::new`], O(N)): the
+/// one-shot form, equal field by field to [`crate::projection::state_at`].
+pub fn state_of_data(
+    data: &InitialData<BigRational>,
+    t: &BigRational,
+) -> Result<State<BigRational>, Error> {
+    state_at(&IntegerData::new(data), t)
+}
+
 /// The [`State`] at `t` from exact PAVA blocks at `t + ε` on `d` (the
 /// kernel's, or the adaptive solver's: the same blocks, one construction):
 /// positions `x_i = x̃ + 2r i`, velocities the block means

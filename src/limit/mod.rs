@@ -13,6 +13,8 @@
 //! * [`eulerian`] — `ρ`, `ρu`, the pressure potential, density maps, the
 //!   weak residuals of `eq:macro-euler`, `(1 − ρ)p` and the Oleinik
 //!   inequality, for the particles and the continuum;
+//! * [`poly`] — exact polynomials in one variable (product, derivative,
+//!   integral), shared by Appendix C and the claims;
 //! * [`converge`](mod@converge) — the convergence study across N (exact engine, then
 //!   `f64`), fitted rates (its CSV files are written by the report layer);
 //! * [`appendix_c`] — the two-block example with its sticky and rebound
@@ -33,6 +35,7 @@ pub mod continuum;
 pub mod converge;
 pub mod eulerian;
 pub mod interpolation;
+pub mod poly;
 pub mod sampling;
 pub mod surd;
 

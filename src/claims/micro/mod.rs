@@ -74,9 +74,7 @@ fn render_state<S: Scalar>(s: &State<S>) -> String {
 
 /// `⟨a, b⟩ = Σ a_i b_i` (the paper's non-rescaled inner product).
 pub fn dot<S: Scalar>(a: &[S], b: &[S]) -> S {
-    a.iter()
-        .zip(b)
-        .fold(S::zero(), |acc, (x, y)| acc + &(x.clone() * y))
+    S::sum_of_products(a, b)
 }
 
 /// `‖a‖² = (1/N) Σ a_i²` (the paper's rescaled norm).

@@ -44,6 +44,7 @@ use num_traits::Signed;
 
 use super::continuum::{Continuum, Profile, Segment};
 use super::converge::x_l2_squared;
+use super::poly;
 use crate::error::Error;
 use crate::quantile::{Block, BlockVelocity, MacroDatum};
 use crate::scalar::Scalar;
@@ -73,47 +74,13 @@ pub struct Piecewise {
     pub right: Vec<Q>,
 }
 
-fn poly_eval(p: &[Q], w: &Q) -> Q {
-    p.iter().rev().fold(Q::zero(), |acc, c| acc * w + c)
-}
-
-fn poly_deriv(p: &[Q]) -> Vec<Q> {
-    p.iter()
-        .enumerate()
-        .skip(1)
-        .map(|(k, c)| c * Q::from_integer(k.into()))
-        .collect()
-}
-
-fn poly_combine(a: &[Q], b: &[Q], f: impl Fn(&Q, &Q) -> Q) -> Vec<Q> {
-    let n = a.len().max(b.len());
-    let z = Q::zero();
-    (0..n)
-        .map(|k| f(a.get(k).unwrap_or(&z), b.get(k).unwrap_or(&z)))
-        .collect()
-}
-
-fn poly_mul(a: &[Q], b: &[Q]) -> Vec<Q> {
-    let mut out = vec![Q::zero(); (a.len() + b.len()).saturating_sub(1)];
-    for (i, x) in a.iter().enumerate() {
-        for (j, y) in b.iter().enumerate() {
-            out[i + j] += x * y;
-        }
-    }
-    out
-}
-
-fn poly_is_zero(p: &[Q]) -> bool {
-    p.iter().all(|c| c.is_zero())
-}
-
 /// The minimum of a polynomial of degree ≤ 2 on `[a, b]` (exact).
 fn poly_min(p: &[Q], a: &Q, b: &Q) -> Q {
-    let mut m = poly_eval(p, a).min(poly_eval(p, b));
+    let mut m = poly::eval(p, a).min(poly::eval(p, b));
     if p.len() >= 3 && !p[2].is_zero() {
         let v = -&p[1] / (q(2, 1) * &p[2]);
         if &v > a && &v < b {
-            m = m.min(poly_eval(p, &v));
+            m = m.min(poly::eval(p, &v));
         }
     }
     m
@@ -129,24 +96,24 @@ impl Piecewise {
     /// The value at `w` (left piece for `w < 1/2`).
     pub fn eval(&self, w: &Q) -> Q {
         if *w < q(1, 2) {
-            poly_eval(&self.left, w)
+            poly::eval(&self.left, w)
         } else {
-            poly_eval(&self.right, w)
+            poly::eval(&self.right, w)
         }
     }
     /// The left limit at `1/2` and the value there: the jump is their
     /// difference.
     pub fn jump_at_half(&self) -> Q {
-        poly_eval(&self.right, &q(1, 2)) - poly_eval(&self.left, &q(1, 2))
+        poly::eval(&self.right, &q(1, 2)) - poly::eval(&self.left, &q(1, 2))
     }
     /// The derivative on each piece.
     pub fn deriv(&self) -> Piecewise {
-        Piecewise::new(poly_deriv(&self.left), poly_deriv(&self.right))
+        Piecewise::new(poly::deriv(&self.left), poly::deriv(&self.right))
     }
     fn zip(&self, o: &Piecewise, f: impl Fn(&Q, &Q) -> Q + Copy) -> Piecewise {
         Piecewise::new(
-            poly_combine(&self.left, &o.left, f),
-            poly_combine(&self.right, &o.right, f),
+            poly::combine(&self.left, &o.left, f),
+            poly::combine(&self.right, &o.right, f),
         )
     }
     fn sub(&self, o: &Piecewise) -> Piecewise {
@@ -163,12 +130,12 @@ impl Piecewise {
     }
     fn mul(&self, o: &Piecewise) -> Piecewise {
         Piecewise::new(
-            poly_mul(&self.left, &o.left),
-            poly_mul(&self.right, &o.right),
+            poly::mul(&self.left, &o.left),
+            poly::mul(&self.right, &o.right),
         )
     }
     fn is_zero(&self) -> bool {
-        poly_is_zero(&self.left) && poly_is_zero(&self.right)
+        poly::is_zero(&self.left) && poly::is_zero(&self.right)
     }
     /// The minimum over `[0, 1]` (pieces of degree ≤ 2).
     fn min(&self) -> Q {
@@ -518,10 +485,10 @@ impl TwoBlocks {
         // Projection principle eq:velocity-projection after t*.
         let congested = |pc: &[Q], pb: &[Q]| {
             // ∂_w X ≡ 1 for every t > t* on the piece.
-            poly_combine(pc, &[q(1, 1)], |x, y| x - y)
+            poly::combine(pc, &[q(1, 1)], |x, y| x - y)
                 .iter()
                 .all(|v| v.is_zero())
-                && poly_is_zero(pb)
+                && poly::is_zero(pb)
         };
         let (cl, cr) = (
             congested(&da.left, &db.left),
