@@ -133,7 +133,7 @@ impl Scalar for BigRational {
     /// reduction at the end: `BigRational` addition reduces at every term, and
     /// those gcds were most of the cost of the claims' inner products. The
     /// partial sum is reduced and restarted when its denominator passes
-    /// [`SUM_DENOMINATOR_BITS`], so coprime denominators cannot make it grow
+    /// `SUM_DENOMINATOR_BITS`, so coprime denominators cannot make it grow
     /// without bound. The value is exact, so it is the plain loop's.
     fn sum_of_products(a: &[Self], b: &[Self]) -> Self {
         let mut total: BigRational = Zero::zero();
