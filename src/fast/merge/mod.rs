@@ -627,6 +627,27 @@ mod tests {
     }
 
     #[test]
+    fn the_bound_is_strict() {
+        // N = 2: max(N, ⌊N²/4⌋) = 2, so M = 2^125 gives B = 2^126 exactly,
+        // which the width bound excludes; M = 2^125 − 1 is inside it.
+        for (m, engine) in [(125u32, Engine::BigRational), (0, Engine::Int128)] {
+            let top = if m == 0 {
+                (BigInt::one() << 125u32) - 1
+            } else {
+                BigInt::one() << m
+            };
+            // r = 1/2: x̃ = (0, top), u = (1, 0), every denominator 1.
+            let data = InitialData::new(
+                q(1, 2),
+                vec![q(0, 1), big(&top) + q(1, 1)],
+                vec![q(1, 1), q(0, 1)],
+            )
+            .unwrap();
+            assert_eq!(agree(&data).engine(), engine, "M = {top}");
+        }
+    }
+
+    #[test]
     fn fallback_when_the_bound_fails() {
         // max|X| ≈ 2^125 with N = 10 breaks max(N, N²/4) M < 2^126.
         let huge = big(&(BigInt::one() << 125u32));
