@@ -542,14 +542,7 @@ mod tests {
                 .unwrap();
                 assert_eq!(rows, n);
             }
-            let mut events = Vec::new();
-            l.history()
-                .expect("within the merge's bound")
-                .for_each_event(|t, first, size, parts| {
-                    events.push((value(t), first, size, parts.to_vec()));
-                    Ok(())
-                })
-                .unwrap();
+            let events = lean_events(&l);
             let want: Vec<_> = history
                 .impulses()
                 .iter()
