@@ -630,12 +630,8 @@ mod tests {
     fn the_bound_is_strict() {
         // N = 2: max(N, ⌊N²/4⌋) = 2, so M = 2^125 gives B = 2^126 exactly,
         // which the width bound excludes; M = 2^125 − 1 is inside it.
-        for (m, engine) in [(125u32, Engine::BigRational), (0, Engine::Int128)] {
-            let top = if m == 0 {
-                (BigInt::one() << 125u32) - 1
-            } else {
-                BigInt::one() << m
-            };
+        let m: BigInt = BigInt::one() << 125u32;
+        for (top, engine) in [(m.clone(), Engine::BigRational), (m - 1, Engine::Int128)] {
             // r = 1/2: x̃ = (0, top), u = (1, 0), every denominator 1.
             let data = InitialData::new(
                 q(1, 2),

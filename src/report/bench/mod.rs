@@ -366,11 +366,7 @@ pub fn run(opts: &BenchOptions, t: &BigRational, scripts: &Path) -> BenchReport 
             // `BigRational` datum. The columns are prepared untimed, like
             // the kernel rows' `IntegerData`.
             let columns = crate::fast::scaling::scale_i128(&data).and_then(|s| {
-                let narrow = |v: &[i128]| {
-                    v.iter()
-                        .map(|&a| i64::try_from(a).ok())
-                        .collect::<Option<Vec<i64>>>()
-                };
+                let narrow = |v: &[i128]| crate::fast::int::narrowed(v, |&a| i64::try_from(a).ok());
                 Some((
                     narrow(&s.x)?,
                     narrow(&s.u)?,
