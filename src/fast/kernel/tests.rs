@@ -1,0 +1,273 @@
+use super::*;
+use crate::generate::{initial_data, Limits, SplitMix64};
+use num_traits::One;
+
+#[test]
+fn equals_the_generic_path() {
+    let mut rng = SplitMix64::new(11);
+    for k in 0..300 {
+        let data = initial_data(
+            &rng.bytes(200),
+            Limits {
+                max_n: 1 + k % 40,
+                ..Limits::default()
+            },
+        );
+        let d = IntegerData::new(&data);
+        let traj = crate::trajectory::Trajectory::new(data.clone());
+        for t in crate::trajectory::probe_times(&traj, Some(6)) {
+            assert_eq!(
+                state_at(&d, &t).unwrap(),
+                projection::state_at(&data, &t).unwrap(),
+                "t = {t}"
+            );
+        }
+    }
+}
+
+use crate::rational::ratio as q;
+
+/// Four particles around `offset`, two pairs colliding at different
+/// times, one contact at `t = 0` that separates.
+fn around(offset: &BigRational, spread: &BigRational) -> InitialData<BigRational> {
+    let x = [0, 3, 4, 9].map(|v| offset + spread * q(v, 1)).to_vec();
+    let u = vec![q(1, 1), q(-1, 1), q(1, 3), q(-1, 7)];
+    InitialData::new(q(1, 2), x, u).unwrap()
+}
+
+fn pow2(e: u32) -> BigRational {
+    BigRational::from_integer(BigInt::one() << e)
+}
+
+/// Each width, on both sides of its bound, equals the generic path.
+#[test]
+fn every_width_equals_the_generic_path() {
+    let cases = [
+        (pow2(0), pow2(0), Width::I128),
+        (pow2(60), pow2(0), Width::I128),
+        (pow2(62), pow2(3), Width::I128),
+        (pow2(70), pow2(0), Width::I256),
+        (pow2(140), pow2(0), Width::I256),
+        (pow2(240), pow2(2), Width::I256),
+        (pow2(300), pow2(1), Width::I512),
+        (pow2(480), pow2(2), Width::I512),
+        (pow2(600), pow2(1), Width::Big),
+        (pow2(140), pow2(130), Width::I256),
+        (pow2(300), pow2(200), Width::I512),
+    ];
+    for (offset, spread, width) in cases {
+        let data = around(&offset, &spread);
+        let d = IntegerData::new(&data);
+        for t in [
+            q(0, 1),
+            q(1, 1),
+            q(5, 2),
+            spread.clone() * q(3, 1),
+            offset.clone(),
+        ] {
+            let b = blocks_at(&d, &t);
+            if t == q(0, 1) {
+                assert_eq!(b.width(), width, "offset 2^{}", offset.numer().bits());
+            }
+            assert_eq!(
+                state_at(&d, &t).unwrap(),
+                projection::state_at(&data, &t).unwrap(),
+                "offset 2^{}, t = {t}",
+                offset.numer().bits()
+            );
+        }
+    }
+}
+
+/// The 512-bit loop keeps `ΣU` in `i128` when every `U_i` fits `i64`
+/// (and `bits(max|U|) + b_K < 128`, implied here) and in 512 bits
+/// otherwise: both equal the generic path, on both sides of that bound.
+#[test]
+fn both_u_words_of_the_512_bit_loop() {
+    // U_i = 21 u_i 2^e (D_u = 21): max|U| = 21 · 2^e has e + 5 bits.
+    for (e, narrow) in [(0u32, true), (58, true), (59, false), (200, false)] {
+        let base = around(&pow2(300), &pow2(1));
+        let u = base.velocities().iter().map(|v| v * pow2(e)).collect();
+        let data = InitialData::new(q(1, 2), base.positions().to_vec(), u).unwrap();
+        let d = IntegerData::new(&data);
+        for t in [q(0, 1), q(1, 1), q(5, 2), pow2(290)] {
+            let b = blocks_at(&d, &t);
+            assert_eq!(b.width(), Width::I512, "2^{e}, t = {t}");
+            assert_eq!(matches!(b.sums, Sums::I512U128(_)), narrow, "2^{e}");
+            assert_eq!(
+                state_at(&d, &t).unwrap(),
+                projection::state_at(&data, &t).unwrap(),
+                "2^{e}, t = {t}"
+            );
+        }
+    }
+}
+
+/// The shape of a sparse 512-bit result: the sums of exactly the
+/// blocks of several entries are stored, in order, and a block of one
+/// entry is that entry's index.
+fn sparse_shape<V: FromColumn>(s: &Sparse<8, V>, clusters: &[Cluster]) {
+    let several: Vec<u64> = clusters
+        .iter()
+        .filter(|c| c.size > 1)
+        .map(|c| c.size as u64)
+        .collect();
+    let stored: Vec<u64> = s.pooled.iter().map(|r| r.k).collect();
+    assert_eq!(stored, several);
+    assert_eq!(s.tags.len(), clusters.len());
+    for (&tag, c) in s.tags.iter().zip(clusters) {
+        assert_eq!(tag & POOLED == 0, c.size == 1);
+        if c.size == 1 {
+            assert_eq!(tag, c.first as u64);
+        }
+    }
+}
+
+/// The sparse 512-bit blocks ([`Sparse`]) on random scenes lifted by
+/// `2^300` (velocities by `2^200` in every other scene, the wide `ΣU`),
+/// where pools reach below blocks of one entry that the loop
+/// recomputes: the shape above, and the state equals the generic path.
+#[test]
+fn sparse_512_bit_blocks_equal_the_generic_path() {
+    let mut rng = SplitMix64::new(13);
+    let mut checked = [0usize; 2];
+    for k in 0..160 {
+        let base = initial_data(
+            &rng.bytes(200),
+            Limits {
+                max_n: 2 + k % 30,
+                ..Limits::default()
+            },
+        );
+        let x = base.positions().iter().map(|x| x + pow2(300)).collect();
+        let lift = if k % 2 == 0 { pow2(0) } else { pow2(200) };
+        let u = base.velocities().iter().map(|v| v * &lift).collect();
+        let data = InitialData::new(base.radius().clone(), x, u).unwrap();
+        let d = IntegerData::new(&data);
+        let traj = crate::trajectory::Trajectory::new(data.clone());
+        for t in crate::trajectory::probe_times(&traj, Some(6)) {
+            let b = blocks_at(&d, &t);
+            match &b.sums {
+                Sums::I512U128(s) => {
+                    sparse_shape(s, &b.clusters());
+                    checked[0] += 1;
+                }
+                Sums::I512(s) => {
+                    sparse_shape(s, &b.clusters());
+                    checked[1] += 1;
+                }
+                _ => {}
+            }
+            assert_eq!(
+                state_at(&d, &t).unwrap(),
+                projection::state_at(&data, &t).unwrap(),
+                "scene {k}, t = {t}"
+            );
+        }
+    }
+    // Both `ΣU` words were exercised, many times each.
+    assert!(checked.iter().all(|&c| c > 100), "{checked:?}");
+}
+
+/// Right at the `i128`, `I256` and `I512` bounds: four particles `2^bits` apart
+/// that all meet, so the loop's sums come within a factor 4 of `Y`'s
+/// bound, at times whose denominator `q` pushes `b_Y + b_K` to the edge
+/// of each width (`b_K = 3` for N = 4). The result equals the generic
+/// path on both sides.
+#[test]
+fn sums_near_the_width_edge() {
+    let inv = |e: u32| BigRational::new(BigInt::one(), BigInt::one() << e);
+    // (spacing bits, t, expected width)
+    let cases = [
+        // X_i up to 3·2^59 (61 bits), q D_u = 2^61 (62 bits):
+        // b_Y = 62 + 61 + 1 = 124, b_Y + b_K = 127 < 128.
+        (60u32, inv(61), Width::I128),
+        // q D_u = 2^62 (63 bits, still an i64): 128, not < 128.
+        (60, inv(62), Width::I256),
+        // q D_u = 2^63 no longer fits i64.
+        (60, inv(63), Width::I256),
+        // X_i up to 3·2^189 (191 bits), q D_u = 2^60 (61 bits):
+        // b_Y + b_K = 61 + 191 + 1 + 3 = 256, not < 256.
+        (190, inv(60), Width::I512),
+        // One bit less: 255 < 256.
+        (190, inv(59), Width::I256),
+        // X_i up to 3·2^445 (447 bits), q D_u = 2^60 (61 bits):
+        // b_Y + b_K = 61 + 447 + 1 + 3 = 512, not < 512.
+        (446, inv(60), Width::Big),
+        // One bit less: 511 < 512.
+        (446, inv(59), Width::I512),
+        // The columns no longer fit 510 bits (X_i up to 3·2^509).
+        (510, inv(0), Width::Big),
+    ];
+    for (bits, t, width) in cases {
+        let big = pow2(bits);
+        let x = [0, 1, 2, 3].map(|v| big.clone() * q(2 * v - 3, 2)).to_vec();
+        let u = vec![q(3, 1), q(1, 1), q(-1, 1), q(-3, 1)];
+        let data = InitialData::new(q(1, 2), x, u).unwrap();
+        let d = IntegerData::new(&data);
+        let b = blocks_at(&d, &t);
+        assert_eq!(b.width(), width, "2^{bits}, t = {t}");
+        for s in [
+            t.clone(),
+            t.clone() * big.clone(),
+            t.clone() * big.clone() * q(3, 1),
+        ] {
+            assert_eq!(
+                state_at(&d, &s).unwrap(),
+                projection::state_at(&data, &s).unwrap()
+            );
+        }
+    }
+}
+
+/// Two `Blocks` are equal exactly when their clusters and their means
+/// (`x̃` and `u`) are, whatever the width the sums are held in; no
+/// particles, no blocks.
+#[test]
+fn blocks_equal_by_clusters_and_means() {
+    let run = |k: u64, sy: i128, su: i128| Run { k, sy, su };
+    let big = |v: &[Run<i128>]| {
+        Sums::Big(
+            v.iter()
+                .map(|r| Run {
+                    k: r.k,
+                    sy: BigInt::from(r.sy),
+                    su: BigInt::from(r.su),
+                })
+                .collect(),
+        )
+    };
+    let blocks = |s: Sums| Blocks::new(s, BigInt::from(6), BigInt::from(3));
+    // Means (y, u): (1/6, 1/3), (1/2, 2/3), then the same scaled by 2.
+    let a = [run(1, 1, 1), run(2, 6, 4)];
+    assert_eq!(blocks(Sums::I128(a.to_vec())), blocks(big(&a)));
+    let scaled = [run(1, 1, 1), run(2, 6, 4)].map(|r| run(r.k, 2 * r.sy, 2 * r.su));
+    let scaled = Blocks::new(
+        Sums::I128(scaled.to_vec()),
+        BigInt::from(12),
+        BigInt::from(6),
+    );
+    assert_eq!(blocks(Sums::I128(a.to_vec())), scaled);
+    // Other clusters, the same means: one block of three at (1/6, 1/3)
+    // against blocks of one and two at (1/6, 1/3).
+    let one = blocks(Sums::I128(vec![run(3, 3, 3)]));
+    let two = blocks(Sums::I128(vec![run(1, 1, 1), run(2, 2, 2)]));
+    assert_eq!(one.clusters().len(), 1);
+    assert_ne!(one, two);
+    assert_ne!(two, one);
+    // The same clusters and positions, another velocity.
+    let other_u = [run(1, 1, 1), run(2, 6, 2)];
+    assert_ne!(
+        blocks(Sums::I128(a.to_vec())),
+        blocks(Sums::I128(other_u.to_vec()))
+    );
+    // The same clusters and velocities, another position.
+    let other_y = [run(1, 1, 1), run(2, 8, 4)];
+    assert_ne!(
+        blocks(Sums::I128(a.to_vec())),
+        blocks(Sums::I128(other_y.to_vec()))
+    );
+    assert!(blocks(Sums::I128(Vec::new())).is_empty());
+    assert!(!blocks(Sums::I128(a.to_vec())).is_empty());
+    assert_eq!(blocks(big(&a)).len(), 2);
+}
