@@ -445,6 +445,31 @@ mod tests {
     }
 
     #[test]
+    fn a_boundary_rekeyed_past_its_tag_byte() {
+        // A particle C at rest, D far to its right moving left, and K
+        // particles on C's left moving right at speed 1, one unit apart:
+        // they catch C one at a time, and every catch speeds C up and
+        // re-keys the pair (C, D) to an earlier time, while its older
+        // entries wait in the queue with later keys. After 256 re-keyings
+        // the one-byte tags repeat: only the full stamps tell those entries
+        // are stale, and one taken for live would add an instant after the
+        // last collision.
+        const K: usize = 600;
+        let x = |v: i128| BigRational::from_integer(BigInt::from(v));
+        let mut positions: Vec<BigRational> = (0..K).map(|k| x(k as i128 - K as i128)).collect();
+        positions.extend([x(0), x(10_000_000)]);
+        let mut velocities = vec![q(1, 1); K];
+        velocities.extend([q(0, 1), q(-1, 1)]);
+        let data = InitialData::new(q(1, 4), positions, velocities).unwrap();
+        let it = agree(&data);
+        // K catches, then C meets D: K + 1 clusters formed at K + 1 instants.
+        assert_eq!((it.events(), it.instants()), (K + 1, K + 1));
+        let traj = it.into_trajectory();
+        let last = &traj.impulses()[K];
+        assert_eq!((last.cluster.size, last.parts.len()), (K + 2, 2));
+    }
+
+    #[test]
     fn equal_times_straddling_a_queue_key() {
         // Three particles with velocities 8, 5, 0 and gaps 3m, 5m: both
         // pairs meet at t = m exactly, one impulse with three parts. Pick m

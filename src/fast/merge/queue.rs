@@ -269,6 +269,10 @@ mod tests {
             (1 << 100, 3),
             ((1 << 100) + 1, 3),
             (7, 1 << 90),
+            // t = 2^63 − 2^10 + 1 rounds down to τ = 2^63 − 2^10, the top
+            // double of its key (its low 12 bits are ones): `hi` must still
+            // reach above t.
+            ((1 << 63) - (1 << 10) + 1, 1),
         ] {
             let t = Time::new(gap, closing);
             let exact = BigRational::new(BigInt::from(gap), BigInt::from(closing));
