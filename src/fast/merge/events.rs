@@ -75,13 +75,10 @@ fn run_touching<T: Copy + PartialEq + Into<W>, W: SumWord>(
         parts: Vec::with_capacity(3 * n),
         join: Vec::new(),
     };
-    let mut nodes = vec![
-        Node::<W> {
-            join: JOIN_NEVER,
-            ..Node::default()
-        };
-        n
-    ];
+    let mut nodes = vec![Node::<W>::default(); n];
+    // The join code of each pair `(j, j + 1)`, written once per merge: kept
+    // out of the nodes, so that a node of `i64` sums is 24 bytes, not 32.
+    let mut join = vec![JOIN_NEVER; n.saturating_sub(1)];
     // Initial clusters: contacts with equal velocities.
     let mut first = 0usize;
     for j in 0..n {
@@ -97,8 +94,8 @@ fn run_touching<T: Copy + PartialEq + Into<W>, W: SumWord>(
                 node.sum_u = su;
                 node.size = (j + 1 - first) as u32;
             }
-            for node in &mut nodes[first + 1..=j] {
-                node.join = JOIN_ZERO;
+            for code in &mut join[first..j] {
+                *code = JOIN_ZERO;
             }
             first = j + 1;
         }
@@ -221,7 +218,7 @@ fn run_touching<T: Copy + PartialEq + Into<W>, W: SumWord>(
                 // Merge `f .. r` and `r .. e`; the boundary `r` is gone.
                 let f = ri - left.size as usize;
                 let e = ri + right.size as usize;
-                nodes[ri].join = instant;
+                join[ri - 1] = instant;
                 nodes[ri].stamp = nodes[ri].stamp.wrapping_add(1);
                 tags[ri] = nodes[ri].stamp as u8;
                 if ri - 1 != f {
@@ -298,7 +295,7 @@ fn run_touching<T: Copy + PartialEq + Into<W>, W: SumWord>(
             hist.parts.push(end);
         }
     }
-    hist.join = nodes.iter().skip(1).map(|node| node.join).collect();
+    hist.join = join;
     hist.instants.shrink_to_fit();
     hist.impulses.shrink_to_fit();
     hist.parts.shrink_to_fit();

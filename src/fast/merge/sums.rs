@@ -44,8 +44,6 @@ pub(super) struct Node<W> {
     pub(super) sum_u: W,
     /// Number of particles of the cluster this node ends; 0 inside.
     pub(super) size: u32,
-    /// The join code of the pair `(i − 1, i)`, for the node at index `i`.
-    pub(super) join: u32,
     /// Bumped whenever the pair at boundary `i` changes: queued entries
     /// with an older stamp are stale. (It is bumped at most twice per merge
     /// next to the boundary, fewer than `2N < 2^32` times: it never wraps
