@@ -38,6 +38,7 @@ use std::cmp::Ordering;
 use super::events::{run, History, JOIN_NEVER, JOIN_ZERO};
 use super::sums::{meeting, Node, SumWord};
 use super::time::Time;
+use crate::fast::scaling::both;
 
 /// Below this many particles one thread runs the whole (the threads and
 /// the repair cost more than they save).
@@ -55,7 +56,7 @@ where
         return run::<T, W>(x, u);
     }
     match cut(x, u, n / 2) {
-        Some(m) => run_halves::<T, W>(x, u, m),
+        Some(m) => run_halves::<T, W>(x, u, m, true),
         None => run::<T, W>(x, u),
     }
 }
@@ -68,8 +69,9 @@ pub(super) fn cut<T: PartialEq>(x: &[T], u: &[T], from: usize) -> Option<usize> 
 
 /// The history of the whole from the histories of `..m` and `m..`, each
 /// computed alone (the right one on a second thread); `0 < m < n` and the
-/// pair `(m − 1, m)` is not an initial contact with equal velocities.
-pub(super) fn run_halves<T, W>(x: &[T], u: &[T], m: usize) -> History
+/// pair `(m − 1, m)` is not an initial contact with equal velocities. With
+/// `two`, the history of the whole is also assembled on two threads.
+pub(super) fn run_halves<T, W>(x: &[T], u: &[T], m: usize, two: bool) -> History
 where
     T: Copy + PartialEq + Into<W> + Sync,
     W: SumWord,
@@ -89,7 +91,7 @@ where
         right: &right,
     };
     let growth = grow_run::<T, W>(x, u, &halves);
-    assemble(&halves, &growth, x.len())
+    assemble(&halves, &growth, x.len(), two)
 }
 
 /// The two halves' histories, `left` of particles `..m`, `right` of `m..`
@@ -417,125 +419,237 @@ fn kept(
     (keep, used)
 }
 
-/// The history of the whole (see the module docs).
-fn assemble(h: &Halves, growth: &[Growth], n: usize) -> History {
-    let m = h.m;
-    let (keep_l, used_l) = kept(h.left, growth, m, 0, |f, (p, _)| f >= p);
-    let (keep_r, used_r) = kept(h.right, growth, m, 1, |f, (_, q)| f < q);
-    // The instants still used, merged in time order (equal times are one
-    // instant).
-    let mut hist = History {
-        instants: Vec::with_capacity(h.left.instants.len() + h.right.instants.len()),
-        impulses: Vec::with_capacity(h.left.impulses.len() + h.right.impulses.len()),
-        parts: Vec::with_capacity(h.left.parts.len() + h.right.parts.len()),
-        join: Vec::with_capacity(n.saturating_sub(1)),
+/// The instants of the whole: those of the halves still used, merged in
+/// time order (equal times are one instant) with the run's growths, and
+/// where each half's instants and each growth went.
+struct Instants {
+    times: Vec<(i128, i128)>,
+    map_l: Vec<u32>,
+    map_r: Vec<u32>,
+    map_g: Vec<u32>,
+    /// The first left and right instant and the first growth numbered at
+    /// least `mid` (the second thread's share starts there).
+    heads: (usize, usize, usize),
+}
+
+fn merge_instants(
+    h: &Halves,
+    growth: &[Growth],
+    used_l: &[bool],
+    used_r: &[bool],
+    mid: usize,
+) -> Instants {
+    let mut out = Instants {
+        times: Vec::with_capacity(h.left.instants.len() + h.right.instants.len() + growth.len()),
+        map_l: vec![JOIN_NEVER; h.left.instants.len()],
+        map_r: vec![JOIN_NEVER; h.right.instants.len()],
+        map_g: vec![JOIN_NEVER; growth.len()],
+        heads: (h.left.instants.len(), h.right.instants.len(), growth.len()),
     };
-    let mut map_l = vec![JOIN_NEVER; h.left.instants.len()];
-    let mut map_r = vec![JOIN_NEVER; h.right.instants.len()];
-    let mut map_g = vec![JOIN_NEVER; growth.len()];
-    {
-        let next_used = |used: &[bool], mut i: usize| {
-            while i < used.len() && !used[i] {
-                i += 1;
+    let next_used = |used: &[bool], mut i: usize| {
+        while i < used.len() && !used[i] {
+            i += 1;
+        }
+        i
+    };
+    let at = |hist: &History, i: usize| {
+        hist.instants
+            .get(i)
+            .map(|&(gap, closing)| Time::new(gap, closing))
+    };
+    let (mut il, mut ir, mut ig) = (next_used(used_l, 0), next_used(used_r, 0), 0);
+    let (mut tl, mut tr) = (at(h.left, il), at(h.right, ir));
+    loop {
+        if out.times.len() == mid {
+            out.heads = (il, ir, ig);
+        }
+        // The earliest head: left, right or both (equal times).
+        let (mut t, mut from_l, mut from_r) = match (tl, tr) {
+            (Some(a), Some(b)) => match a.cmp(&b) {
+                Ordering::Less => (a, true, false),
+                Ordering::Greater => (b, false, true),
+                Ordering::Equal => (a, true, true),
+            },
+            (Some(a), None) => (a, true, false),
+            (None, Some(b)) => (b, false, true),
+            (None, None) => match growth.get(ig) {
+                Some(gr) => (gr.t, false, false),
+                None => break,
+            },
+        };
+        let mut from_g = false;
+        if let Some(gr) = growth.get(ig) {
+            match gr.t.cmp(&t) {
+                Ordering::Less => (t, from_l, from_r, from_g) = (gr.t, false, false, true),
+                Ordering::Equal => from_g = true,
+                Ordering::Greater => {}
             }
-            i
+        }
+        let g = out.times.len() as u32;
+        out.times.push((t.gap, t.closing));
+        if from_l {
+            out.map_l[il] = g;
+            il = next_used(used_l, il + 1);
+            tl = at(h.left, il);
+        }
+        if from_r {
+            out.map_r[ir] = g;
+            ir = next_used(used_r, ir + 1);
+            tr = at(h.right, ir);
+        }
+        if from_g {
+            out.map_g[ig] = g;
+            ig += 1;
+        }
+    }
+    out
+}
+
+/// What writing the impulses reads.
+struct Sources<'a> {
+    h: &'a Halves<'a>,
+    growth: &'a [Growth],
+    keep_l: &'a [bool],
+    keep_r: &'a [bool],
+    instants: &'a Instants,
+}
+
+impl Sources<'_> {
+    /// The impulses (offsets into the returned parts) of the instants
+    /// numbered in `range`, starting from the first left and right impulse
+    /// and growth at those instants: the left half's, the run's, the right
+    /// half's at each instant, each half's in its order (first particle).
+    fn write(
+        &self,
+        range: std::ops::Range<usize>,
+        (mut kl, mut kr, mut kg): (usize, usize, usize),
+        capacity: (usize, usize),
+    ) -> (Vec<(u32, u32)>, Vec<u32>) {
+        let (h, m) = (self.h, self.h.m);
+        let (map_l, map_r, map_g) = (
+            &self.instants.map_l,
+            &self.instants.map_r,
+            &self.instants.map_g,
+        );
+        let mut impulses = Vec::with_capacity(capacity.0);
+        let mut parts = Vec::with_capacity(capacity.1);
+        let skip = |keep: &[bool], mut k: usize| {
+            while k < keep.len() && !keep[k] {
+                k += 1;
+            }
+            k
         };
-        let at = |hist: &History, i: usize| {
-            hist.instants
-                .get(i)
-                .map(|&(gap, closing)| Time::new(gap, closing))
+        kl = skip(self.keep_l, kl);
+        kr = skip(self.keep_r, kr);
+        for g in range.start as u32..range.end as u32 {
+            while kl < self.keep_l.len() && map_l[h.left.impulses[kl].0 as usize] == g {
+                impulses.push((g, parts.len() as u32));
+                parts.extend_from_slice(parts_of(h.left, kl));
+                kl = skip(self.keep_l, kl + 1);
+            }
+            if kg < self.growth.len() && map_g[kg] == g {
+                impulses.push((g, parts.len() as u32));
+                growth_parts(h, &self.growth[kg], &mut parts);
+                kg += 1;
+            }
+            while kr < self.keep_r.len() && map_r[h.right.impulses[kr].0 as usize] == g {
+                impulses.push((g, parts.len() as u32));
+                let shift = m as u32;
+                parts.extend(parts_of(h.right, kr).iter().map(|&b| b + shift));
+                kr = skip(self.keep_r, kr + 1);
+            }
+        }
+        (impulses, parts)
+    }
+
+    /// The join codes of the whole: the halves', renumbered; the run's
+    /// where it came first.
+    fn joins(&self, n: usize) -> Vec<u32> {
+        let h = self.h;
+        let renumber = |code: u32, map: &[u32]| match code {
+            JOIN_NEVER | JOIN_ZERO => code,
+            k => map[k as usize],
         };
-        let (mut il, mut ir, mut ig) = (next_used(&used_l, 0), next_used(&used_r, 0), 0);
-        let (mut tl, mut tr) = (at(h.left, il), at(h.right, ir));
-        loop {
-            // The earliest head: left, right or both (equal times).
-            let (mut t, mut from_l, mut from_r) = match (tl, tr) {
-                (Some(a), Some(b)) => match a.cmp(&b) {
-                    Ordering::Less => (a, true, false),
-                    Ordering::Greater => (b, false, true),
-                    Ordering::Equal => (a, true, true),
-                },
-                (Some(a), None) => (a, true, false),
-                (None, Some(b)) => (b, false, true),
-                (None, None) => match growth.get(ig) {
-                    Some(gr) => (gr.t, false, false),
-                    None => break,
-                },
-            };
-            let mut from_g = false;
-            if let Some(gr) = growth.get(ig) {
-                match gr.t.cmp(&t) {
-                    Ordering::Less => (t, from_l, from_r, from_g) = (gr.t, false, false, true),
-                    Ordering::Equal => from_g = true,
-                    Ordering::Greater => {}
+        let mut join = Vec::with_capacity(n.saturating_sub(1));
+        join.extend(
+            h.left
+                .join
+                .iter()
+                .map(|&c| renumber(c, &self.instants.map_l)),
+        );
+        join.push(JOIN_NEVER);
+        join.extend(
+            h.right
+                .join
+                .iter()
+                .map(|&c| renumber(c, &self.instants.map_r)),
+        );
+        for (gr, &g) in self.growth.iter().zip(&self.instants.map_g) {
+            for j in gr.new_pairs() {
+                if !h.joined_before(j, &gr.cut) {
+                    join[j] = g;
                 }
             }
-            let g = hist.instants.len() as u32;
-            hist.instants.push((t.gap, t.closing));
-            if from_l {
-                map_l[il] = g;
-                il = next_used(&used_l, il + 1);
-                tl = at(h.left, il);
-            }
-            if from_r {
-                map_r[ir] = g;
-                ir = next_used(&used_r, ir + 1);
-                tr = at(h.right, ir);
-            }
-            if from_g {
-                map_g[ig] = g;
-                ig += 1;
-            }
         }
+        join
     }
-    // Impulses by instant, then first particle: the left half's, the
-    // run's, the right half's.
-    let (mut kl, mut kr, mut kg) = (0, 0, 0);
-    let skip = |keep: &[bool], mut k: usize| {
-        while k < keep.len() && !keep[k] {
-            k += 1;
-        }
-        k
+}
+
+/// The history of the whole (see the module docs); with `two`, on two
+/// threads: each half's kept impulses found at once, then the impulses of
+/// the earlier and of the later half of the instants written at once, and
+/// the join codes beside them.
+fn assemble(h: &Halves, growth: &[Growth], n: usize, two: bool) -> History {
+    let m = h.m;
+    let ((keep_l, used_l), (keep_r, used_r)) = both(
+        two,
+        || kept(h.left, growth, m, 0, |f, (p, _)| f >= p),
+        || kept(h.right, growth, m, 1, |f, (_, q)| f < q),
+    );
+    let used = |u: &[bool]| u.iter().filter(|&&b| b).count();
+    let total = used(&used_l) + used(&used_r) + growth.len();
+    let mid = if two { total / 2 } else { total };
+    let instants = merge_instants(h, growth, &used_l, &used_r, mid);
+    let len = instants.times.len();
+    let mid = mid.min(len);
+    // The impulses of instants `mid..` start at the first impulse of each
+    // half at an instant from the heads on (impulses are in instant order).
+    let (il, ir, ig) = instants.heads;
+    let from = |hist: &History, i: usize| hist.impulses.partition_point(|&(k, _)| (k as usize) < i);
+    let later = (from(h.left, il), from(h.right, ir), ig);
+    let src = Sources {
+        h,
+        growth,
+        keep_l: &keep_l,
+        keep_r: &keep_r,
+        instants: &instants,
     };
-    kl = skip(&keep_l, kl);
-    kr = skip(&keep_r, kr);
-    for g in 0..hist.instants.len() as u32 {
-        while kl < keep_l.len() && map_l[h.left.impulses[kl].0 as usize] == g {
-            hist.impulses.push((g, hist.parts.len() as u32));
-            hist.parts.extend_from_slice(parts_of(h.left, kl));
-            kl = skip(&keep_l, kl + 1);
-        }
-        if kg < growth.len() && map_g[kg] == g {
-            hist.impulses.push((g, hist.parts.len() as u32));
-            growth_parts(h, &growth[kg], &mut hist.parts);
-            kg += 1;
-        }
-        while kr < keep_r.len() && map_r[h.right.impulses[kr].0 as usize] == g {
-            hist.impulses.push((g, hist.parts.len() as u32));
-            let shift = m as u32;
-            hist.parts
-                .extend(parts_of(h.right, kr).iter().map(|&b| b + shift));
-            kr = skip(&keep_r, kr + 1);
-        }
+    // Room for every impulse and part in each share (address space only:
+    // pages never written are never mapped).
+    let capacity = (
+        h.left.impulses.len() + h.right.impulses.len() + growth.len(),
+        h.left.parts.len() + h.right.parts.len() + n,
+    );
+    let (((mut impulses, mut parts), (late_impulses, late_parts)), join) = both(
+        two,
+        || {
+            both(
+                two,
+                || src.write(0..mid, (0, 0, 0), capacity),
+                || src.write(mid..len, later, capacity),
+            )
+        },
+        || src.joins(n),
+    );
+    let offset = parts.len() as u32;
+    impulses.extend(late_impulses.iter().map(|&(g, off)| (g, off + offset)));
+    parts.extend_from_slice(&late_parts);
+    History {
+        instants: instants.times,
+        impulses,
+        parts,
+        join,
     }
-    // Join codes: the halves', renumbered; the run's where it came first.
-    let renumber = |code: u32, map: &[u32]| match code {
-        JOIN_NEVER | JOIN_ZERO => code,
-        k => map[k as usize],
-    };
-    hist.join
-        .extend(h.left.join.iter().map(|&c| renumber(c, &map_l)));
-    hist.join.push(JOIN_NEVER);
-    hist.join
-        .extend(h.right.join.iter().map(|&c| renumber(c, &map_r)));
-    for (gr, &g) in growth.iter().zip(&map_g) {
-        for j in gr.new_pairs() {
-            if !h.joined_before(j, &gr.cut) {
-                hist.join[j] = g;
-            }
-        }
-    }
-    hist
 }
 
 /// The parts of the cluster the run became at `gr.t`: the halves' clusters
@@ -607,9 +721,16 @@ mod tests {
                 if cut(&s.x, &s.u, m) != Some(m) {
                     continue;
                 }
-                let split = run_halves::<i128, i128>(&s.x, &s.u, m);
-                if let Err(e) = same(&split, &whole) {
-                    panic!("scene {k}, cut {m}: {e}\nx = {:?}\nu = {:?}", s.x, s.u);
+                // Assembled on one thread and on two.
+                let split = run_halves::<i128, i128>(&s.x, &s.u, m, false);
+                let two = run_halves::<i128, i128>(&s.x, &s.u, m, true);
+                for (threads, h) in [(1, &split), (2, &two)] {
+                    if let Err(e) = same(h, &whole) {
+                        panic!(
+                            "scene {k}, cut {m}, {threads} threads: {e}\nx = {:?}\nu = {:?}",
+                            s.x, s.u
+                        );
+                    }
                 }
                 cuts += 1;
                 runs += usize::from(split.join[m - 1] != JOIN_NEVER);
