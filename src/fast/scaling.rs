@@ -27,6 +27,19 @@ pub(crate) struct Scaled {
     pub(crate) du: BigInt,
 }
 
+/// The numerators and denominators of a column, when they fit `i128`.
+fn read(v: &[BigRational]) -> Option<Vec<(i128, u128)>> {
+    v.iter().map(small).collect()
+}
+
+/// The numerators and denominators of a column, when they fit 64 bits (half
+/// the memory of [`read`]'s pairs, which the scaling reads twice).
+fn words(v: &[BigRational]) -> Option<Vec<(i64, u64)>> {
+    v.iter()
+        .map(|q| Some((q.numer().to_i64()?, q.denom().to_u64()?)))
+        .collect()
+}
+
 /// Numerator and denominator of a rational, when they fit.
 fn small(q: &BigRational) -> Option<(i128, u128)> {
     Some((q.numer().to_i128()?, q.denom().to_u128()?))
@@ -160,12 +173,17 @@ impl ExactDiv {
 /// Positions and velocities are read and scaled on two threads when there
 /// are many ([`PARALLEL_MIN`]).
 pub(crate) fn scale_words(data: &InitialData<BigRational>) -> Option<Scaled> {
-    let read = |v: &[BigRational]| v.iter().map(small).collect::<Option<Vec<_>>>();
     let two_r = small(&data.two_r())?;
     let (x, u) = both(
         data.n() >= PARALLEL_MIN,
-        || scale_positions(two_r, &read(data.positions())?),
-        || scale_velocities(&read(data.velocities())?),
+        || match words(data.positions()) {
+            Some(xs) => scale_positions(two_r, &xs),
+            None => scale_positions(two_r, &read(data.positions())?),
+        },
+        || match words(data.velocities()) {
+            Some(us) => scale_velocities(&us),
+            None => scale_velocities(&read(data.velocities())?),
+        },
     );
     let ((x, dx), (u, du)) = (x?, u?);
     Some(Scaled {
