@@ -56,7 +56,7 @@ where
         return run::<T, W>(x, u);
     }
     match cut(x, u, n / 2) {
-        Some(m) => run_halves::<T, W>(x, u, m, true),
+        Some(m) => run_halves::<T, W>(x, u, m, true, PART_MIN),
         None => run::<T, W>(x, u),
     }
 }
@@ -67,24 +67,26 @@ pub(super) fn cut<T: PartialEq>(x: &[T], u: &[T], from: usize) -> Option<usize> 
     (from.max(1)..x.len()).find(|&m| x[m - 1] != x[m] || u[m - 1] != u[m])
 }
 
+/// From this many particles a half is itself cut in two, and the two
+/// parts run one after the other on its thread: a smaller event loop keeps
+/// more of its nodes in the caches.
+pub(super) const PART_MIN: usize = 1 << 18;
+
 /// The history of the whole from the histories of `..m` and `m..`, each
-/// computed alone (the right one on a second thread); `0 < m < n` and the
-/// pair `(m − 1, m)` is not an initial contact with equal velocities. With
-/// `two`, the history of the whole is also assembled on two threads.
-pub(super) fn run_halves<T, W>(x: &[T], u: &[T], m: usize, two: bool) -> History
+/// computed alone ([`part`], cut again from `part_min` particles on);
+/// `0 < m < n` and the pair `(m − 1, m)` is not an initial contact with
+/// equal velocities. With `two`, on two threads: the right half on a second
+/// one, and the history of the whole assembled on both.
+pub(super) fn run_halves<T, W>(x: &[T], u: &[T], m: usize, two: bool, part_min: usize) -> History
 where
     T: Copy + PartialEq + Into<W> + Sync,
     W: SumWord,
 {
-    let (left, right) = std::thread::scope(|s| {
-        let right = s.spawn(|| run::<T, W>(&x[m..], &u[m..]));
-        let left = run::<T, W>(&x[..m], &u[..m]);
-        // A panic of the right half is a panic of this call.
-        let right = right
-            .join()
-            .unwrap_or_else(|e| std::panic::resume_unwind(e));
-        (left, right)
-    });
+    let (left, right) = both(
+        two,
+        || part::<T, W>(&x[..m], &u[..m], part_min),
+        || part::<T, W>(&x[m..], &u[m..], part_min),
+    );
     let halves = Halves {
         m,
         left: &left,
@@ -92,6 +94,22 @@ where
     };
     let growth = grow_run::<T, W>(x, u, &halves);
     assemble(&halves, &growth, x.len(), two)
+}
+
+/// The history of one half: [`run`], or from `part_min` particles on
+/// ([`PART_MIN`] but in tests), the history of its own two halves on this
+/// thread.
+fn part<T, W>(x: &[T], u: &[T], part_min: usize) -> History
+where
+    T: Copy + PartialEq + Into<W> + Sync,
+    W: SumWord,
+{
+    if x.len() >= part_min {
+        if let Some(m) = cut(x, u, x.len() / 2) {
+            return run_halves::<T, W>(x, u, m, false, part_min);
+        }
+    }
+    run::<T, W>(x, u)
 }
 
 /// The two halves' histories, `left` of particles `..m`, `right` of `m..`
@@ -721,13 +739,15 @@ mod tests {
                 if cut(&s.x, &s.u, m) != Some(m) {
                     continue;
                 }
-                // Assembled on one thread and on two.
-                let split = run_halves::<i128, i128>(&s.x, &s.u, m, false);
-                let two = run_halves::<i128, i128>(&s.x, &s.u, m, true);
-                for (threads, h) in [(1, &split), (2, &two)] {
+                // Assembled on one thread and on two; and with every half
+                // of at least 4 particles cut again, down to the middle.
+                let split = run_halves::<i128, i128>(&s.x, &s.u, m, false, usize::MAX);
+                let two = run_halves::<i128, i128>(&s.x, &s.u, m, true, usize::MAX);
+                let parts = run_halves::<i128, i128>(&s.x, &s.u, m, false, 4);
+                for (how, h) in [("one thread", &split), ("two", &two), ("parts", &parts)] {
                     if let Err(e) = same(h, &whole) {
                         panic!(
-                            "scene {k}, cut {m}, {threads} threads: {e}\nx = {:?}\nu = {:?}",
+                            "scene {k}, cut {m}, {how}: {e}\nx = {:?}\nu = {:?}",
                             s.x, s.u
                         );
                     }
