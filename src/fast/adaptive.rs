@@ -83,6 +83,63 @@ struct Approx {
     first: usize,
 }
 
+/// `Â = |â| max|x̂| + |b̂| max|û|`, the `f64` value of the input term `A`
+/// (module documentation), from which `E = 8u Â`.
+fn input_term(a: f64, b: f64, xf: &[f64], uf: &[f64]) -> f64 {
+    let max = |v: &[f64]| v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    a.abs() * max(xf) + b.abs() * max(uf)
+}
+
+impl Approx {
+    /// Entry `i`: `ŷ_i = fl(fl(â x̂_i) + fl(b̂ û_i))` with the bound `E`.
+    fn entry(a: f64, b: f64, x: f64, u: f64, e0: f64, i: usize) -> Approx {
+        Approx {
+            s: a * x + b * u,
+            e: e0,
+            k: 1.0,
+            first: i,
+        }
+    }
+
+    /// `d̂ = fl(fl(s_a k_b) − fl(s_b k_a))` for this block (`a`, on the
+    /// left) against `cur` (`b`, its right neighbour), and its bound
+    /// `B = e_a k_b + e_b k_a + 3u(|s_a| k_b + |s_b| k_a)` (module
+    /// documentation).
+    fn compare(&self, cur: &Approx) -> (f64, f64) {
+        let diff = self.s * cur.k - cur.s * self.k;
+        let bound = self.e * cur.k
+            + cur.e * self.k
+            + 3.0 * U * (self.s.abs() * cur.k + cur.s.abs() * self.k);
+        (diff, bound)
+    }
+
+    /// This block pooled with `cur`, its right neighbour: `s = fl(s_a + s_b)`
+    /// carries `e = e_a + e_b + u|s|` (one rounding).
+    fn merge(&self, cur: &Approx) -> Approx {
+        let s = self.s + cur.s;
+        Approx {
+            s,
+            e: self.e + cur.e + U * s.abs(),
+            k: self.k + cur.k,
+            first: self.first,
+        }
+    }
+}
+
+/// The sign of `D` when `d̂` settles it (`|d̂ − D| ≤ B`): pool (`D > 0`)
+/// when `d̂ > 2B`, not (`D < 0`) when `d̂ < −2B`; `None` otherwise, for the
+/// exact comparison. The factor 2 absorbs the rounding of `B`'s own
+/// evaluation (module documentation).
+fn settled(diff: f64, bound: f64) -> Option<bool> {
+    if diff > 2.0 * bound {
+        Some(true)
+    } else if diff < -2.0 * bound {
+        Some(false)
+    } else {
+        None
+    }
+}
+
 /// Exact comparison of two adjacent blocks `[f, m)` and `[m, end)` in
 /// `BigInt` (the filter only runs on data that need it): `true` when the
 /// left one pools with the right (its mean is `≥` in the lexicographic order
@@ -121,9 +178,8 @@ fn certified_partition(
 ) -> Option<(Vec<Approx>, usize)> {
     let n = d.n();
     let (a, b) = (at.a.to_f64()?, at.b.to_f64()?);
-    let max = |v: &[f64]| v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     let (xf, uf) = d.approx();
-    let big_a = a.abs() * max(xf) + b.abs() * max(uf);
+    let big_a = input_term(a, b, xf, uf);
     let e0 = 8.0 * U * big_a;
     // Every |ŷ_i| ≤ A(1 + 7u) and every |s| ≤ N A(1 + …): finite when
     // N A is well inside the f64 range; block sizes exact below 2^53.
@@ -134,38 +190,23 @@ fn certified_partition(
     let mut decisions = 0usize;
     let mut stack: Vec<Approx> = Vec::with_capacity(n);
     for i in 0..n {
-        let mut cur = Approx {
-            s: a * xf[i] + b * uf[i],
-            e: e0,
-            k: 1.0,
-            first: i,
-        };
+        let mut cur = Approx::entry(a, b, xf[i], uf[i], e0, i);
         while let Some(top) = stack.last() {
             decisions += 1;
-            let diff = top.s * cur.k - cur.s * top.k;
-            let bound = top.e * cur.k
-                + cur.e * top.k
-                + 3.0 * U * (top.s.abs() * cur.k + cur.s.abs() * top.k);
-            let pool = if diff > 2.0 * bound {
-                true
-            } else if diff < -2.0 * bound {
-                false
-            } else {
-                if exact.work > budget {
-                    return None;
+            let (diff, bound) = top.compare(&cur);
+            let pool = match settled(diff, bound) {
+                Some(pool) => pool,
+                None => {
+                    if exact.work > budget {
+                        return None;
+                    }
+                    exact.pools(top.first, cur.first, i + 1)
                 }
-                exact.pools(top.first, cur.first, i + 1)
             };
             if !pool {
                 break;
             }
-            let s = top.s + cur.s;
-            cur = Approx {
-                s,
-                e: top.e + cur.e + U * s.abs(),
-                k: top.k + cur.k,
-                first: top.first,
-            };
+            cur = top.merge(&cur);
             stack.pop();
         }
         stack.push(cur);
@@ -312,6 +353,66 @@ mod tests {
         assert!(seen.iter().all(|&c| c > 0), "{seen:?}");
     }
 
+    /// Scene `k` of the data near `f64` resolution (described at
+    /// `certified_decisions_in_f64_are_right`, which they were written for):
+    /// a random scene beyond the 512-bit kernel and its probe times
+    /// (collision instants and between).
+    fn near_f64_resolution(rng: &mut SplitMix64, k: u64) -> (IntegerData, Vec<BigRational>) {
+        let big = |e: u32| BigRational::from_integer(BigInt::from(10u32).pow(e));
+        let (scale, fine) = (big(100), big(160));
+        let data = initial_data(
+            &rng.bytes(300),
+            Limits {
+                max_n: 2 + (k % 40) as usize,
+                ..Limits::default()
+            },
+        );
+        let traj = Trajectory::new(data.clone());
+        let times = crate::trajectory::probe_times(&traj, Some(8));
+        let data = if k % 2 == 0 {
+            // Everything scaled by c = 1 + 7/10^100: the collision
+            // times (gap over closing speed) are unchanged, so the
+            // instants probed are exact ties.
+            let c = q(1, 1) + q(7, 1) / &scale;
+            let x = data.positions().iter().map(|x| x * &c).collect();
+            let u = data.velocities().iter().map(|u| u * &c).collect();
+            InitialData::new(data.radius() * &c, x, u).unwrap()
+        } else {
+            // Non-decreasing perturbations (contacts stay admissible).
+            let mut d = 7u64;
+            let x = (data.positions().iter().zip(0u64..))
+                .map(|(x, i)| {
+                    d += (i * 7919 + k) % 9973;
+                    x + BigRational::from_integer(BigInt::from(d)) / &fine
+                })
+                .collect();
+            InitialData::new(data.radius().clone(), x, data.velocities().to_vec()).unwrap()
+        };
+        // Every other pair of cases, a Galilean boost that leaves the
+        // collision instants alone: x⁰ + Mτ, u⁰ − M (M = 10^8), so that
+        // at the probed instant τ the free-flight values cancel M and
+        // the rounding of the inputs (the bound's `E` term), not that
+        // of the sums, is what the certificate must cover.
+        let data = if k % 4 >= 2 && !times.is_empty() {
+            let tau = &times[times.len() / 2];
+            let m = q(100_000_000, 1);
+            // With near-ties of 10^-11 … 10^-7 (below the inputs'
+            // rounding, ~10^-8 here, above the sums').
+            let mut d = 0u64;
+            let x = (data.positions().iter().zip(0u64..))
+                .map(|(x, i)| {
+                    d += (i * 104_729 + k) % 9973;
+                    x + &m * tau + q(d as i64, 100_000_000_000)
+                })
+                .collect();
+            let u = data.velocities().iter().map(|u| u - &m).collect();
+            InitialData::new(data.radius().clone(), x, u).unwrap()
+        } else {
+            data
+        };
+        (IntegerData::new(&data), times)
+    }
+
     /// Data beyond the 512-bit kernel whose values still differ at the top
     /// of their `f64` mantissas, so that most pooling decisions are taken in
     /// `f64`: random scenes scaled by `1 + 7/10^100` (the collision instants
@@ -334,62 +435,10 @@ mod tests {
     #[test]
     fn certified_decisions_in_f64_are_right() {
         let mut rng = SplitMix64::new(41);
-        let big = |e: u32| BigRational::from_integer(BigInt::from(10u32).pow(e));
-        let (scale, fine) = (big(100), big(160));
         let (mut decided, mut exact_calls) = (0usize, 0usize);
         let (mut probes, mut certified) = (0usize, 0usize);
         for k in 0..120u64 {
-            let data = initial_data(
-                &rng.bytes(300),
-                Limits {
-                    max_n: 2 + (k % 40) as usize,
-                    ..Limits::default()
-                },
-            );
-            let traj = Trajectory::new(data.clone());
-            let times = crate::trajectory::probe_times(&traj, Some(8));
-            let data = if k % 2 == 0 {
-                // Everything scaled by c = 1 + 7/10^100: the collision
-                // times (gap over closing speed) are unchanged, so the
-                // instants probed are exact ties.
-                let c = q(1, 1) + q(7, 1) / &scale;
-                let x = data.positions().iter().map(|x| x * &c).collect();
-                let u = data.velocities().iter().map(|u| u * &c).collect();
-                InitialData::new(data.radius() * &c, x, u).unwrap()
-            } else {
-                // Non-decreasing perturbations (contacts stay admissible).
-                let mut d = 7u64;
-                let x = (data.positions().iter().zip(0u64..))
-                    .map(|(x, i)| {
-                        d += (i * 7919 + k) % 9973;
-                        x + BigRational::from_integer(BigInt::from(d)) / &fine
-                    })
-                    .collect();
-                InitialData::new(data.radius().clone(), x, data.velocities().to_vec()).unwrap()
-            };
-            // Every other pair of cases, a Galilean boost that leaves the
-            // collision instants alone: x⁰ + Mτ, u⁰ − M (M = 10^8), so that
-            // at the probed instant τ the free-flight values cancel M and
-            // the rounding of the inputs (the bound's `E` term), not that
-            // of the sums, is what the certificate must cover.
-            let data = if k % 4 >= 2 && !times.is_empty() {
-                let tau = &times[times.len() / 2];
-                let m = q(100_000_000, 1);
-                // With near-ties of 10^-11 … 10^-7 (below the inputs'
-                // rounding, ~10^-8 here, above the sums').
-                let mut d = 0u64;
-                let x = (data.positions().iter().zip(0u64..))
-                    .map(|(x, i)| {
-                        d += (i * 104_729 + k) % 9973;
-                        x + &m * tau + q(d as i64, 100_000_000_000)
-                    })
-                    .collect();
-                let u = data.velocities().iter().map(|u| u - &m).collect();
-                InitialData::new(data.radius().clone(), x, u).unwrap()
-            } else {
-                data
-            };
-            let d = IntegerData::new(&data);
+            let (d, times) = near_f64_resolution(&mut rng, k);
             for t in &times {
                 let got = adaptive_blocks_at(&d, t);
                 assert_eq!(got.blocks, blocks_at(&d, t), "case {k}, t = {t}");
