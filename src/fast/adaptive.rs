@@ -282,7 +282,7 @@ mod tests {
     use crate::generate::{initial_data, Limits, SplitMix64};
     use crate::initial::InitialData;
     use crate::trajectory::Trajectory;
-    use num_traits::One;
+    use num_traits::{One, Zero};
 
     use crate::rational::ratio as q;
 
@@ -522,5 +522,196 @@ mod tests {
         assert_eq!(got.path, Path::Exact(Width::Big));
         assert_eq!(got.blocks.len(), 1);
         assert_eq!(got.blocks, blocks_at(&d, &q(5, 7)));
+    }
+
+    /// `v` exactly, as a rational.
+    fn exactly(v: f64) -> BigRational {
+        BigRational::from_float(v).expect("a finite f64")
+    }
+
+    /// The bounds the `f64` loop tracks, on the scenes near `f64` resolution
+    /// at every probe time, checked against the module documentation in
+    /// exact arithmetic: the input term `Â` is within `8u A` of
+    /// `A = |a| max|X| + |b| max|U|`; every entry `ŷ_i` is within
+    /// `E = 8u Â` of `Y_i`; then adjacent blocks are pooled in a random
+    /// order until one is left (any order PAVA can take, and more), and at
+    /// every step the tracked `e` of the pooled block and the `B` of the
+    /// decision are valid (`|s − S| ≤ e`, `|d̂ − D| ≤ B` with `S`, `D` the
+    /// exact sums of the `Y_i` and their cross difference), a settled
+    /// decision has the sign of `D` (never a tie), and `e`, `B` equal the
+    /// documented `e_a + e_b + u|s_a + s_b|` and
+    /// `e_a k_b + e_b k_a + 3u(|s_a| k_b + |s_b| k_a)` evaluated exactly from
+    /// the same `f64` values, up to the rounding of their own evaluation
+    /// (3 and 4 operations on non-negative terms: `4u`, `5u` relative). A
+    /// term dropped, shrunk or inflated fails the last check even where no
+    /// datum makes the smaller bound certify a wrong decision (the margin
+    /// `2B` leaves slack; `block_sums_rounded_up_at_every_addition` has the
+    /// one such datum found).
+    #[test]
+    fn the_tracked_bounds_are_valid_and_as_documented() {
+        let u = BigRational::new(BigInt::one(), BigInt::one() << 53u32);
+        // `|got − want| ≤ r u want`.
+        let close = |got: f64, want: &BigRational, r: i64| {
+            (exactly(got) - want).abs() <= q(r, 1) * &u * want
+        };
+        let mut rng = SplitMix64::new(43);
+        let (mut probes, mut merges, mut settled_right) = (0usize, 0usize, 0usize);
+        for k in 0..60u64 {
+            let (d, times) = near_f64_resolution(&mut rng, k);
+            for t in &times {
+                let at = AtTime::new(&d, t);
+                if at.width != Width::Big {
+                    continue;
+                }
+                probes += 1;
+                let (a, b) = (at.a.to_f64().unwrap(), at.b.to_f64().unwrap());
+                let (xf, uf) = d.approx();
+                let big_a = input_term(a, b, xf, uf);
+                let max = |v: &[BigInt]| v.iter().map(BigInt::abs).max().unwrap_or_default();
+                let want =
+                    BigRational::from_integer(at.a.abs() * max(&d.x) + at.b.abs() * max(&d.u));
+                assert!(close(big_a, &want, 8), "Â = {big_a:e}, A = {want}");
+                let e0 = 8.0 * U * big_a;
+                // Blocks with their exact sums ΣY.
+                let mut row: Vec<(Approx, BigInt)> = (0..d.n())
+                    .map(|i| {
+                        let y = &at.a * &d.x[i] + &at.b * &d.u[i];
+                        let entry = Approx::entry(a, b, xf[i], uf[i], e0, i);
+                        let err = exactly(entry.s) - BigRational::from_integer(y.clone());
+                        assert!(err.abs() <= exactly(entry.e), "entry {i}, t = {t}");
+                        (entry, y)
+                    })
+                    .collect();
+                while row.len() > 1 {
+                    let j = (rng.next_u64() % (row.len() as u64 - 1)) as usize;
+                    let ((l, sl), (r, sr)) = (&row[j], &row[j + 1]);
+                    let (kl, kr) = (BigInt::from(l.k as u64), BigInt::from(r.k as u64));
+                    let (ekl, ekr) = (
+                        BigRational::from_integer(kl.clone()),
+                        BigRational::from_integer(kr.clone()),
+                    );
+                    // The decision.
+                    let (diff, bound) = l.compare(r);
+                    let exact_d = BigRational::from_integer(sl * &kr - sr * &kl);
+                    let want = exactly(l.e) * &ekr
+                        + exactly(r.e) * &ekl
+                        + q(3, 1) * &u * (exactly(l.s).abs() * &ekr + exactly(r.s).abs() * &ekl);
+                    assert!(close(bound, &want, 5), "B = {bound:e}, documented {want}");
+                    assert!((exactly(diff) - &exact_d).abs() <= exactly(bound));
+                    if let Some(pool) = settled(diff, bound) {
+                        assert!(!exact_d.is_zero() && pool == exact_d.is_positive());
+                        settled_right += 1;
+                    }
+                    // The pooled block.
+                    let m = l.merge(r);
+                    let sum = sl + sr;
+                    let want =
+                        exactly(l.e) + exactly(r.e) + &u * (exactly(l.s) + exactly(r.s)).abs();
+                    assert!(close(m.e, &want, 4), "e = {:e}, documented {want}", m.e);
+                    let err = exactly(m.s) - BigRational::from_integer(sum.clone());
+                    assert!(err.abs() <= exactly(m.e));
+                    assert_eq!((m.k, m.first), (l.k + r.k, l.first));
+                    row[j] = (m, sum);
+                    row.remove(j + 1);
+                    merges += 1;
+                }
+            }
+        }
+        // Not vacuous: the scenes reach the certificate, and many of the
+        // decisions are settled in `f64`.
+        assert!(
+            probes > 100 && merges > 1000,
+            "{probes} probes, {merges} merges"
+        );
+        assert!(
+            5 * settled_right > merges,
+            "{settled_right} of {merges} settled"
+        );
+    }
+
+    /// The margin: a decision is settled in `f64` only when `|d̂| > 2B`, so
+    /// that `B` evaluated with rounding still bounds `|d̂ − D|`; inside
+    /// `(−2B, 2B)` (a tie `d̂ = 0` included) it goes to the exact comparison.
+    /// On bounds of every magnitude the `f64` loop meets (`B` is about
+    /// `u N² max|Y|`, far above 1 on data beyond 512 bits).
+    #[test]
+    fn decided_in_f64_only_beyond_twice_the_bound() {
+        for e in [-40, -1, 0, 1, 10, 100, 600, 1000] {
+            let bound = 2f64.powi(e) * 1.375;
+            for x in [0.0, 0.5, 1.0, 1.5, 1.99] {
+                assert_eq!(settled(x * bound, bound), None, "{x} B, B = {bound:e}");
+                assert_eq!(settled(-x * bound, bound), None, "−{x} B, B = {bound:e}");
+            }
+            for x in [2.01, 3.0, 1e6] {
+                assert_eq!(settled(x * bound, bound), Some(true), "{x} B");
+                assert_eq!(settled(-x * bound, bound), Some(false), "−{x} B");
+            }
+        }
+        assert_eq!(settled(0.0, 0.0), None, "a tie is never settled in f64");
+    }
+
+    /// Adversarial data for the bound's accumulated term `u|s|`: 512
+    /// particles near `2^600` that have all collided into one cluster by
+    /// `t = 1`, with data exact in `f64` whose low bits are chosen so that
+    /// each `f64` addition of the cluster's sum (`Y_i = x̃_i + U_i` at
+    /// `t = 1`) rounds up by about half a unit in the last place.
+    /// The sum's error then grows like `u k² max|Y| / 6`, past the input
+    /// and product terms of the bound (`2(2kE + 3u(|s_a| + k|s_b|))`, linear
+    /// in `k`, with `E = 8u max|Y|`); only the accumulated term covers it.
+    /// A last particle whose velocity is just above the cluster's mean
+    /// separates from it (`D < 0` by at most `k`), while the `f64` cross
+    /// difference says it joins: the certificate must leave that decision
+    /// to the exact comparison, and settle every other in `f64`.
+    #[test]
+    fn block_sums_rounded_up_at_every_addition() {
+        // In units of 2^548, where Y_i = 2^52 + m_i: exact in f64, and f64
+        // additions round the same way at either scale.
+        let k = 512usize;
+        let step = 1i128 << 11;
+        let top = 1i128 << 52;
+        let (mut s, mut exact_sum, mut m) = (0.0f64, 0i128, Vec::with_capacity(k + 1));
+        for j in 0..k as i128 {
+            // m_j in [base, base + step): decreasing in j; the low bits
+            // chosen for the largest upward rounding of s + Y_j.
+            let base = (k as i128 + 1 - j) * step;
+            let up = |r: i128| (s + (top + base + r) as f64) as i128 - (s as i128 + top + base + r);
+            let r = (0..step).max_by_key(|&r| (up(r), -r)).unwrap_or(0);
+            m.push(base + r);
+            s += (top + base + r) as f64;
+            exact_sum += top + base + r;
+        }
+        // The datum is what it claims: the sum's error (43,946 units) is
+        // past three times the bound's terms linear in k (11,264).
+        let (kf, max_y) = (k as f64, (top + m[0]) as f64);
+        let e = 8.0 * U * max_y;
+        let linear = 2.0 * (2.0 * kf * e + 3.0 * U * (s + kf * max_y));
+        assert!(
+            (s as i128 - exact_sum) as f64 > 3.0 * linear,
+            "{}",
+            s as i128 - exact_sum
+        );
+        // The last one: k (2^52 + m_k) just above ΣY.
+        m.push(exact_sum.div_euclid(k as i128) + 1 - top);
+        // Apart at t = 0 (x̃_i = 2^600 + i, positions x̃_i + i with r = 1/2),
+        // U_i = m_i − i: Y_i = x̃_i + U_i at t = 1, every value exact in f64.
+        let unit = |v: i128| BigRational::from_integer(BigInt::from(v) << 548u32);
+        let c = BigRational::from_integer(BigInt::one() << 600u32);
+        let x = (0..=k as i128)
+            .map(|i| &c + unit(i) + q(i as i64, 1))
+            .collect();
+        let v = (m.iter().zip(0i128..)).map(|(&m, i)| unit(m - i)).collect();
+        let data = InitialData::new(q(1, 2), x, v).unwrap();
+        let d = IntegerData::new(&data);
+        let t = q(1, 1);
+        let got = adaptive_blocks_at(&d, &t);
+        assert_eq!(got.blocks, blocks_at(&d, &t));
+        assert_eq!(got.blocks.len(), 2, "the last particle separates");
+        assert_eq!(
+            got.path,
+            Path::Certified {
+                decisions: k,
+                exact: 1
+            }
+        );
     }
 }
