@@ -90,6 +90,11 @@ fn input_term(a: f64, b: f64, xf: &[f64], uf: &[f64]) -> f64 {
     a.abs() * max(xf) + b.abs() * max(uf)
 }
 
+/// `E = 8u Â`, the error bound of every entry `ŷ_i` (module documentation).
+fn entry_bound(big_a: f64) -> f64 {
+    8.0 * U * big_a
+}
+
 impl Approx {
     /// Entry `i`: `ŷ_i = fl(fl(â x̂_i) + fl(b̂ û_i))` with the bound `E`.
     fn entry(a: f64, b: f64, x: f64, u: f64, e0: f64, i: usize) -> Approx {
@@ -180,7 +185,7 @@ fn certified_partition(
     let (a, b) = (at.a.to_f64()?, at.b.to_f64()?);
     let (xf, uf) = d.approx();
     let big_a = input_term(a, b, xf, uf);
-    let e0 = 8.0 * U * big_a;
+    let e0 = entry_bound(big_a);
     // Every |ŷ_i| ≤ A(1 + 7u) and every |s| ≤ N A(1 + …): finite when
     // N A is well inside the f64 range; block sizes exact below 2^53.
     if !(big_a * (n as f64) * 4.0).is_finite() || n as f64 > 2f64.powi(52) {
@@ -532,8 +537,8 @@ mod tests {
     /// The bounds the `f64` loop tracks, on the scenes near `f64` resolution
     /// at every probe time, checked against the module documentation in
     /// exact arithmetic: the input term `Â` is within `8u A` of
-    /// `A = |a| max|X| + |b| max|U|`; every entry `ŷ_i` is within
-    /// `E = 8u Â` of `Y_i`; then adjacent blocks are pooled in a random
+    /// `A = |a| max|X| + |b| max|U|`, `E` is `8u Â`, and every entry `ŷ_i`
+    /// is within `E` of `Y_i`; then adjacent blocks are pooled in a random
     /// order until one is left (any order PAVA can take, and more), and at
     /// every step the tracked `e` of the pooled block and the `B` of the
     /// decision are valid (`|s − S| ≤ e`, `|d̂ − D| ≤ B` with `S`, `D` the
@@ -542,11 +547,12 @@ mod tests {
     /// documented `e_a + e_b + u|s_a + s_b|` and
     /// `e_a k_b + e_b k_a + 3u(|s_a| k_b + |s_b| k_a)` evaluated exactly from
     /// the same `f64` values, up to the rounding of their own evaluation
-    /// (3 and 4 operations on non-negative terms: `4u`, `5u` relative). A
+    /// (`4u` and `5u` relative: 2 and 4 roundings of non-negative terms). A
     /// term dropped, shrunk or inflated fails the last check even where no
     /// datum makes the smaller bound certify a wrong decision (the margin
-    /// `2B` leaves slack; `block_sums_rounded_up_at_every_addition` has the
-    /// one such datum found).
+    /// `2B` and the input term leave slack;
+    /// `block_sums_rounded_up_at_every_addition` has data where a smaller
+    /// sum term does).
     #[test]
     fn the_tracked_bounds_are_valid_and_as_documented() {
         let u = BigRational::new(BigInt::one(), BigInt::one() << 53u32);
@@ -575,7 +581,9 @@ mod tests {
                     "Â = {big_a:e}, A = {:e}",
                     want.to_f64().unwrap_or(f64::NAN)
                 );
-                let e0 = 8.0 * U * big_a;
+                // E = 8u Â exactly (8u is a power of 2).
+                let e0 = entry_bound(big_a);
+                assert_eq!(exactly(e0), q(8, 1) * &u * exactly(big_a));
                 // Blocks with their exact sums ΣY.
                 let mut row: Vec<(Approx, BigInt)> = (0..d.n())
                     .map(|i| {
