@@ -77,7 +77,10 @@
 //! * from 2^15 particles on, the two halves run at once on two threads and
 //!   the whole history is rebuilt from theirs and from the one cluster
 //!   that crosses the cut (`split`: the clusters of the whole are the
-//!   halves' clusters but for that one, `prop:proj-micro`).
+//!   halves' clusters but for that one, `prop:proj-micro`), on both
+//!   threads; from 2^18 particles a half is cut the same way again, its
+//!   parts run one after the other on its thread (a smaller event loop
+//!   stays in the caches).
 //!
 //! Every event costs O(1) node accesses and O(1) amortized queue work (an
 //! entry moves at most 16 times between buckets); candidates whose times

@@ -32,6 +32,13 @@
 //! walks particles that join `N_L`, `N_R` or the run for good: the whole
 //! repair is linear in the size of the final run, plus one pass over the
 //! halves' histories.
+//!
+//! **Threads.** The halves run on two threads; each half of at least
+//! [`PART_MIN`] particles is itself cut in two the same way, its parts run
+//! one after the other on its thread. The whole is assembled on both
+//! threads: each half's kept impulses at once, then, once the instants are
+//! merged, the impulses of the earlier and of the later half of the
+//! instants at once, and the join codes beside them.
 
 use std::cmp::Ordering;
 
