@@ -27,22 +27,15 @@ pub(crate) struct Scaled {
     pub(crate) du: BigInt,
 }
 
-/// The numerators and denominators of a column, when they fit `i128`.
-fn read(v: &[BigRational]) -> Option<Vec<(i128, u128)>> {
-    v.iter().map(small).collect()
-}
-
-/// The numerators and denominators of a column, when they fit 64 bits (half
-/// the memory of [`read`]'s pairs, which the scaling reads twice).
-fn words(v: &[BigRational]) -> Option<Vec<(i64, u64)>> {
-    v.iter()
-        .map(|q| Some((q.numer().to_i64()?, q.denom().to_u64()?)))
-        .collect()
-}
-
 /// Numerator and denominator of a rational, when they fit.
 fn small(q: &BigRational) -> Option<(i128, u128)> {
     Some((q.numer().to_i128()?, q.denom().to_u128()?))
+}
+
+/// Numerator and denominator of a rational, when they fit 64 bits: half the
+/// memory of [`small`]'s pair, for a column the scaling reads twice.
+pub(crate) fn small_word(q: &BigRational) -> Option<(i64, u64)> {
+    Some((q.numer().to_i64()?, q.denom().to_u64()?))
 }
 
 /// `a / b` and `a % b`, on 64-bit words when both fit (`b > 0`).
@@ -176,13 +169,13 @@ pub(crate) fn scale_words(data: &InitialData<BigRational>) -> Option<Scaled> {
     let two_r = small(&data.two_r())?;
     let (x, u) = both(
         data.n() >= PARALLEL_MIN,
-        || match words(data.positions()) {
+        || match narrowed(data.positions(), small_word) {
             Some(xs) => scale_positions(two_r, &xs),
-            None => scale_positions(two_r, &read(data.positions())?),
+            None => scale_positions(two_r, &narrowed(data.positions(), small)?),
         },
-        || match words(data.velocities()) {
+        || match narrowed(data.velocities(), small_word) {
             Some(us) => scale_velocities(&us),
-            None => scale_velocities(&read(data.velocities())?),
+            None => scale_velocities(&narrowed(data.velocities(), small)?),
         },
     );
     let ((x, dx), (u, du)) = (x?, u?);

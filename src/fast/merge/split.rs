@@ -471,18 +471,12 @@ fn merge_instants(
         map_g: vec![JOIN_NEVER; growth.len()],
         heads: (h.left.instants.len(), h.right.instants.len(), growth.len()),
     };
-    let next_used = |used: &[bool], mut i: usize| {
-        while i < used.len() && !used[i] {
-            i += 1;
-        }
-        i
-    };
     let at = |hist: &History, i: usize| {
         hist.instants
             .get(i)
             .map(|&(gap, closing)| Time::new(gap, closing))
     };
-    let (mut il, mut ir, mut ig) = (next_used(used_l, 0), next_used(used_r, 0), 0);
+    let (mut il, mut ir, mut ig) = (next_set(used_l, 0), next_set(used_r, 0), 0);
     let (mut tl, mut tr) = (at(h.left, il), at(h.right, ir));
     loop {
         if out.times.len() == mid {
@@ -514,12 +508,12 @@ fn merge_instants(
         out.times.push((t.gap, t.closing));
         if from_l {
             out.map_l[il] = g;
-            il = next_used(used_l, il + 1);
+            il = next_set(used_l, il + 1);
             tl = at(h.left, il);
         }
         if from_r {
             out.map_r[ir] = g;
-            ir = next_used(used_r, ir + 1);
+            ir = next_set(used_r, ir + 1);
             tr = at(h.right, ir);
         }
         if from_g {
@@ -528,6 +522,14 @@ fn merge_instants(
         }
     }
     out
+}
+
+/// The first index from `i` on whose flag is set (`flags.len()` if none).
+fn next_set(flags: &[bool], mut i: usize) -> usize {
+    while i < flags.len() && !flags[i] {
+        i += 1;
+    }
+    i
 }
 
 /// What writing the impulses reads.
@@ -558,19 +560,13 @@ impl Sources<'_> {
         );
         let mut impulses = Vec::with_capacity(capacity.0);
         let mut parts = Vec::with_capacity(capacity.1);
-        let skip = |keep: &[bool], mut k: usize| {
-            while k < keep.len() && !keep[k] {
-                k += 1;
-            }
-            k
-        };
-        kl = skip(self.keep_l, kl);
-        kr = skip(self.keep_r, kr);
+        kl = next_set(self.keep_l, kl);
+        kr = next_set(self.keep_r, kr);
         for g in range.start as u32..range.end as u32 {
             while kl < self.keep_l.len() && map_l[h.left.impulses[kl].0 as usize] == g {
                 impulses.push((g, parts.len() as u32));
                 parts.extend_from_slice(parts_of(h.left, kl));
-                kl = skip(self.keep_l, kl + 1);
+                kl = next_set(self.keep_l, kl + 1);
             }
             if kg < self.growth.len() && map_g[kg] == g {
                 impulses.push((g, parts.len() as u32));
@@ -581,7 +577,7 @@ impl Sources<'_> {
                 impulses.push((g, parts.len() as u32));
                 let shift = m as u32;
                 parts.extend(parts_of(h.right, kr).iter().map(|&b| b + shift));
-                kr = skip(self.keep_r, kr + 1);
+                kr = next_set(self.keep_r, kr + 1);
             }
         }
         (impulses, parts)
@@ -631,9 +627,14 @@ fn assemble(h: &Halves, growth: &[Growth], n: usize, two: bool) -> History {
         || kept(h.left, growth, m, 0, |f, (p, _)| f >= p),
         || kept(h.right, growth, m, 1, |f, (_, q)| f < q),
     );
+    // The second thread's share: the later half of the instants (none on
+    // one thread).
     let used = |u: &[bool]| u.iter().filter(|&&b| b).count();
-    let total = used(&used_l) + used(&used_r) + growth.len();
-    let mid = if two { total / 2 } else { total };
+    let mid = if two {
+        (used(&used_l) + used(&used_r) + growth.len()) / 2
+    } else {
+        usize::MAX
+    };
     let instants = merge_instants(h, growth, &used_l, &used_r, mid);
     let len = instants.times.len();
     let mid = mid.min(len);
@@ -661,7 +662,7 @@ fn assemble(h: &Halves, growth: &[Growth], n: usize, two: bool) -> History {
             both(
                 two,
                 || src.write(0..mid, (0, 0, 0), capacity),
-                || src.write(mid..len, later, capacity),
+                || src.write(mid..len, later, if two { capacity } else { (0, 0) }),
             )
         },
         || src.joins(n),

@@ -1,5 +1,7 @@
 use super::*;
+use crate::fast::int::narrowed;
 use crate::fast::kernel::{state_at, IntegerData};
+use crate::fast::scaling::small_word;
 use crate::generate::{initial_data, Limits, SplitMix64};
 use crate::initial::InitialData;
 use crate::rational::ratio as q;
@@ -22,8 +24,7 @@ fn value(v: &Exact) -> BigRational {
 
 /// `data` as word pairs, the radius given (`None`: the paper's `1/(2N)`).
 fn lean(data: &InitialData<BigRational>, radius: bool) -> Option<Lean> {
-    let pair = |q: &BigRational| Some((q.numer().to_i64()?, q.denom().to_u64()?));
-    let col = |v: &[BigRational]| v.iter().map(pair).collect::<Option<Vec<_>>>();
+    let col = |v: &[BigRational]| narrowed(v, small_word);
     let r = radius.then(|| data.radius().clone());
     Lean::new(r, 0, col(data.positions())?, col(data.velocities())?)
 }
