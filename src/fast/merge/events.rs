@@ -1,6 +1,7 @@
 //! The event loop on integer cluster sums: every instant found exactly,
-//! every pair meeting at it merged in one step, one impulse per cluster
-//! formed (see the module documentation of [`crate::fast::merge`]).
+//! every pair meeting at it merged in one step, its join time recorded
+//! (see the module documentation of [`crate::fast::merge`]; the clusters
+//! formed are read off the join times, [`super::history`]).
 
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
@@ -17,16 +18,12 @@ pub(super) const JOIN_NEVER: u32 = u32::MAX;
 /// `join` code: joined at `t = 0` (an initial cluster).
 pub(super) const JOIN_ZERO: u32 = u32::MAX - 1;
 
-/// The history found by the integer engine, before conversion.
+/// What the event loop finds: every instant, and when each pair joins
+/// (the clusters formed follow, [`super::history`]).
 #[derive(Debug, Clone, Default, PartialEq)]
-pub(super) struct History {
-    /// Distinct collision instants `(gap, closing)`, increasing.
+pub(super) struct Joins {
+    /// Collision instants `(gap, closing)`, increasing.
     pub(super) instants: Vec<(i128, i128)>,
-    /// One entry per cluster formed: `(instant, offset into parts)`.
-    pub(super) impulses: Vec<(u32, u32)>,
-    /// For each impulse, the first particle of each part, left to right,
-    /// then one past the cluster's last particle.
-    pub(super) parts: Vec<u32>,
     /// For each pair `(j, j+1)`: the instant it joins, or [`JOIN_ZERO`],
     /// [`JOIN_NEVER`].
     pub(super) join: Vec<u32>,
@@ -53,7 +50,7 @@ pub(super) struct History {
 /// Both `near` and the lookahead's `early` heap (new candidates whose key
 /// falls below the queue's last key) are almost always empty: they need
 /// times equal to within the bracket `2^-40`.
-pub(super) fn run<T: Copy + PartialEq + Into<W>, W: SumWord>(x: &[T], u: &[T]) -> History {
+pub(super) fn run<T: Copy + PartialEq + Into<W>, W: SumWord>(x: &[T], u: &[T]) -> Joins {
     run_touching::<T, W>(x, u, None)
 }
 
@@ -65,16 +62,11 @@ fn run_touching<T: Copy + PartialEq + Into<W>, W: SumWord>(
     x: &[T],
     u: &[T],
     deep: Option<bool>,
-) -> History {
+) -> Joins {
     let n = x.len();
     // At most N − 1 merges: reserving that much costs address space only
     // (untouched pages are never mapped) and spares the copies of growth.
-    let mut hist = History {
-        instants: Vec::with_capacity(n),
-        impulses: Vec::with_capacity(n),
-        parts: Vec::with_capacity(3 * n),
-        join: Vec::new(),
-    };
+    let mut instants = Vec::with_capacity(n);
     let mut nodes = vec![Node::<W>::default(); n];
     // The join code of each pair `(j, j + 1)`, written once per merge: kept
     // out of the nodes, so that a node of `i64` sums is 24 bytes, not 32.
@@ -127,7 +119,6 @@ fn run_touching<T: Copy + PartialEq + Into<W>, W: SumWord>(
     let mut window: Vec<(Entry, Time)> = Vec::new();
     let mut pending: Vec<u32> = Vec::new();
     let mut fresh: Vec<u32> = Vec::new();
-    let mut bounds: Vec<u32> = Vec::new();
     loop {
         let live = |nodes: &[Node<W>], tags: &[u8], e: &Entry| {
             tags[e.slot as usize] == e.stamp as u8 && nodes[e.slot as usize].stamp == e.stamp
@@ -199,10 +190,9 @@ fn run_touching<T: Copy + PartialEq + Into<W>, W: SumWord>(
                 t
             }
         };
-        let instant = hist.instants.len() as u32;
-        hist.instants.push((t.gap, t.closing));
+        let instant = instants.len() as u32;
+        instants.push((t.gap, t.closing));
         fresh.clear();
-        bounds.clear();
         while !pending.is_empty() {
             // Left to right: a chain of pairs meeting at `t` becomes one
             // cluster (the left part of a later pair may have been formed
@@ -234,7 +224,6 @@ fn run_touching<T: Copy + PartialEq + Into<W>, W: SumWord>(
                     node.sum_u = su;
                     node.size = left.size + right.size;
                 }
-                bounds.push(r);
                 fresh.push(f as u32);
             }
             pending.clear();
@@ -276,30 +265,9 @@ fn run_touching<T: Copy + PartialEq + Into<W>, W: SumWord>(
             pending.sort_unstable();
             pending.dedup();
         }
-        // One impulse per cluster formed at `t`: its parts are split at the
-        // boundaries joined at `t`.
-        fresh.retain(|&f| nodes[f as usize].size != 0);
-        fresh.sort_unstable();
-        fresh.dedup();
-        bounds.sort_unstable();
-        let mut b = 0;
-        for &f in &fresh {
-            let end = f + nodes[f as usize].size;
-            hist.impulses.push((instant, hist.parts.len() as u32));
-            hist.parts.push(f);
-            while b < bounds.len() && bounds[b] < end {
-                debug_assert!(bounds[b] > f);
-                hist.parts.push(bounds[b]);
-                b += 1;
-            }
-            hist.parts.push(end);
-        }
     }
-    hist.join = join;
-    hist.instants.shrink_to_fit();
-    hist.impulses.shrink_to_fit();
-    hist.parts.shrink_to_fit();
-    hist
+    instants.shrink_to_fit();
+    Joins { instants, join }
 }
 
 #[cfg(test)]

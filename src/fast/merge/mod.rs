@@ -101,12 +101,14 @@ use crate::initial::InitialData;
 use crate::trajectory::Trajectory;
 
 mod events;
+mod history;
 mod queue;
 mod split;
 mod sums;
 mod time;
 
-use events::{History, JOIN_NEVER, JOIN_ZERO, MAX_N};
+use events::{JOIN_NEVER, JOIN_ZERO, MAX_N};
+use history::History;
 use split::run_split;
 use sums::{max_abs, within_bound, Words};
 pub use time::FILTER;

@@ -35,14 +35,17 @@
 //!
 //! **Threads.** The halves run on two threads; each half of at least
 //! [`PART_MIN`] particles is itself cut in two the same way, its parts run
-//! one after the other on its thread. The whole is assembled on both
-//! threads: each half's kept impulses at once, then, once the instants are
-//! merged, the impulses of the earlier and of the later half of the
-//! instants at once, and the join codes beside them.
+//! one after the other on its thread. Only join times are combined: the
+//! instants merged, the halves' join codes renumbered (on both threads),
+//! the run's written over them; the clusters formed are read off the join
+//! times of the whole once, at the end ([`History::from_joins`]). (Which
+//! impulses of a half stay follows: those whose pairs still join at the
+//! half's time.)
 
 use std::cmp::Ordering;
 
-use super::events::{run, History, JOIN_NEVER, JOIN_ZERO};
+use super::events::{run, Joins, JOIN_NEVER, JOIN_ZERO};
+use super::history::History;
 use super::sums::{meeting, Node, SumWord};
 use super::time::Time;
 use crate::fast::scaling::both;
@@ -51,21 +54,19 @@ use crate::fast::scaling::both;
 /// the repair cost more than they save).
 pub(super) const SPLIT_MIN: usize = 1 << 15;
 
-/// The history of `x`, `u` (as [`run`]), on two threads when `n` is at
-/// least [`SPLIT_MIN`].
+/// The history of `x`, `u`: the join times of [`run`], on two threads
+/// when `n` is at least [`SPLIT_MIN`], then the clusters formed.
 pub(super) fn run_split<T, W>(x: &[T], u: &[T]) -> History
 where
     T: Copy + PartialEq + Into<W> + Sync,
     W: SumWord,
 {
     let n = x.len();
-    if n < SPLIT_MIN {
-        return run::<T, W>(x, u);
-    }
-    match cut(x, u, n / 2) {
+    let joins = match (n >= SPLIT_MIN).then(|| cut(x, u, n / 2)).flatten() {
         Some(m) => run_halves::<T, W>(x, u, m, true, PART_MIN),
         None => run::<T, W>(x, u),
-    }
+    };
+    History::from_joins(joins)
 }
 
 /// The first `m ≥ from`, `0 < m < n`, where particles `m − 1` and `m` are
@@ -79,12 +80,12 @@ pub(super) fn cut<T: PartialEq>(x: &[T], u: &[T], from: usize) -> Option<usize> 
 /// more of its nodes in the caches.
 pub(super) const PART_MIN: usize = 1 << 18;
 
-/// The history of the whole from the histories of `..m` and `m..`, each
+/// The join times of the whole from those of `..m` and `m..`, each
 /// computed alone ([`part`], cut again from `part_min` particles on);
 /// `0 < m < n` and the pair `(m − 1, m)` is not an initial contact with
 /// equal velocities. With `two`, on two threads: the right half on a second
-/// one, and the history of the whole assembled on both.
-pub(super) fn run_halves<T, W>(x: &[T], u: &[T], m: usize, two: bool, part_min: usize) -> History
+/// one, and the join codes of the whole renumbered on both.
+pub(super) fn run_halves<T, W>(x: &[T], u: &[T], m: usize, two: bool, part_min: usize) -> Joins
 where
     T: Copy + PartialEq + Into<W> + Sync,
     W: SumWord,
@@ -100,13 +101,13 @@ where
         right: &right,
     };
     let growth = grow_run::<T, W>(x, u, &halves);
-    assemble(&halves, &growth, x.len(), two)
+    combine(&halves, &growth, x.len(), two)
 }
 
-/// The history of one half: [`run`], or from `part_min` particles on
-/// ([`PART_MIN`] but in tests), the history of its own two halves on this
+/// The join times of one half: [`run`], or from `part_min` particles on
+/// ([`PART_MIN`] but in tests), those of its own two halves on this
 /// thread.
-fn part<T, W>(x: &[T], u: &[T], part_min: usize) -> History
+fn part<T, W>(x: &[T], u: &[T], part_min: usize) -> Joins
 where
     T: Copy + PartialEq + Into<W> + Sync,
     W: SumWord,
@@ -119,16 +120,16 @@ where
     run::<T, W>(x, u)
 }
 
-/// The two halves' histories, `left` of particles `..m`, `right` of `m..`
-/// (numbered from 0).
+/// The two halves' join times, `left` of particles `..m`, `right` of
+/// `m..` (numbered from 0).
 struct Halves<'a> {
     m: usize,
-    left: &'a History,
-    right: &'a History,
+    left: &'a Joins,
+    right: &'a Joins,
 }
 
 /// A join code of a half as a time: `None` for never.
-fn code_time(h: &History, code: u32) -> Option<Time> {
+fn code_time(h: &Joins, code: u32) -> Option<Time> {
     match code {
         JOIN_NEVER => None,
         JOIN_ZERO => Some(Time::new(0, 1)),
@@ -151,7 +152,7 @@ struct Cut {
 impl Halves<'_> {
     /// Where `t` falls among the halves' instants.
     fn cut(&self, t: &Time) -> Cut {
-        let at = |h: &History, strict: bool| {
+        let at = |h: &Joins, strict: bool| {
             h.instants.partition_point(|&(gap, closing)| {
                 let c = Time::new(gap, closing).cmp(t);
                 c == Ordering::Less || (!strict && c == Ordering::Equal)
@@ -397,91 +398,30 @@ fn grow_run<T: Copy + Into<W>, W: SumWord>(x: &[T], u: &[T], h: &Halves) -> Vec<
     out
 }
 
-/// The first particle of impulse `k` of `h`.
-fn first_of(h: &History, k: usize) -> u32 {
-    h.parts[h.impulses[k].1 as usize]
-}
-
-/// The parts (bounds) of impulse `k` of `h`.
-fn parts_of(h: &History, k: usize) -> &[u32] {
-    let stop = h
-        .impulses
-        .get(k + 1)
-        .map_or(h.parts.len(), |&(_, o)| o as usize);
-    &h.parts[h.impulses[k].1 as usize..stop]
-}
-
-/// The run's extent `[p, q)` at the time of instant `i` of half `side`
-/// (after the growths at that time): the last growth at a time `t` with
-/// `lt[side] ≤ i`, i.e. `t ≤` that instant.
-fn run_at(growth: &[Growth], m: usize, side: usize, i: u32) -> (usize, usize) {
-    let k = growth.partition_point(|g| g.cut.lt[side] <= i);
-    k.checked_sub(1)
-        .map_or((m, m), |k| (growth[k].p, growth[k].q))
-}
-
-/// Which impulses of a half stay (their cluster is outside the run when
-/// formed), and which of its instants are still used.
-fn kept(
-    h: &History,
-    growth: &[Growth],
-    m: usize,
-    side: usize,
-    inside: impl Fn(usize, (usize, usize)) -> bool,
-) -> (Vec<bool>, Vec<bool>) {
-    let (p_end, q_end) = growth.last().map_or((m, m), |g| (g.p, g.q));
-    let mut used = vec![false; h.instants.len()];
-    let keep: Vec<bool> = (0..h.impulses.len())
-        .map(|k| {
-            let first = first_of(h, k) as usize + side * m;
-            let instant = h.impulses[k].0 as usize;
-            let stays = !(p_end..q_end).contains(&first)
-                || !inside(first, run_at(growth, m, side, instant as u32));
-            used[instant] |= stays;
-            stays
-        })
-        .collect();
-    (keep, used)
-}
-
-/// The instants of the whole: those of the halves still used, merged in
-/// time order (equal times are one instant) with the run's growths, and
-/// where each half's instants and each growth went.
+/// The instants of the whole: those of the halves merged in time order
+/// with the run's growths (equal times are one instant), and where each
+/// half's instants and each growth went. (An instant of a half may no
+/// longer be used by any pair of the whole: [`History::from_joins`] drops
+/// it.)
 struct Instants {
     times: Vec<(i128, i128)>,
     map_l: Vec<u32>,
     map_r: Vec<u32>,
     map_g: Vec<u32>,
-    /// The first left and right instant and the first growth numbered at
-    /// least `mid` (the second thread's share starts there).
-    heads: (usize, usize, usize),
 }
 
-fn merge_instants(
-    h: &Halves,
-    growth: &[Growth],
-    used_l: &[bool],
-    used_r: &[bool],
-    mid: usize,
-) -> Instants {
+fn merge_instants(h: &Halves, growth: &[Growth]) -> Instants {
+    let (left, right) = (&h.left.instants, &h.right.instants);
     let mut out = Instants {
-        times: Vec::with_capacity(h.left.instants.len() + h.right.instants.len() + growth.len()),
-        map_l: vec![JOIN_NEVER; h.left.instants.len()],
-        map_r: vec![JOIN_NEVER; h.right.instants.len()],
-        map_g: vec![JOIN_NEVER; growth.len()],
-        heads: (h.left.instants.len(), h.right.instants.len(), growth.len()),
+        times: Vec::with_capacity(left.len() + right.len() + growth.len()),
+        map_l: Vec::with_capacity(left.len()),
+        map_r: Vec::with_capacity(right.len()),
+        map_g: Vec::with_capacity(growth.len()),
     };
-    let at = |hist: &History, i: usize| {
-        hist.instants
-            .get(i)
-            .map(|&(gap, closing)| Time::new(gap, closing))
-    };
-    let (mut il, mut ir, mut ig) = (next_set(used_l, 0), next_set(used_r, 0), 0);
-    let (mut tl, mut tr) = (at(h.left, il), at(h.right, ir));
+    let at = |v: &[(i128, i128)], i: usize| v.get(i).map(|&(gap, closing)| Time::new(gap, closing));
+    let (mut il, mut ir, mut ig) = (0, 0, 0);
+    let (mut tl, mut tr) = (at(left, 0), at(right, 0));
     loop {
-        if out.times.len() == mid {
-            out.heads = (il, ir, ig);
-        }
         // The earliest head: left, right or both (equal times).
         let (mut t, mut from_l, mut from_r) = match (tl, tr) {
             (Some(a), Some(b)) => match a.cmp(&b) {
@@ -507,187 +447,56 @@ fn merge_instants(
         let g = out.times.len() as u32;
         out.times.push((t.gap, t.closing));
         if from_l {
-            out.map_l[il] = g;
-            il = next_set(used_l, il + 1);
-            tl = at(h.left, il);
+            out.map_l.push(g);
+            il += 1;
+            tl = at(left, il);
         }
         if from_r {
-            out.map_r[ir] = g;
-            ir = next_set(used_r, ir + 1);
-            tr = at(h.right, ir);
+            out.map_r.push(g);
+            ir += 1;
+            tr = at(right, ir);
         }
         if from_g {
-            out.map_g[ig] = g;
+            out.map_g.push(g);
             ig += 1;
         }
     }
     out
 }
 
-/// The first index from `i` on whose flag is set (`flags.len()` if none).
-fn next_set(flags: &[bool], mut i: usize) -> usize {
-    while i < flags.len() && !flags[i] {
-        i += 1;
-    }
-    i
-}
-
-/// What writing the impulses reads.
-struct Sources<'a> {
-    h: &'a Halves<'a>,
-    growth: &'a [Growth],
-    keep_l: &'a [bool],
-    keep_r: &'a [bool],
-    instants: &'a Instants,
-}
-
-impl Sources<'_> {
-    /// The impulses (offsets into the returned parts) of the instants
-    /// numbered in `range`, starting from the first left and right impulse
-    /// and growth at those instants: the left half's, the run's, the right
-    /// half's at each instant, each half's in its order (first particle).
-    fn write(
-        &self,
-        range: std::ops::Range<usize>,
-        (mut kl, mut kr, mut kg): (usize, usize, usize),
-        capacity: (usize, usize),
-    ) -> (Vec<(u32, u32)>, Vec<u32>) {
-        let (h, m) = (self.h, self.h.m);
-        let (map_l, map_r, map_g) = (
-            &self.instants.map_l,
-            &self.instants.map_r,
-            &self.instants.map_g,
-        );
-        let mut impulses = Vec::with_capacity(capacity.0);
-        let mut parts = Vec::with_capacity(capacity.1);
-        kl = next_set(self.keep_l, kl);
-        kr = next_set(self.keep_r, kr);
-        for g in range.start as u32..range.end as u32 {
-            while kl < self.keep_l.len() && map_l[h.left.impulses[kl].0 as usize] == g {
-                impulses.push((g, parts.len() as u32));
-                parts.extend_from_slice(parts_of(h.left, kl));
-                kl = next_set(self.keep_l, kl + 1);
-            }
-            if kg < self.growth.len() && map_g[kg] == g {
-                impulses.push((g, parts.len() as u32));
-                growth_parts(h, &self.growth[kg], &mut parts);
-                kg += 1;
-            }
-            while kr < self.keep_r.len() && map_r[h.right.impulses[kr].0 as usize] == g {
-                impulses.push((g, parts.len() as u32));
-                let shift = m as u32;
-                parts.extend(parts_of(h.right, kr).iter().map(|&b| b + shift));
-                kr = next_set(self.keep_r, kr + 1);
-            }
-        }
-        (impulses, parts)
-    }
-
-    /// The join codes of the whole: the halves', renumbered; the run's
-    /// where it came first.
-    fn joins(&self, n: usize) -> Vec<u32> {
-        let h = self.h;
-        let renumber = |code: u32, map: &[u32]| match code {
+/// `codes` renumbered by `map` into `out` (`t = 0` and never kept).
+fn renumber(out: &mut [u32], codes: &[u32], map: &[u32]) {
+    for (o, &code) in out.iter_mut().zip(codes) {
+        *o = match code {
             JOIN_NEVER | JOIN_ZERO => code,
             k => map[k as usize],
         };
-        let mut join = Vec::with_capacity(n.saturating_sub(1));
-        join.extend(
-            h.left
-                .join
-                .iter()
-                .map(|&c| renumber(c, &self.instants.map_l)),
-        );
-        join.push(JOIN_NEVER);
-        join.extend(
-            h.right
-                .join
-                .iter()
-                .map(|&c| renumber(c, &self.instants.map_r)),
-        );
-        for (gr, &g) in self.growth.iter().zip(&self.instants.map_g) {
-            for j in gr.new_pairs() {
-                if !h.joined_before(j, &gr.cut) {
-                    join[j] = g;
-                }
+    }
+}
+
+/// The join times of the whole (see the module docs): the instants merged;
+/// the halves' join codes renumbered (on two threads with `two`), then the
+/// run's where it came first.
+fn combine(h: &Halves, growth: &[Growth], n: usize, two: bool) -> Joins {
+    let instants = merge_instants(h, growth);
+    let mut join = vec![JOIN_NEVER; n - 1];
+    let (left, right) = join.split_at_mut(h.m);
+    both(
+        two,
+        || renumber(left, &h.left.join, &instants.map_l),
+        || renumber(right, &h.right.join, &instants.map_r),
+    );
+    for (gr, &g) in growth.iter().zip(&instants.map_g) {
+        for j in gr.new_pairs() {
+            if !h.joined_before(j, &gr.cut) {
+                join[j] = g;
             }
         }
-        join
     }
-}
-
-/// The history of the whole (see the module docs); with `two`, on two
-/// threads: each half's kept impulses found at once, then the impulses of
-/// the earlier and of the later half of the instants written at once, and
-/// the join codes beside them.
-fn assemble(h: &Halves, growth: &[Growth], n: usize, two: bool) -> History {
-    let m = h.m;
-    let ((keep_l, used_l), (keep_r, used_r)) = both(
-        two,
-        || kept(h.left, growth, m, 0, |f, (p, _)| f >= p),
-        || kept(h.right, growth, m, 1, |f, (_, q)| f < q),
-    );
-    // The second thread's share: the later half of the instants (none on
-    // one thread).
-    let used = |u: &[bool]| u.iter().filter(|&&b| b).count();
-    let mid = if two {
-        (used(&used_l) + used(&used_r) + growth.len()) / 2
-    } else {
-        usize::MAX
-    };
-    let instants = merge_instants(h, growth, &used_l, &used_r, mid);
-    let len = instants.times.len();
-    let mid = mid.min(len);
-    // The impulses of instants `mid..` start at the first impulse of each
-    // half at an instant from the heads on (impulses are in instant order).
-    let (il, ir, ig) = instants.heads;
-    let from = |hist: &History, i: usize| hist.impulses.partition_point(|&(k, _)| (k as usize) < i);
-    let later = (from(h.left, il), from(h.right, ir), ig);
-    let src = Sources {
-        h,
-        growth,
-        keep_l: &keep_l,
-        keep_r: &keep_r,
-        instants: &instants,
-    };
-    // Room for every impulse and part in each share (address space only:
-    // pages never written are never mapped).
-    let capacity = (
-        h.left.impulses.len() + h.right.impulses.len() + growth.len(),
-        h.left.parts.len() + h.right.parts.len() + n,
-    );
-    let (((mut impulses, mut parts), (late_impulses, late_parts)), join) = both(
-        two,
-        || {
-            both(
-                two,
-                || src.write(0..mid, (0, 0, 0), capacity),
-                || src.write(mid..len, later, if two { capacity } else { (0, 0) }),
-            )
-        },
-        || src.joins(n),
-    );
-    let offset = parts.len() as u32;
-    impulses.extend(late_impulses.iter().map(|&(g, off)| (g, off + offset)));
-    parts.extend_from_slice(&late_parts);
-    History {
+    Joins {
         instants: instants.times,
-        impulses,
-        parts,
         join,
     }
-}
-
-/// The parts of the cluster the run became at `gr.t`: the halves' clusters
-/// just before `gr.t` on both sides, and the run before it as one part.
-fn growth_parts(h: &Halves, gr: &Growth, parts: &mut Vec<u32>) {
-    parts.push(gr.p as u32);
-    for j in gr.new_pairs() {
-        if !h.joined_before(j, &gr.cut) {
-            parts.push(j as u32 + 1);
-        }
-    }
-    parts.push(gr.q as u32);
 }
 
 #[cfg(test)]
@@ -742,7 +551,7 @@ mod tests {
             let Some(s) = scale_i128(&data) else {
                 continue;
             };
-            let whole = run::<i128, i128>(&s.x, &s.u);
+            let whole = History::from_joins(run::<i128, i128>(&s.x, &s.u));
             for m in 1..s.x.len() {
                 if cut(&s.x, &s.u, m) != Some(m) {
                     continue;
@@ -753,7 +562,7 @@ mod tests {
                 let two = run_halves::<i128, i128>(&s.x, &s.u, m, true, usize::MAX);
                 let parts = run_halves::<i128, i128>(&s.x, &s.u, m, false, 4);
                 for (how, h) in [("one thread", &split), ("two", &two), ("parts", &parts)] {
-                    if let Err(e) = same(h, &whole) {
+                    if let Err(e) = same(&History::from_joins(h.clone()), &whole) {
                         panic!(
                             "scene {k}, cut {m}, {how}: {e}\nx = {:?}\nu = {:?}",
                             s.x, s.u
@@ -784,7 +593,7 @@ mod tests {
         let s = scale_i128(&data).expect("small data");
         assert!(s.x.len() >= SPLIT_MIN && cut(&s.x, &s.u, s.x.len() / 2).is_some());
         let split = run_split::<i128, i128>(&s.x, &s.u);
-        let whole = run::<i128, i128>(&s.x, &s.u);
+        let whole = History::from_joins(run::<i128, i128>(&s.x, &s.u));
         same(&split, &whole).unwrap();
         assert!(whole.impulses.len() > SPLIT_MIN / 2);
     }
