@@ -55,17 +55,25 @@ fn key(code: u32) -> u32 {
 
 /// Calls `formed(instant, first, pairs, end)` on every cluster formed (see
 /// the module docs): it runs over particles `first..end` and its pairs
-/// `(j, key)` joining at `instant` are `pairs`, left to right. The
-/// clusters of one instant come left to right.
-fn clusters_formed(join: &[u32], mut formed: impl FnMut(usize, u32, &[(u32, u32)], u32)) {
+/// `(key, j)` joining at `instant` are `pairs`, left to right. The
+/// clusters of one instant come left to right. Each code is replaced by
+/// `relabel(code)` once read.
+fn clusters_formed(
+    join: &mut [u32],
+    relabel: impl Fn(u32) -> u32,
+    mut formed: impl FnMut(usize, u32, &[(u32, u32)], u32),
+) {
     // Entries `(key, j)`, keys not increasing upwards.
     let mut stack: Vec<(u32, u32)> = Vec::new();
     // The first particle after the last pair that never joins.
     let mut floor = 0u32;
-    let pairs = join.len();
-    for r in 0..=pairs {
+    for r in 0..=join.len() {
         // Past the last pair, a pair that never joins closes every cluster.
-        let k = join.get(r).map_or(u32::MAX, |&c| key(c));
+        let k = join.get_mut(r).map_or(u32::MAX, |c| {
+            let k = key(*c);
+            *c = relabel(*c);
+            k
+        });
         while let Some(&(top, _)) = stack.last() {
             if top >= k {
                 break;
@@ -95,64 +103,62 @@ fn clusters_formed(join: &[u32], mut formed: impl FnMut(usize, u32, &[(u32, u32)
 impl History {
     /// The history whose pairs join as `joins` says (see the module docs).
     /// The instants at which no pair joins are dropped (a repaired half
-    /// keeps the instants of clusters the run took in).
+    /// keeps the instants of clusters the run took in), and the codes
+    /// renumbered.
     pub(super) fn from_joins(joins: Joins) -> History {
         let Joins {
             mut instants,
             mut join,
         } = joins;
         let len = instants.len();
-        // 1. The impulses and parts of every instant, counted; then where
-        //    each instant's first impulse and part go.
-        let mut at_impulse = vec![0u32; len];
-        let mut at_part = vec![0u32; len];
-        clusters_formed(&join, |g, _, pairs, _| {
-            at_impulse[g] += 1;
-            at_part[g] += pairs.len() as u32 + 2;
+        // 1. The impulses and parts of every instant counted (one place
+        //    per instant: one cache line touched per cluster).
+        let mut at = vec![(0u32, 0u32); len];
+        clusters_formed(&mut join, |c| c, |g, _, pairs, _| {
+            at[g].0 += 1;
+            at[g].1 += pairs.len() as u32 + 2;
         });
-        let (mut impulse_count, mut part_count, mut used) = (0u32, 0u32, 0usize);
-        for (a, b) in at_impulse.iter_mut().zip(&mut at_part) {
-            used += usize::from(*a > 0);
-            (impulse_count, *a) = (impulse_count + *a, impulse_count);
-            (part_count, *b) = (part_count + *b, part_count);
+        // Then where each instant's first impulse and part go, and the
+        // rank of every instant used.
+        let mut rank = vec![JOIN_NEVER; len];
+        let (mut impulse_count, mut part_count, mut used) = (0u32, 0u32, 0u32);
+        for (a, r) in at.iter_mut().zip(&mut rank) {
+            if a.0 > 0 {
+                *r = used;
+                used += 1;
+            }
+            let next = (impulse_count + a.0, part_count + a.1);
+            *a = (impulse_count, part_count);
+            (impulse_count, part_count) = next;
         }
-        // 2. Every cluster written where it belongs.
+        // 2. Every cluster written where it belongs; the codes renumbered
+        //    on the way when an instant is dropped.
         let mut impulses = vec![(0u32, 0u32); impulse_count as usize];
         let mut parts = vec![0u32; part_count as usize];
-        clusters_formed(&join, |g, first, pairs, end| {
-            let (k, p) = (at_impulse[g] as usize, at_part[g] as usize);
-            impulses[k] = (g as u32, p as u32);
-            let out = &mut parts[p..p + pairs.len() + 2];
+        let mut write = |g: usize, first: u32, pairs: &[(u32, u32)], end: u32| {
+            let (k, p) = at[g];
+            impulses[k as usize] = (rank[g], p);
+            let out = &mut parts[p as usize..p as usize + pairs.len() + 2];
             out[0] = first;
             for (o, &(_, j)) in out[1..].iter_mut().zip(pairs) {
                 *o = j + 1;
             }
             out[pairs.len() + 1] = end;
-            at_impulse[g] += 1;
-            at_part[g] += pairs.len() as u32 + 2;
-        });
-        // 3. The instants no pair joins at, dropped; the codes renumbered.
-        if used < len {
-            let mut rank = at_impulse;
-            let mut kept = 0u32;
+            at[g] = (k + 1, p + pairs.len() as u32 + 2);
+        };
+        if used as usize == len {
+            clusters_formed(&mut join, |c| c, &mut write);
+        } else {
+            let relabel = |c: u32| match c {
+                JOIN_NEVER | JOIN_ZERO => c,
+                g => rank[g as usize],
+            };
+            clusters_formed(&mut join, relabel, &mut write);
             let mut g = 0;
             instants.retain(|_| {
-                let here = at_part[g] > 0 && (g == 0 || at_part[g] != at_part[g - 1]);
-                // An instant is used iff its parts' end moved past the
-                // previous instant's.
-                rank[g] = kept;
-                kept += u32::from(here);
                 g += 1;
-                here
+                rank[g - 1] != JOIN_NEVER
             });
-            for code in &mut join {
-                if *code != JOIN_NEVER && *code != JOIN_ZERO {
-                    *code = rank[*code as usize];
-                }
-            }
-            for imp in &mut impulses {
-                imp.0 = rank[imp.0 as usize];
-            }
         }
         History {
             instants,

@@ -74,20 +74,24 @@
 //!   the cache misses of coming events overlap;
 //! * the exact order is restored in a small window around the earliest
 //!   candidate (see `run`): the queue only needs approximate keys;
+//! * the loop records only *when* each pair joins (and the instants); the
+//!   clusters formed, and their parts, are read off those join times once,
+//!   at the end (`history`: one stack scan, since at each time the clusters
+//!   are the maximal runs of joined pairs);
 //! * from 2^15 particles on, the two halves run at once on two threads and
-//!   the whole history is rebuilt from theirs and from the one cluster
-//!   that crosses the cut (`split`: the clusters of the whole are the
-//!   halves' clusters but for that one, `prop:proj-micro`), on both
-//!   threads; from 2^18 particles a half is cut the same way again, its
-//!   parts run one after the other on its thread (a smaller event loop
-//!   stays in the caches).
+//!   the join times of the whole are repaired from theirs and from the one
+//!   cluster that crosses the cut (`split`: the clusters of the whole are
+//!   the halves' clusters but for that one, `prop:proj-micro`); from 2^18
+//!   particles a half is cut the same way again, its parts run one after
+//!   the other on its thread (a smaller event loop stays in the caches).
 //!
 //! Every event costs O(1) node accesses and O(1) amortized queue work (an
 //! entry moves at most 16 times between buckets); candidates whose times
 //! agree with the current instant to about 12 digits without being equal go
 //! through a binary heap, O(log N) each. At most N − 1 merges: O(N log N) in
-//! all, O(N) memory (the parts of every impulse are kept as a flat list of
-//! part boundaries, the times as unreduced `(gap, closing)` pairs).
+//! all, O(N) memory (one join code per pair while the loops run; then the
+//! parts of every impulse as a flat list of part boundaries; the times as
+//! unreduced `(gap, closing)` pairs).
 
 use num_bigint::BigInt;
 use num_rational::BigRational;
