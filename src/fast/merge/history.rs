@@ -114,10 +114,14 @@ impl History {
         // 1. The impulses and parts of every instant counted (one place
         //    per instant: one cache line touched per cluster).
         let mut at = vec![(0u32, 0u32); len];
-        clusters_formed(&mut join, |c| c, |g, _, pairs, _| {
-            at[g].0 += 1;
-            at[g].1 += pairs.len() as u32 + 2;
-        });
+        clusters_formed(
+            &mut join,
+            |c| c,
+            |g, _, pairs, _| {
+                at[g].0 += 1;
+                at[g].1 += pairs.len() as u32 + 2;
+            },
+        );
         // Then where each instant's first impulse and part go, and the
         // rank of every instant used.
         let mut rank = vec![JOIN_NEVER; len];
