@@ -10,9 +10,11 @@ use super::queue::{Entry, Lookahead, Near, RadixQueue, DEEP_BYTES};
 use super::sums::{meeting, Node, SumWord};
 use super::time::Time;
 
-/// Particle indices, instants and join codes are `u32`: larger systems
-/// take the generic engine.
-pub(super) const MAX_N: usize = (u32::MAX / 2) as usize;
+/// Particle indices, instants, join codes and offsets into the parts of
+/// the impulses are `u32`: larger systems take the generic engine. (The
+/// parts hold at most `3 (N − 1)` bounds: each impulse has one bound per
+/// pair joining at its instant, at least one, and two ends.)
+pub(super) const MAX_N: usize = (u32::MAX / 3) as usize;
 /// `join` code: never joined.
 pub(super) const JOIN_NEVER: u32 = u32::MAX;
 /// `join` code: joined at `t = 0` (an initial cluster).
