@@ -184,7 +184,9 @@ mod tests {
         let n = join.len() + 1;
         let mut out = Vec::new();
         for g in 0..instants as u32 {
-            let by = |j: usize| key(join[j]) <= g + 1;
+            // Joined by `g`: at `t = 0` or at an instant up to `g` (written
+            // out here, not through `key`, which the scan uses).
+            let by = |j: usize| join[j] == JOIN_ZERO || join[j] <= g;
             let mut first = 0;
             while first < n {
                 let mut end = first + 1;

@@ -1,6 +1,6 @@
-//! The event loop on two halves at once: each half's history computed
-//! alone (two threads), then the history of the whole rebuilt from them
-//! and from the one cluster that crosses the cut.
+//! The event loop on two halves at once: each half's join times computed
+//! alone (two threads), then those of the whole repaired from them and
+//! from the one cluster that crosses the cut.
 //!
 //! **Why the halves' histories are almost the whole one.** At every time
 //! `t` the clusters are the blocks of the isotonic regression of
@@ -31,7 +31,7 @@
 //! `N_L`, `N_R` grow outwards at their halves' join times. Every step
 //! walks particles that join `N_L`, `N_R` or the run for good: the whole
 //! repair is linear in the size of the final run, plus one pass over the
-//! halves' histories.
+//! halves' join times.
 //!
 //! **Threads.** The halves run on two threads; each half of at least
 //! [`PART_MIN`] particles is itself cut in two the same way, its parts run
@@ -556,7 +556,7 @@ mod tests {
                 if cut(&s.x, &s.u, m) != Some(m) {
                     continue;
                 }
-                // Assembled on one thread and on two; and with every half
+                // Combined on one thread and on two; and with every half
                 // of at least 4 particles cut again, down to the middle.
                 let split = run_halves::<i128, i128>(&s.x, &s.u, m, false, usize::MAX);
                 let two = run_halves::<i128, i128>(&s.x, &s.u, m, true, usize::MAX);
