@@ -38,9 +38,9 @@
 //! one after the other on its thread. Only join times are combined: the
 //! instants merged, the halves' join codes renumbered (on both threads),
 //! the run's written over them; the clusters formed are read off the join
-//! times of the whole once, at the end ([`History::from_joins`]). (Which
-//! impulses of a half stay follows: those whose pairs still join at the
-//! half's time.)
+//! times of the whole once, at the end ([`History::from_joins`], on two
+//! threads too). (Which impulses of a half stay follows: those whose pairs
+//! still join at the half's time.)
 
 use std::cmp::Ordering;
 
