@@ -301,7 +301,7 @@ impl History {
         //    side (one place per instant: one cache line touched per
         //    cluster); what the right stretch leaves open recorded.
         let (left, right) = join.split_at_mut(mid);
-        let ((stack, floor, mut at_l), (opens, runs, at_r)) = both(
+        let ((stack, floor, mut at_l), (opens, runs, mut at_r)) = both(
             two,
             || {
                 let mut at = vec![(0u32, 0u32); len];
@@ -345,7 +345,6 @@ impl History {
         for &(g, _, _, from, to) in &crossing {
             count(&mut at_l, g, &crossing_pairs[from..to]);
         }
-        let mut at_r = at_r;
         // Then where each instant's first impulse and part go on each
         // side, and the rank of every instant used.
         let mut rank = vec![JOIN_NEVER; len];
