@@ -89,12 +89,14 @@ struct Open {
 /// Pops from `stack` every run of keys below `k`, calling
 /// `formed(instant, first, pairs, end)` on each that is a cluster formed
 /// (not an initial one, key 0); `floor` is the first particle after the
-/// last pair that never joins.
+/// last pair that never joins. With `floor` unknown (`None`, a stretch
+/// that does not start the line) the bottom run stays on the stack: its
+/// cluster's left end lies further left.
 #[inline]
 fn pop_below(
     stack: &mut Vec<Entry>,
     k: u32,
-    floor: u32,
+    floor: Option<u32>,
     end: u32,
     formed: &mut impl FnMut(usize, u32, &[Entry], u32),
 ) {
@@ -103,11 +105,12 @@ fn pop_below(
             break;
         }
         let start = run_start(stack, top);
+        let first = match (start, floor) {
+            (0, None) => break,
+            (0, Some(f)) => f,
+            (s, _) => stack[s - 1].1 + 1,
+        };
         if top > 0 {
-            let first = match start {
-                0 => floor,
-                s => stack[s - 1].1 + 1,
-            };
             formed((top - 1) as usize, first, &stack[start..], end);
         }
         stack.truncate(start);
@@ -147,9 +150,9 @@ fn scan(
 ) -> (Vec<Entry>, u32) {
     // Entries `(key, j)`, keys not increasing upwards.
     let mut stack: Vec<Entry> = Vec::new();
-    let mut floor = base;
-    // Whether everything left of the stack is settled.
-    let mut closed = base == 0;
+    // The first particle after the last pair that never joins: unknown
+    // left of a stretch that does not start the line.
+    let mut floor = (base == 0).then_some(0);
     let len = join.len();
     for i in 0..len + usize::from(ends_line) {
         let r = base + i as u32;
@@ -159,45 +162,20 @@ fn scan(
             *c = relabel(*c);
             k
         });
-        if closed {
-            pop_below(&mut stack, k, floor, r + 1, &mut formed);
-        } else {
-            // The runs above the bottom one are settled here; the bottom
-            // one, if popped, and the pairs left of the stretch are not.
-            let mut opened = false;
-            while let Some(&(top, _)) = stack.last() {
-                if top >= k {
-                    break;
-                }
-                let start = run_start(&stack, top);
-                if start == 0 {
-                    open(k, r + 1, &stack);
-                    opened = true;
-                    stack.clear();
-                    break;
-                }
-                if top > 0 {
-                    formed(
-                        (top - 1) as usize,
-                        stack[start - 1].1 + 1,
-                        &stack[start..],
-                        r + 1,
-                    );
-                }
-                stack.truncate(start);
-            }
-            if stack.is_empty() && !opened {
-                open(k, r + 1, &[]);
-            }
+        pop_below(&mut stack, k, floor, r + 1, &mut formed);
+        // Left with nothing, or with a bottom run that `k` closes: what
+        // lies left of the stretch is the left one's to settle.
+        if floor.is_none() && stack.last().is_none_or(|&(top, _)| top < k) {
+            open(k, r + 1, &stack);
+            stack.clear();
         }
         if k == u32::MAX {
-            closed = true;
-            floor = r + 1;
+            floor = Some(r + 1);
         } else {
             stack.push((k, r));
         }
     }
-    (stack, floor)
+    (stack, floor.unwrap_or(base))
 }
 
 /// A cluster that crosses the cut: `instant`, `first`, `end`, and its
@@ -237,7 +215,7 @@ fn settle(
             }
             stack.truncate(start);
         }
-        pop_below(&mut stack, o.key, floor, o.end, &mut record);
+        pop_below(&mut stack, o.key, Some(floor), o.end, &mut record);
     }
     out
 }
@@ -505,20 +483,16 @@ mod tests {
                     join: renumbered,
                 };
                 // Cut at every place, on one thread; in the middle, on two.
+                let joins = || Joins {
+                    instants: instants.clone(),
+                    join: join.clone(),
+                };
                 for mid in 0..=join.len() {
-                    let joins = Joins {
-                        instants: instants.clone(),
-                        join: join.clone(),
-                    };
-                    let h = History::from_stretches(joins, mid, false);
+                    let h = History::from_stretches(joins(), mid, false);
                     assert_eq!(h, expected, "join {join:?}, cut at {mid}");
                 }
                 if pairs == 6 && pattern % 7 == 0 {
-                    let joins = Joins {
-                        instants: instants.clone(),
-                        join: join.clone(),
-                    };
-                    let h = History::from_stretches(joins, 3, true);
+                    let h = History::from_stretches(joins(), 3, true);
                     assert_eq!(h, expected, "join {join:?}, two threads");
                 }
             }
