@@ -61,6 +61,12 @@ pub struct Args {
     /// repetitions, 1 with --quick).
     #[arg(long, conflicts_with_all = ["scaling", "memory", "at"])]
     e2e: bool,
+    /// Only the full exact history from the scaled columns (the
+    /// `events_columns` row) against our f64 PAVA, in pairs timed back to
+    /// back on one scene: each pair's ratio and their median (default 9
+    /// pairs).
+    #[arg(long, conflicts_with_all = ["scaling", "memory", "e2e", "quick"])]
+    history: bool,
     /// With --scaling: measure nothing, redraw the charts from a CSV that
     /// an earlier `--scaling` run wrote (e.g. docs/scaling.csv).
     #[arg(long, requires = "scaling")]
@@ -71,6 +77,11 @@ pub struct Args {
 fn malloc_env(mode: Memory) -> Vec<(&'static str, &'static str)> {
     match mode {
         Memory::Warm => vec![("MALLOC_MMAP_MAX_", "0"), (MEMORY_MODE_VAR, "Warm")],
+        Memory::Resident => vec![
+            ("MALLOC_MMAP_MAX_", "0"),
+            ("MALLOC_TRIM_THRESHOLD_", "1099511627776"),
+            (MEMORY_MODE_VAR, "Resident"),
+        ],
         Memory::Cold => vec![
             ("MALLOC_MMAP_THRESHOLD_", "131072"),
             ("MALLOC_TRIM_THRESHOLD_", "131072"),
@@ -86,6 +97,8 @@ fn malloc_env(mode: Memory) -> Vec<(&'static str, &'static str)> {
 pub fn reexec_with_malloc(args: &Args) -> Option<ExitCode> {
     let mode = if args.memory {
         Memory::Cold
+    } else if args.history {
+        Memory::Resident
     } else {
         Memory::Warm
     };
@@ -116,6 +129,16 @@ pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
     }
     if args.e2e {
         return e2e(args, out);
+    }
+    if args.history {
+        let report =
+            bench::history::run(args.n, args.reps.unwrap_or(9), &args.at).map_err(Failure)?;
+        let text = if args.json {
+            bench::history::json(&report)
+        } else {
+            bench::history::table(&report)
+        };
+        return writeln!(out, "{}", text.trim_end()).map_err(io_err);
     }
     let opts = bench::BenchOptions {
         n: args.n,

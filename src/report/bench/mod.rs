@@ -34,9 +34,12 @@
 //! growth of the resident set during the call (peak minus before).
 //!
 //! [`e2e`]: the end-to-end rows (`sticky bench --e2e`), whole `sticky` and
-//! scipy processes from file to answer to file.
+//! scipy processes from file to answer to file. [`history`]: the
+//! `events_columns` row against the `f64` row alone, in pairs timed back to
+//! back on one scene (`sticky bench --history`).
 
 pub mod e2e;
+pub mod history;
 mod study;
 
 pub use study::{
@@ -171,6 +174,21 @@ pub fn decimal_scene(d: &InitialData<BigRational>, digits: usize) -> InitialData
 }
 
 /// `ỹ = x̃⁰ + t u⁰` in f64 (the peers' input).
+/// The scaled columns `x̃⁰_i = x[i] / dx`, `u⁰_i = u[i] / du` of `data` as
+/// `sticky events` reads them from a file (`None` when they do not fit
+/// `i64`).
+#[allow(clippy::type_complexity)]
+fn scaled_columns(data: &InitialData<BigRational>) -> Option<(Vec<i64>, Vec<i64>, i128, i128)> {
+    let s = crate::fast::scaling::scale_i128(data)?;
+    let narrow = |v: &[i128]| crate::fast::int::narrowed(v, |&a| i64::try_from(a).ok());
+    Some((
+        narrow(&s.x)?,
+        narrow(&s.u)?,
+        num_traits::ToPrimitive::to_i128(&s.dx)?,
+        num_traits::ToPrimitive::to_i128(&s.du)?,
+    ))
+}
+
 fn free_f64(d: &InitialData<BigRational>, t: &BigRational) -> Vec<f64> {
     shifted_free_flight(d, t)
         .iter()
@@ -202,6 +220,15 @@ pub enum Memory {
     /// fresh pages in (the kernel's 512-bit blocks were once 90 MB at
     /// N = 10⁶: 75–263 ns per particle depending on the machine's state).
     Warm,
+    /// Pairs (`sticky bench --history`): [`Memory::Warm`], and freed memory
+    /// is never handed back to the system (`MALLOC_TRIM_THRESHOLD_` of
+    /// 2^40), so that neither call of a pair faults in pages the other one
+    /// freed. Measured at N = 10⁶: with the default threshold the f64 pass
+    /// after a history ran at 31–41 ns per particle, with this one at
+    /// 19–20 (the history unchanged, 395–419). The full bench keeps the
+    /// default (see [`Memory::Warm`]); the history mode runs no `BigInt`
+    /// loop.
+    Resident,
     /// Peak memory: every allocation above 128 KiB is mapped afresh and
     /// returned on free (`MALLOC_MMAP_THRESHOLD_`, `MALLOC_TRIM_THRESHOLD_`),
     /// so the growth of the resident set during a call is the memory it
@@ -218,6 +245,7 @@ pub const MEMORY_MODE_VAR: &str = "STICKY_BENCH_MALLOC";
 pub fn current_memory_mode() -> Option<Memory> {
     match std::env::var(MEMORY_MODE_VAR).ok()?.as_str() {
         "Warm" => Some(Memory::Warm),
+        "Resident" => Some(Memory::Resident),
         "Cold" => Some(Memory::Cold),
         _ => None,
     }
@@ -370,16 +398,7 @@ pub fn run(opts: &BenchOptions, t: &BigRational, scripts: &Path) -> BenchReport 
             // from the file into machine words, `fast::stream`), no
             // `BigRational` datum. The columns are prepared untimed, like
             // the kernel rows' `IntegerData`.
-            let columns = crate::fast::scaling::scale_i128(&data).and_then(|s| {
-                let narrow = |v: &[i128]| crate::fast::int::narrowed(v, |&a| i64::try_from(a).ok());
-                Some((
-                    narrow(&s.x)?,
-                    narrow(&s.u)?,
-                    num_traits::ToPrimitive::to_i128(&s.dx)?,
-                    num_traits::ToPrimitive::to_i128(&s.du)?,
-                ))
-            });
-            match columns {
+            match scaled_columns(&data) {
                 Some((x, u, dx, du)) => {
                     let (ns, mib, h) =
                         measured(|| crate::fast::merge::history_words(&x, &u, dx, du));
