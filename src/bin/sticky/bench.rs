@@ -131,14 +131,7 @@ pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
         return e2e(args, out);
     }
     if args.history {
-        let report =
-            bench::history::run(args.n, args.reps.unwrap_or(9), &args.at).map_err(Failure)?;
-        let text = if args.json {
-            bench::history::json(&report)
-        } else {
-            bench::history::table(&report)
-        };
-        return writeln!(out, "{}", text.trim_end()).map_err(io_err);
+        return history(args, out);
     }
     let opts = bench::BenchOptions {
         n: args.n,
@@ -171,6 +164,17 @@ fn e2e(args: Args, out: &mut impl Write) -> Result<(), Failure> {
         bench::e2e::json(&report)
     } else {
         bench::e2e::table(&report)
+    };
+    writeln!(out, "{}", text.trim_end()).map_err(io_err)
+}
+
+/// `sticky bench --history`.
+fn history(args: Args, out: &mut impl Write) -> Result<(), Failure> {
+    let report = bench::history::run(args.n, args.reps.unwrap_or(9), &args.at).map_err(Failure)?;
+    let text = if args.json {
+        bench::history::json(&report)
+    } else {
+        bench::history::table(&report)
     };
     writeln!(out, "{}", text.trim_end()).map_err(io_err)
 }

@@ -76,16 +76,16 @@ pub fn run(n: usize, reps: usize, t: &BigRational) -> Result<HistoryReport, Stri
     let history = || {
         let (x, u) = (x.clone(), u.clone());
         let (ns, _, h) = measured(|| history_words(&x, &u, dx, du));
-        h.map(|h| (ns / nf, h))
+        h.map(|_| ns / nf)
             .ok_or("the integer engine's bound fails on this scene")
     };
     let mut pairs = Vec::with_capacity(reps);
     for k in 0..=reps {
         let (f64_ns, history_ns) = if k % 2 == 0 {
             let f = f64_pass();
-            (f, history()?.0)
+            (f, history()?)
         } else {
-            let h = history()?.0;
+            let h = history()?;
             (f64_pass(), h)
         };
         // Pair 0 warms the allocator and the caches up.

@@ -173,7 +173,6 @@ pub fn decimal_scene(d: &InitialData<BigRational>, digits: usize) -> InitialData
         .unwrap_or_else(|_| d.clone())
 }
 
-/// `ỹ = x̃⁰ + t u⁰` in f64 (the peers' input).
 /// The scaled columns `x̃⁰_i = x[i] / dx`, `u⁰_i = u[i] / du` of `data` as
 /// `sticky events` reads them from a file (`None` when they do not fit
 /// `i64`).
@@ -189,6 +188,7 @@ fn scaled_columns(data: &InitialData<BigRational>) -> Option<(Vec<i64>, Vec<i64>
     ))
 }
 
+/// `ỹ = x̃⁰ + t u⁰` in f64 (the peers' input).
 fn free_f64(d: &InitialData<BigRational>, t: &BigRational) -> Vec<f64> {
     shifted_free_flight(d, t)
         .iter()
