@@ -18,13 +18,69 @@ use num_traits::ToPrimitive;
 use crate::fast::int::{gcd, narrowed, MulSmall};
 use crate::initial::InitialData;
 
-/// The scaled data `x̃⁰_i = x[i] / dx`, `u⁰_i = u[i] / du`.
+/// The scaled data `x̃⁰_i = x[i] / dx`, `u⁰_i = u[i] / du`, with the range
+/// of each column (found while scaling: the engines choose their word
+/// widths from it without another pass).
 #[derive(Debug, Clone)]
 pub(crate) struct Scaled {
     pub(crate) x: Vec<i128>,
     pub(crate) u: Vec<i128>,
     pub(crate) dx: BigInt,
     pub(crate) du: BigInt,
+    pub(crate) x_range: Range,
+    pub(crate) u_range: Range,
+}
+
+impl Scaled {
+    /// `M = max(max|X_i|, max|U_i|)`.
+    pub(crate) fn max_abs(&self) -> u128 {
+        self.x_range.max_abs().max(self.u_range.max_abs())
+    }
+}
+
+/// The least and the greatest value of a column (`0, 0` when it is empty).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Range {
+    pub(crate) lo: i128,
+    pub(crate) hi: i128,
+}
+
+impl Range {
+    /// The range of `v`, in one pass.
+    pub(crate) fn of(v: &[i128]) -> Range {
+        let mut r = Range::EMPTY;
+        for &a in v {
+            r.take(a);
+        }
+        r.or_zero()
+    }
+    const EMPTY: Range = Range {
+        lo: i128::MAX,
+        hi: i128::MIN,
+    };
+    #[inline]
+    fn take(&mut self, a: i128) {
+        self.lo = self.lo.min(a);
+        self.hi = self.hi.max(a);
+    }
+    /// `0, 0` for a range that took no value.
+    fn or_zero(self) -> Range {
+        if self.lo > self.hi {
+            Range { lo: 0, hi: 0 }
+        } else {
+            self
+        }
+    }
+    /// `max |v|` over the column.
+    pub(crate) fn max_abs(&self) -> u128 {
+        self.lo.unsigned_abs().max(self.hi.unsigned_abs())
+    }
+    /// The column narrowed to `i64`, when every value fits: one pass with
+    /// no test per value (the range was found while scaling).
+    pub(crate) fn narrow(&self, v: &[i128]) -> Option<Vec<i64>> {
+        let fits = i64::try_from(self.lo).is_ok() && i64::try_from(self.hi).is_ok();
+        fits.then(|| v.iter().map(|&a| a as i64).collect())
+    }
 }
 
 /// Numerator and denominator of a rational, when they fit.
@@ -178,12 +234,14 @@ pub(crate) fn scale_words(data: &InitialData<BigRational>) -> Option<Scaled> {
             None => scale_velocities(&narrowed(data.velocities(), small)?),
         },
     );
-    let ((x, dx), (u, du)) = (x?, u?);
+    let ((x, dx, x_range), (u, du, u_range)) = (x?, u?);
     Some(Scaled {
         x,
         u,
         dx: BigInt::from(dx),
         du: BigInt::from(du),
+        x_range,
+        u_range,
     })
 }
 
@@ -234,19 +292,21 @@ impl Pair for (i64, u64) {
 /// `p/d` with `d > 0`, in any terms): the streaming readers of
 /// [`crate::fast::stream`] give their columns this way, with no `BigRational`.
 pub(crate) fn scale_pairs<P: Pair>(two_r: (i128, u128), xs: &[P], us: &[P]) -> Option<Scaled> {
-    let (x, dx) = scale_positions(two_r, xs)?;
-    let (u, du) = scale_velocities(us)?;
+    let (x, dx, x_range) = scale_positions(two_r, xs)?;
+    let (u, du, u_range) = scale_velocities(us)?;
     Some(Scaled {
         x,
         u,
         dx: BigInt::from(dx),
         du: BigInt::from(du),
+        x_range,
+        u_range,
     })
 }
 
 /// The translated positions `X_i` over their least common denominator
-/// `D_x` (see [`scale_pairs`]).
-fn scale_positions<P: Pair>(two_r: (i128, u128), xs: &[P]) -> Option<(Vec<i128>, u128)> {
+/// `D_x` (see [`scale_pairs`]), and their range.
+fn scale_positions<P: Pair>(two_r: (i128, u128), xs: &[P]) -> Option<(Vec<i128>, u128, Range)> {
     let (rn, rd) = two_r;
     // D = lcm(denominators of x⁰, denominator of 2r).
     let mut den = Denominators::new();
@@ -259,6 +319,7 @@ fn scale_positions<P: Pair>(two_r: (i128, u128), xs: &[P]) -> Option<(Vec<i128>,
     // D / g is the least common denominator of the x̃⁰_i.
     let step = rn.checked_mul(i128::try_from(den.factor(rd)).ok()?)?;
     let mut x = Vec::with_capacity(xs.len());
+    let mut range = Range::EMPTY;
     let mut offset = 0i128;
     let mut g = den.lcm;
     let mut test = Divisibility::new(g);
@@ -272,26 +333,23 @@ fn scale_positions<P: Pair>(two_r: (i128, u128), xs: &[P]) -> Option<(Vec<i128>,
             g = gcd(g, div_rem(v.unsigned_abs(), g).1);
             test = Divisibility::new(g);
         }
+        range.take(v);
         x.push(v);
     }
-    if g > 1 {
-        let div = ExactDiv::new(g);
-        for v in &mut x {
-            *v = div.apply(*v);
-        }
-    }
-    Some((x, den.lcm / g))
+    Some((divided(x, g), den.lcm / g, divided_range(range, g)))
 }
 
 /// The velocities `U_i` over their least common denominator `D_u` (the
-/// gcd step too: pairs in any terms give the least common denominator).
-fn scale_velocities<P: Pair>(us: &[P]) -> Option<(Vec<i128>, u128)> {
+/// gcd step too: pairs in any terms give the least common denominator),
+/// and their range.
+fn scale_velocities<P: Pair>(us: &[P]) -> Option<(Vec<i128>, u128, Range)> {
     let mut den = Denominators::new();
     for q in us {
         den.add(q.wide().1)?;
     }
     den.finish();
     let mut u = Vec::with_capacity(us.len());
+    let mut range = Range::EMPTY;
     let mut g = den.lcm;
     let mut test = Divisibility::new(g);
     for q in us {
@@ -301,15 +359,36 @@ fn scale_velocities<P: Pair>(us: &[P]) -> Option<(Vec<i128>, u128)> {
             g = gcd(g, div_rem(v.unsigned_abs(), g).1);
             test = Divisibility::new(g);
         }
+        range.take(v);
         u.push(v);
     }
+    Some((divided(u, g), den.lcm / g, divided_range(range, g)))
+}
+
+/// Every value of `v` divided by `g > 0`, a common divisor of them all.
+fn divided(mut v: Vec<i128>, g: u128) -> Vec<i128> {
     if g > 1 {
         let div = ExactDiv::new(g);
-        for v in &mut u {
-            *v = div.apply(*v);
+        for a in &mut v {
+            *a = div.apply(*a);
         }
     }
-    Some((u, den.lcm / g))
+    v
+}
+
+/// The range of a column divided by `g > 0`, a common divisor of its
+/// values: the ends divided (exactly; dividing by `g > 0` keeps the order).
+fn divided_range(r: Range, g: u128) -> Range {
+    let r = r.or_zero();
+    if g > 1 {
+        let div = ExactDiv::new(g);
+        Range {
+            lo: div.apply(r.lo),
+            hi: div.apply(r.hi),
+        }
+    } else {
+        r
+    }
 }
 
 /// The same scaling on `BigInt`, for any data.
@@ -331,9 +410,15 @@ pub(crate) fn scale_big(
 pub(crate) fn scale_i128(data: &InitialData<BigRational>) -> Option<Scaled> {
     scale_words(data).or_else(|| {
         let (x, u, dx, du) = scale_big(data);
+        let (x, u) = (
+            narrowed(&x, ToPrimitive::to_i128)?,
+            narrowed(&u, ToPrimitive::to_i128)?,
+        );
         Some(Scaled {
-            x: narrowed(&x, ToPrimitive::to_i128)?,
-            u: narrowed(&u, ToPrimitive::to_i128)?,
+            x_range: Range::of(&x),
+            u_range: Range::of(&u),
+            x,
+            u,
             dx,
             du,
         })
@@ -363,6 +448,15 @@ mod tests {
             }
             assert!(g.is_one(), "common factor {g} left in {col:?} / {d}");
         }
+        // The ranges found while scaling are the columns' ranges.
+        let range = |v: &[i128]| match (v.iter().min(), v.iter().max()) {
+            (Some(&lo), Some(&hi)) => Range { lo, hi },
+            _ => Range { lo: 0, hi: 0 },
+        };
+        assert_eq!((s.x_range, s.u_range), (range(&s.x), range(&s.u)));
+        assert_eq!(Range::of(&s.x), s.x_range);
+        let m = s.x.iter().chain(&s.u).map(|v| v.unsigned_abs()).max();
+        assert_eq!(s.max_abs(), m.unwrap_or(0));
     }
 
     /// Both scalings, the machine-word one and the `BigInt` one, give the
@@ -523,6 +617,23 @@ mod tests {
         assert_eq!(s.dx, BigInt::from(2520));
         assert_eq!(s.du, BigInt::from(27720));
         is_the_scaling(&s, &data);
+    }
+
+    /// A column narrows to `i64` only when both ends of its range fit.
+    #[test]
+    fn narrowing_needs_both_ends() {
+        let (min, max) = (i128::from(i64::MIN), i128::from(i64::MAX));
+        for (v, fits) in [
+            (vec![min, 0, max], true),
+            (vec![min - 1, 0, 5], false),
+            (vec![-5, 0, max + 1], false),
+            (vec![], true),
+        ] {
+            let r = Range::of(&v);
+            let want = fits.then(|| v.iter().map(|&a| a as i64).collect::<Vec<_>>());
+            assert_eq!(r.narrow(&v), want, "{v:?}");
+        }
+        assert_eq!(Range::of(&[min - 1, 3]).max_abs(), min.unsigned_abs() + 1);
     }
 
     #[test]

@@ -61,10 +61,10 @@ pub struct Args {
     /// repetitions, 1 with --quick).
     #[arg(long, conflicts_with_all = ["scaling", "memory", "at"])]
     e2e: bool,
-    /// Only the full exact history from the scaled columns (the
-    /// `events_columns` row) against our f64 PAVA, in pairs timed back to
-    /// back on one scene: each pair's ratio and their median (default 9
-    /// pairs).
+    /// Only the full exact history (from the scaled columns, the
+    /// `events_columns` row, and from the BigRational data, the `events`
+    /// row) against our f64 PAVA, timed back to back on one scene: each
+    /// round's ratios and their medians (default 9 rounds).
     #[arg(long, conflicts_with_all = ["scaling", "memory", "e2e", "quick"])]
     history: bool,
     /// With --scaling: measure nothing, redraw the charts from a CSV that

@@ -81,9 +81,10 @@
 //! * from 2^15 particles on, the two halves run at once on two threads and
 //!   the join times of the whole are repaired from theirs and from the one
 //!   cluster that crosses the cut (`split`: the clusters of the whole are
-//!   the halves' clusters but for that one, `prop:proj-micro`); from 2^18
-//!   particles a half is cut the same way again, its parts run one after
-//!   the other on its thread (a smaller event loop stays in the caches).
+//!   the halves' clusters but for that one, `prop:proj-micro`); from 2^16
+//!   particles a piece is cut the same way again (a smaller event loop
+//!   stays in the caches), and the two threads share out the pieces of
+//!   each height of the tree of cuts as they come free.
 //!
 //! Every event costs O(1) node accesses and O(1) amortized queue work (an
 //! entry moves at most 16 times between buckets); candidates whose times
@@ -99,8 +100,8 @@ use num_traits::{ToPrimitive, Zero};
 
 use crate::cluster::Cluster;
 use crate::contact::Impulse;
-use crate::fast::int::{narrowed, ratio, ratio_over};
-use crate::fast::scaling::{scale_i128, Scaled};
+use crate::fast::int::{ratio, ratio_over};
+use crate::fast::scaling::scale_i128;
 use crate::initial::InitialData;
 use crate::trajectory::Trajectory;
 
@@ -114,7 +115,7 @@ mod time;
 use events::{JOIN_NEVER, JOIN_ZERO, MAX_N};
 use history::History;
 use split::run_split;
-use sums::{max_abs, within_bound, Words};
+use sums::{within_bound, Words};
 pub use time::FILTER;
 
 /// Which engine computed an [`IntegerTrajectory`].
@@ -169,16 +170,15 @@ impl IntegerTrajectory {
                 inner: Inner::Generic(Box::new(Trajectory::new(data.clone()))),
             };
         };
-        let Scaled { x, u, dx, du } = s;
-        let narrow = |v: &[i128]| narrowed(v, |&a| i64::try_from(a).ok());
-        let words = match (narrow(&x), narrow(&u)) {
-            (Some(x), Some(u)) => Words::I64(x, u),
-            _ => Words::I128(x, u),
-        };
         // Cluster sums in i64 when N · M < 2^63.
-        let narrow_sums = (words.len() as u128)
-            .checked_mul(max_abs(&words))
+        let narrow_sums = (s.x.len() as u128)
+            .checked_mul(s.max_abs())
             .is_some_and(|b| b < 1u128 << 63);
+        let words = match (s.x_range.narrow(&s.x), s.u_range.narrow(&s.u)) {
+            (Some(x), Some(u)) => Words::I64(x, u),
+            _ => Words::I128(s.x, s.u),
+        };
+        let (dx, du) = (s.dx, s.du);
         let hist = match (&words, narrow_sums) {
             (Words::I64(x, u), true) => run_split::<i64, i64>(x, u),
             (Words::I64(x, u), false) => run_split::<i64, i128>(x, u),

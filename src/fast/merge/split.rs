@@ -33,9 +33,12 @@
 //! repair is linear in the size of the final run, plus one pass over the
 //! halves' join times.
 //!
-//! **Threads.** The halves run on two threads; each half of at least
-//! [`PART_MIN`] particles is itself cut in two the same way, its parts run
-//! one after the other on its thread. Only join times are combined: the
+//! **Threads.** Each piece of at least [`PART_MIN`] particles is itself cut
+//! in two the same way, down to pieces run whole; the pieces of the tree of
+//! cuts run height by height (pieces run whole first, then the combines of
+//! their pairs, up to the whole), two threads taking the pieces of each
+//! height as they come free, so that a slower piece, or a slower core, does
+//! not keep the other thread waiting. Only join times are combined: the
 //! instants merged, the halves' join codes renumbered (on both threads),
 //! the run's written over them; the clusters formed are read off the join
 //! times of the whole once, at the end ([`History::from_joins`], on two
@@ -75,49 +78,130 @@ pub(super) fn cut<T: PartialEq>(x: &[T], u: &[T], from: usize) -> Option<usize> 
     (from.max(1)..x.len()).find(|&m| x[m - 1] != x[m] || u[m - 1] != u[m])
 }
 
-/// From this many particles a half is itself cut in two, and the two
-/// parts run one after the other on its thread: a smaller event loop keeps
-/// more of its nodes in the caches.
-pub(super) const PART_MIN: usize = 1 << 18;
+/// From this many particles a piece is itself cut in two: a smaller event
+/// loop keeps more of its nodes in the caches.
+pub(super) const PART_MIN: usize = 1 << 16;
 
 /// The join times of the whole from those of `..m` and `m..`, each
-/// computed alone ([`part`], cut again from `part_min` particles on);
-/// `0 < m < n` and the pair `(m − 1, m)` is not an initial contact with
-/// equal velocities. With `two`, on two threads: the right half on a second
-/// one, and the join codes of the whole renumbered on both.
+/// computed alone, and cut again from `part_min` particles on; `0 < m < n`
+/// and the pair `(m − 1, m)` is not an initial contact with equal
+/// velocities. With `two`, on two threads: the pieces of equal height in
+/// the tree of cuts are shared out as the threads come free (so that a
+/// slower piece or a slower core does not hold the other thread idle),
+/// and the join codes of the whole are renumbered on both.
 pub(super) fn run_halves<T, W>(x: &[T], u: &[T], m: usize, two: bool, part_min: usize) -> Joins
 where
     T: Copy + PartialEq + Into<W> + Sync,
     W: SumWord,
 {
-    let (left, right) = both(
-        two,
-        || part::<T, W>(&x[..m], &u[..m], part_min),
-        || part::<T, W>(&x[m..], &u[m..], part_min),
-    );
-    let halves = Halves {
-        m,
-        left: &left,
-        right: &right,
-    };
-    let growth = grow_run::<T, W>(x, u, &halves);
-    combine(&halves, &growth, x.len(), two)
+    let mut pieces = Vec::new();
+    plan(x, u, 0..x.len(), Some(m), part_min, &mut pieces);
+    run_pieces::<T, W>(x, u, &pieces, two)
 }
 
-/// The join times of one half: [`run`], or from `part_min` particles on
-/// ([`PART_MIN`] but in tests), those of its own two halves on this
-/// thread.
-fn part<T, W>(x: &[T], u: &[T], part_min: usize) -> Joins
+/// A piece of the tree of cuts: particles `lo..hi`, either run whole or
+/// cut at `m` into the pieces `left` and `right` (planned before it).
+#[derive(Debug, Clone)]
+struct Piece {
+    range: std::ops::Range<usize>,
+    cut: Option<(usize, usize, usize)>,
+    /// 0 for a piece run whole; one more than its higher half's otherwise.
+    height: u32,
+}
+
+/// Plans the pieces of `range`, cut at `m` (or, from `part_min` particles
+/// on, at the first cut from its middle, [`cut`]), children first: the
+/// whole is the last piece.
+fn plan<T: PartialEq>(
+    x: &[T],
+    u: &[T],
+    range: std::ops::Range<usize>,
+    m: Option<usize>,
+    part_min: usize,
+    out: &mut Vec<Piece>,
+) -> usize {
+    let (lo, hi) = (range.start, range.end);
+    let m = m.or_else(|| {
+        (hi - lo >= part_min)
+            .then(|| cut(&x[range.clone()], &u[range.clone()], (hi - lo) / 2))
+            .flatten()
+            .map(|c| lo + c)
+    });
+    let piece = match m {
+        Some(m) => {
+            let left = plan(x, u, lo..m, None, part_min, out);
+            let right = plan(x, u, m..hi, None, part_min, out);
+            Piece {
+                range,
+                cut: Some((m, left, right)),
+                height: 1 + out[left].height.max(out[right].height),
+            }
+        }
+        None => Piece {
+            range,
+            cut: None,
+            height: 0,
+        },
+    };
+    out.push(piece);
+    out.len() - 1
+}
+
+/// Runs the planned pieces, height by height, and returns the join times of
+/// the last one (the whole). With `two`, a second thread takes pieces of
+/// the same height as it comes free; a height with a single piece runs it
+/// with both threads (its renumbering).
+fn run_pieces<T, W>(x: &[T], u: &[T], pieces: &[Piece], two: bool) -> Joins
 where
     T: Copy + PartialEq + Into<W> + Sync,
     W: SumWord,
 {
-    if x.len() >= part_min {
-        if let Some(m) = cut(x, u, x.len() / 2) {
-            return run_halves::<T, W>(x, u, m, false, part_min);
+    use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
+    use std::sync::Mutex;
+    let done: Vec<Mutex<Option<Joins>>> = pieces.iter().map(|_| Mutex::new(None)).collect();
+    let take = |k: usize| {
+        done[k]
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .take()
+            .expect("a piece's halves run before it")
+    };
+    let solve = |k: usize, two: bool| {
+        let piece = &pieces[k];
+        let (x, u) = (&x[piece.range.clone()], &u[piece.range.clone()]);
+        let joins = match piece.cut {
+            None => run::<T, W>(x, u),
+            Some((m, left, right)) => {
+                let (left, right) = (take(left), take(right));
+                let halves = Halves {
+                    m: m - piece.range.start,
+                    left: &left,
+                    right: &right,
+                };
+                let growth = grow_run::<T, W>(x, u, &halves);
+                combine(&halves, &growth, x.len(), two)
+            }
+        };
+        *done[k].lock().unwrap_or_else(|e| e.into_inner()) = Some(joins);
+    };
+    let top = pieces.iter().map(|p| p.height).max().unwrap_or(0);
+    for height in 0..=top {
+        let level: Vec<usize> = (0..pieces.len())
+            .filter(|&k| pieces[k].height == height)
+            .collect();
+        if let [k] = level[..] {
+            solve(k, two);
+            continue;
         }
+        let next = AtomicUsize::new(0);
+        let work = || {
+            while let Some(&k) = level.get(next.fetch_add(1, Relaxed)) {
+                solve(k, false);
+            }
+        };
+        both(two, work, work);
     }
-    run::<T, W>(x, u)
+    take(pieces.len() - 1)
 }
 
 /// The two halves' join times, `left` of particles `..m`, `right` of
@@ -556,12 +640,19 @@ mod tests {
                 if cut(&s.x, &s.u, m) != Some(m) {
                     continue;
                 }
-                // Combined on one thread and on two; and with every half
-                // of at least 4 particles cut again, down to the middle.
+                // Combined on one thread and on two; and with every piece
+                // of at least 4 particles cut again, down to the middle, on
+                // one thread and on two (the pieces shared out).
                 let split = run_halves::<i128, i128>(&s.x, &s.u, m, false, usize::MAX);
                 let two = run_halves::<i128, i128>(&s.x, &s.u, m, true, usize::MAX);
                 let parts = run_halves::<i128, i128>(&s.x, &s.u, m, false, 4);
-                for (how, h) in [("one thread", &split), ("two", &two), ("parts", &parts)] {
+                let shared = run_halves::<i128, i128>(&s.x, &s.u, m, true, 4);
+                for (how, h) in [
+                    ("one thread", &split),
+                    ("two", &two),
+                    ("parts", &parts),
+                    ("parts on two threads", &shared),
+                ] {
                     if let Err(e) = same(&History::from_joins(h.clone()), &whole) {
                         panic!(
                             "scene {k}, cut {m}, {how}: {e}\nx = {:?}\nu = {:?}",
@@ -575,6 +666,59 @@ mod tests {
         }
         // The run across the cut formed often enough to be tested.
         assert!(cuts > 2000 && runs > 500, "{cuts} cuts, {runs} runs");
+    }
+
+    /// The tree of cuts: every piece of at least `part_min` particles with
+    /// a legal cut is cut (at the first legal cut from its middle), the
+    /// others run whole; halves come before their piece, tile it, and are
+    /// lower; the whole is last.
+    #[test]
+    fn the_pieces_tile_the_line() {
+        let mut rng = SplitMix64::new(9);
+        for k in 0..200 {
+            let data = initial_data(
+                &rng.bytes(400),
+                Limits {
+                    max_n: 2 + k % 60,
+                    max_den: 1 + (k % 3) as u32,
+                    max_speed: 1 + (k % 4) as u32,
+                },
+            );
+            let Some(s) = scale_i128(&data) else {
+                continue;
+            };
+            let n = s.x.len();
+            let Some(m) = cut(&s.x, &s.u, n / 2) else {
+                continue;
+            };
+            let part_min = 2 + k % 5;
+            let mut pieces = Vec::new();
+            plan(&s.x, &s.u, 0..n, Some(m), part_min, &mut pieces);
+            assert_eq!(pieces.last().map(|p| p.range.clone()), Some(0..n));
+            for (i, p) in pieces.iter().enumerate() {
+                let (lo, hi) = (p.range.start, p.range.end);
+                let want = match i + 1 == pieces.len() {
+                    true => Some(m),
+                    false if hi - lo >= part_min => {
+                        cut(&s.x[lo..hi], &s.u[lo..hi], (hi - lo) / 2).map(|c| lo + c)
+                    }
+                    false => None,
+                };
+                assert_eq!(p.cut.map(|c| c.0), want, "piece {i} of {pieces:?}");
+                match p.cut {
+                    None => assert_eq!(p.height, 0),
+                    Some((c, l, r)) => {
+                        assert!(l < i && r < i);
+                        assert_eq!(
+                            (pieces[l].range.clone(), pieces[r].range.clone()),
+                            (lo..c, c..hi)
+                        );
+                        let h = pieces[l].height.max(pieces[r].height);
+                        assert_eq!(p.height, h + 1);
+                    }
+                }
+            }
+        }
     }
 
     #[test]

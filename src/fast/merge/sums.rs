@@ -67,14 +67,8 @@ pub(super) fn meeting<W: SumWord>(l: &Node<W>, r: &Node<W>) -> Option<Time> {
 /// `true` when `max(N, ⌊N²/4⌋) · M < 2^126` (the width bound of the module
 /// docs).
 pub(super) fn within_bound(s: &Scaled) -> bool {
-    let m =
-        s.x.iter()
-            .chain(&s.u)
-            .map(|v| v.unsigned_abs())
-            .max()
-            .unwrap_or(0);
     pair_bound(s.x.len())
-        .checked_mul(m)
+        .checked_mul(s.max_abs())
         .is_some_and(|b| b < 1u128 << 126)
 }
 
@@ -104,17 +98,4 @@ impl Words {
             Words::I128(x, _) => x.len(),
         }
     }
-}
-
-/// `M = max(max|X_i|, max|U_i|)`.
-pub(super) fn max_abs(w: &Words) -> u128 {
-    match w {
-        Words::I64(x, u) => x
-            .iter()
-            .chain(u)
-            .map(|v| u128::from(v.unsigned_abs()))
-            .max(),
-        Words::I128(x, u) => x.iter().chain(u).map(|v| v.unsigned_abs()).max(),
-    }
-    .unwrap_or(0)
 }

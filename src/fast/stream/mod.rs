@@ -179,20 +179,12 @@ impl Lean {
                 return None;
             }
         }
-        let narrow = |v: &[i128]| v.iter().map(|&a| i64::try_from(a).ok()).collect();
-        let (x, u): (Option<Vec<i64>>, Option<Vec<i64>>) = (narrow(&s.x), narrow(&s.u));
-        let max_bits = |v: &[i64]| {
-            v.iter()
-                .map(|a| bits_u(u128::from(a.unsigned_abs())))
-                .max()
-                .unwrap_or(0)
-        };
-        let (x, u) = (x?, u?);
+        let (x, u) = (s.x_range.narrow(&s.x)?, s.u_range.narrow(&s.u)?);
         Some(Lean {
             radius,
             two_r,
-            x_bits: max_bits(&x),
-            u_bits: max_bits(&u),
+            x_bits: bits_u(s.x_range.max_abs()),
+            u_bits: bits_u(s.u_range.max_abs()),
             x,
             u,
             dx: s.dx.to_i128()?,

@@ -1,38 +1,50 @@
-//! `sticky bench --history`: the full exact history from the scaled columns
-//! (the `events_columns` row of [`super::run`]) against our f64 PAVA, and
-//! nothing else, in pairs on one scene.
+//! `sticky bench --history`: the full exact history against our f64 PAVA,
+//! and nothing else, timed back to back on one scene.
 //!
-//! The ratio of the `events_columns` row to the `f64` row is a ratio of two
-//! medians of three repetitions, each on a fresh scene whose `BigRational`
-//! generation takes most of the run (about four minutes at N = 10⁶ with
-//! every row). On a shared machine the f64 pass alone moves by half again
-//! from one minute to the next (13–20 ns per particle at N = 10⁶ on the
-//! machine this was written on), and so does that ratio. Here the scene
-//! is made once (untimed), and the two calls are timed back to back, the
-//! order alternating from pair to pair, so that both see the same state of
-//! the machine: the ratio of each pair, and their median, are the figures
-//! to read. The scene and the two calls are exactly those of the full
-//! bench (the first timed repetition's scene).
+//! The ratio of the `events_columns` row of [`super::run`] to its `f64` row
+//! is a ratio of two medians of three repetitions, each on a fresh scene
+//! whose `BigRational` generation takes most of the run (about four minutes
+//! at N = 10⁶ with every row). On a shared machine the f64 pass alone moves
+//! by half again from one minute to the next (13–20 ns per particle at
+//! N = 10⁶ on the machine this was written on), and so does that ratio.
+//! Here the scene is made once (untimed), and the calls are timed back to
+//! back, the order reversed from one round to the next, so that they see
+//! the same state of the machine: the ratios of each round, and their
+//! medians, are the figures to read. The scene and the calls are exactly
+//! those of the full bench (the first timed repetition's scene):
+//!
+//! * our f64 PAVA on `x̃⁰ + t u⁰` (the `f64` row);
+//! * the history from the scaled `i64` columns, the path `sticky events`
+//!   takes on a file (the `events_columns` row);
+//! * the history from the `BigRational` data, the scaling to common
+//!   denominators included ([`IntegerTrajectory::new`], the `events` row).
 
 use num_rational::BigRational;
 
 use super::{free_f64, measured, median, scaled_columns, scene};
-use crate::fast::merge::history_words;
+use crate::fast::merge::{history_words, Engine, IntegerTrajectory};
 use crate::projection::isotonic;
 
-/// One pair: both calls on the same scene, back to back.
+/// One round: the three calls on the same scene, back to back.
 #[derive(Debug, Clone, Copy)]
 pub struct Pair {
     /// Our f64 PAVA, ns per particle.
     pub f64_ns: f64,
     /// The full exact history from the scaled columns, ns per particle.
     pub history_ns: f64,
+    /// The same history from the `BigRational` data, scaling included, ns
+    /// per particle.
+    pub from_data_ns: f64,
 }
 
 impl Pair {
-    /// The history's time over the f64 pass's.
+    /// The history's time (from the columns) over the f64 pass's.
     pub fn ratio(&self) -> f64 {
         self.history_ns / self.f64_ns
+    }
+    /// The history's time from the `BigRational` data over the f64 pass's.
+    pub fn ratio_from_data(&self) -> f64 {
+        self.from_data_ns / self.f64_ns
     }
 }
 
@@ -46,16 +58,21 @@ pub struct HistoryReport {
 }
 
 impl HistoryReport {
-    /// The median of the pairs' ratios.
+    /// The median of the rounds' ratios (history from the columns).
     pub fn median_ratio(&self) -> Option<f64> {
         median(self.pairs.iter().map(Pair::ratio).collect())
     }
+    /// The median of the rounds' ratios (history from the `BigRational`
+    /// data).
+    pub fn median_ratio_from_data(&self) -> Option<f64> {
+        median(self.pairs.iter().map(Pair::ratio_from_data).collect())
+    }
 }
 
-/// Times `reps` pairs (after one untimed pair) on the bench's scene of `n`
+/// Times `reps` rounds (after one untimed round) on the bench's scene of `n`
 /// particles at time `t` (the f64 pass's input; the history does not
 /// depend on `t`); an error when the scene's scaled columns do not fit the
-/// integer engine.
+/// integer engine (from the columns or from the data).
 pub fn run(n: usize, reps: usize, t: &BigRational) -> Result<HistoryReport, String> {
     let n = n.max(2);
     let nf = n as f64;
@@ -63,9 +80,10 @@ pub fn run(n: usize, reps: usize, t: &BigRational) -> Result<HistoryReport, Stri
     let y = free_f64(&data, t);
     let (x, u, dx, du) = scaled_columns(&data)
         .ok_or("the scene's scaled columns do not fit i64: nothing to measure")?;
-    // Each call reads a copy of its input made just before it (untimed), as
-    // in the full bench, where the input of each row has just been
-    // computed. (The allocator keeps freed memory resident in this mode,
+    // The f64 pass and the history from the columns each read a copy of
+    // their input made just before them (untimed), as in the full bench,
+    // where the input of those rows has just been computed; the history
+    // from the data reads the scene itself, as the `events` row does. (The allocator keeps freed memory resident in this mode,
     // `Memory::Resident`: neither call faults in pages the other freed.)
     let f64_pass = || {
         let y = y.clone();
@@ -79,69 +97,94 @@ pub fn run(n: usize, reps: usize, t: &BigRational) -> Result<HistoryReport, Stri
         h.map(|_| ns / nf)
             .ok_or("the integer engine's bound fails on this scene")
     };
+    let from_data = || {
+        let (ns, _, h) = measured(|| IntegerTrajectory::new(&data));
+        (h.engine() != Engine::BigRational)
+            .then_some(ns / nf)
+            .ok_or("the integer engine's bound fails on this scene")
+    };
     let mut pairs = Vec::with_capacity(reps);
     for k in 0..=reps {
-        let (f64_ns, history_ns) = if k % 2 == 0 {
+        let (f64_ns, history_ns, from_data_ns) = if k % 2 == 0 {
             let f = f64_pass();
-            (f, history()?)
-        } else {
             let h = history()?;
-            (f64_pass(), h)
+            (f, h, from_data()?)
+        } else {
+            let d = from_data()?;
+            let h = history()?;
+            (f64_pass(), h, d)
         };
-        // Pair 0 warms the allocator and the caches up.
+        // Round 0 warms the allocator and the caches up.
         if k > 0 {
-            pairs.push(Pair { f64_ns, history_ns });
+            pairs.push(Pair {
+                f64_ns,
+                history_ns,
+                from_data_ns,
+            });
         }
     }
     Ok(HistoryReport { n, pairs })
 }
 
-/// One line per pair, then the median of the ratios and their range.
+/// One line per round, then the medians of the ratios and their ranges.
 pub fn table(r: &HistoryReport) -> String {
     let mut out = format!(
-        "N = {}: the full exact history (events_columns) against our f64 PAVA, pairs timed back to back\n  {:>4} {:>14} {:>14} {:>9}\n",
-        r.n, "pair", "f64 ns/p", "history ns/p", "× f64"
+        "N = {}: the full exact history against our f64 PAVA, timed back to back\n  \
+         (columns: from the scaled i64 columns, the events_columns row; data: from the BigRational data, scaling included, the events row)\n  \
+         {:>5} {:>10} {:>12} {:>8} {:>12} {:>8}\n",
+        r.n, "round", "f64 ns/p", "columns ns/p", "× f64", "data ns/p", "× f64"
     );
     for (k, p) in r.pairs.iter().enumerate() {
         out.push_str(&format!(
-            "  {:>4} {:>14.1} {:>14.1} {:>9.2}\n",
+            "  {:>5} {:>10.1} {:>12.1} {:>8.2} {:>12.1} {:>8.2}\n",
             k + 1,
             p.f64_ns,
             p.history_ns,
-            p.ratio()
+            p.ratio(),
+            p.from_data_ns,
+            p.ratio_from_data()
         ));
     }
-    let ratios = r.pairs.iter().map(Pair::ratio);
-    let (lo, hi) = ratios.fold((f64::INFINITY, 0f64), |(a, b), v| (a.min(v), b.max(v)));
-    if let Some(m) = r.median_ratio() {
-        out.push_str(&format!(
-            "  median ratio {m:.2} (range {lo:.2}–{hi:.2} over {} pairs)\n",
-            r.pairs.len()
-        ));
+    for (what, ratio, m) in [
+        ("columns", Pair::ratio as fn(&Pair) -> f64, r.median_ratio()),
+        ("data", Pair::ratio_from_data, r.median_ratio_from_data()),
+    ] {
+        let ratios = r.pairs.iter().map(ratio);
+        let (lo, hi) = ratios.fold((f64::INFINITY, 0f64), |(a, b), v| (a.min(v), b.max(v)));
+        if let Some(m) = m {
+            out.push_str(&format!(
+                "  median ratio, {what}: {m:.2} (range {lo:.2}–{hi:.2} over {} rounds)\n",
+                r.pairs.len()
+            ));
+        }
     }
     out
 }
 
-/// `{"n": …, "pairs": [{"f64": …, "history": …, "ratio": …}, …], "median_ratio": …}`.
+/// `{"n": …, "pairs": [{"f64": …, "history": …, "ratio": …, "from_data": …,
+/// "ratio_from_data": …}, …], "median_ratio": …, "median_ratio_from_data": …}`.
 pub fn json(r: &HistoryReport) -> String {
     let pairs: Vec<String> = r
         .pairs
         .iter()
         .map(|p| {
             format!(
-                "{{\"f64\": {:.3}, \"history\": {:.3}, \"ratio\": {:.4}}}",
+                "{{\"f64\": {:.3}, \"history\": {:.3}, \"ratio\": {:.4}, \"from_data\": {:.3}, \"ratio_from_data\": {:.4}}}",
                 p.f64_ns,
                 p.history_ns,
-                p.ratio()
+                p.ratio(),
+                p.from_data_ns,
+                p.ratio_from_data()
             )
         })
         .collect();
+    let number = |m: Option<f64>| m.map_or("null".into(), |m| format!("{m:.4}"));
     format!(
-        "{{\"n\": {}, \"pairs\": [{}], \"median_ratio\": {}}}",
+        "{{\"n\": {}, \"pairs\": [{}], \"median_ratio\": {}, \"median_ratio_from_data\": {}}}",
         r.n,
         pairs.join(", "),
-        r.median_ratio()
-            .map_or("null".into(), |m| format!("{m:.4}"))
+        number(r.median_ratio()),
+        number(r.median_ratio_from_data())
     )
 }
 
@@ -152,39 +195,70 @@ mod tests {
 
     #[test]
     fn ratios_and_their_median() {
-        let pair = |f64_ns, history_ns| Pair { f64_ns, history_ns };
+        let pair = |f64_ns, history_ns, from_data_ns| Pair {
+            f64_ns,
+            history_ns,
+            from_data_ns,
+        };
         let r = HistoryReport {
             n: 10,
-            pairs: vec![pair(2.0, 60.0), pair(4.0, 40.0), pair(1.0, 20.0)],
+            pairs: vec![
+                pair(2.0, 60.0, 70.0),
+                pair(4.0, 40.0, 48.0),
+                pair(1.0, 20.0, 30.0),
+            ],
         };
         assert_eq!(r.pairs[0].ratio(), 30.0);
+        assert_eq!(r.pairs[0].ratio_from_data(), 35.0);
         assert_eq!(r.median_ratio(), Some(20.0));
+        assert_eq!(r.median_ratio_from_data(), Some(30.0));
         let text = table(&r);
         assert!(
-            text.contains("median ratio 20.00 (range 10.00–30.00 over 3 pairs)"),
+            text.contains("median ratio, columns: 20.00 (range 10.00–30.00 over 3 rounds)"),
             "{text}"
         );
-        assert!(json(&r).ends_with("\"median_ratio\": 20.0000}"));
+        assert!(
+            text.contains("median ratio, data: 30.00 (range 12.00–35.00 over 3 rounds)"),
+            "{text}"
+        );
+        assert!(
+            json(&r).ends_with("\"median_ratio\": 20.0000, \"median_ratio_from_data\": 30.0000}")
+        );
     }
 
     #[test]
-    fn pairs_measure_both_calls() {
+    fn rounds_measure_the_three_calls() {
         let t = BigRational::new(BigInt::from(1), BigInt::from(100));
         let r = run(3000, 3, &t).unwrap();
         assert_eq!((r.n, r.pairs.len()), (3000, 3));
         for p in &r.pairs {
-            assert!(p.f64_ns > 0.0 && p.history_ns > 0.0, "{p:?}");
+            assert!(
+                p.f64_ns > 0.0 && p.history_ns > 0.0 && p.from_data_ns > 0.0,
+                "{p:?}"
+            );
         }
         let m = r.median_ratio().unwrap();
         let mut ratios: Vec<f64> = r.pairs.iter().map(Pair::ratio).collect();
         ratios.sort_by(f64::total_cmp);
         assert_eq!(m, ratios[1]);
         let text = table(&r);
-        assert_eq!(text.lines().count(), 2 + 3 + 1, "{text}");
-        assert!(text.contains(&format!("median ratio {m:.2}")), "{text}");
+        assert_eq!(text.lines().count(), 3 + 3 + 2, "{text}");
+        assert!(
+            text.contains(&format!("median ratio, columns: {m:.2}")),
+            "{text}"
+        );
+        let d = r.median_ratio_from_data().unwrap();
+        let mut ratios: Vec<f64> = r.pairs.iter().map(Pair::ratio_from_data).collect();
+        ratios.sort_by(f64::total_cmp);
+        assert_eq!(d, ratios[1]);
+        assert!(
+            text.contains(&format!("median ratio, data: {d:.2}")),
+            "{text}"
+        );
         let v: serde_json::Value = serde_json::from_str(&json(&r)).expect("valid JSON");
         assert_eq!(v["pairs"].as_array().map(Vec::len), Some(3));
         assert_eq!(v["n"], 3000);
         assert!((v["median_ratio"].as_f64().unwrap() - m).abs() < 1e-3 * m);
+        assert!((v["median_ratio_from_data"].as_f64().unwrap() - d).abs() < 1e-3 * d);
     }
 }

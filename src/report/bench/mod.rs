@@ -35,8 +35,8 @@
 //!
 //! [`e2e`]: the end-to-end rows (`sticky bench --e2e`), whole `sticky` and
 //! scipy processes from file to answer to file. [`history`]: the
-//! `events_columns` row against the `f64` row alone, in pairs timed back to
-//! back on one scene (`sticky bench --history`).
+//! `events_columns` and `events` rows against the `f64` row alone, timed
+//! back to back on one scene (`sticky bench --history`).
 
 pub mod e2e;
 pub mod history;
@@ -179,10 +179,9 @@ pub fn decimal_scene(d: &InitialData<BigRational>, digits: usize) -> InitialData
 #[allow(clippy::type_complexity)]
 fn scaled_columns(data: &InitialData<BigRational>) -> Option<(Vec<i64>, Vec<i64>, i128, i128)> {
     let s = crate::fast::scaling::scale_i128(data)?;
-    let narrow = |v: &[i128]| crate::fast::int::narrowed(v, |&a| i64::try_from(a).ok());
     Some((
-        narrow(&s.x)?,
-        narrow(&s.u)?,
+        s.x_range.narrow(&s.x)?,
+        s.u_range.narrow(&s.u)?,
         num_traits::ToPrimitive::to_i128(&s.dx)?,
         num_traits::ToPrimitive::to_i128(&s.du)?,
     ))
