@@ -586,7 +586,7 @@ fn combine(h: &Halves, growth: &[Growth], n: usize, two: bool) -> Joins {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fast::scaling::scale_i128;
+    use crate::fast::scaling::{scale_i128, Scaled};
     use crate::generate::{initial_data, Limits, SplitMix64};
 
     /// Equal histories; instants compared as fractions (a half may keep
@@ -616,25 +616,35 @@ mod tests {
         Ok(())
     }
 
-    #[test]
-    fn every_cut_gives_the_whole_history() {
-        let mut rng = SplitMix64::new(77);
-        let mut cuts = 0;
-        let mut runs = 0;
-        for k in 0..300 {
-            // Small denominators and speeds: many equal times, chains of
-            // simultaneous meetings, contacts.
+    /// `count` random scenes of 2 to 61 particles, scaled, with their
+    /// index `k`: denominators up to `1 + k % dens` and speeds up to
+    /// `1 + k % speeds`, small, for many equal times, chains of
+    /// simultaneous meetings and contacts.
+    fn small_scenes(
+        seed: u64,
+        count: usize,
+        dens: usize,
+        speeds: usize,
+    ) -> impl Iterator<Item = (usize, Scaled)> {
+        let mut rng = SplitMix64::new(seed);
+        (0..count).filter_map(move |k| {
             let data = initial_data(
                 &rng.bytes(400),
                 Limits {
                     max_n: 2 + k % 60,
-                    max_den: 1 + (k % 4) as u32,
-                    max_speed: 1 + (k % 5) as u32,
+                    max_den: 1 + (k % dens) as u32,
+                    max_speed: 1 + (k % speeds) as u32,
                 },
             );
-            let Some(s) = scale_i128(&data) else {
-                continue;
-            };
+            Some((k, scale_i128(&data)?))
+        })
+    }
+
+    #[test]
+    fn every_cut_gives_the_whole_history() {
+        let mut cuts = 0;
+        let mut runs = 0;
+        for (k, s) in small_scenes(77, 300, 4, 5) {
             let whole = History::from_joins(run::<i128, i128>(&s.x, &s.u));
             for m in 1..s.x.len() {
                 if cut(&s.x, &s.u, m) != Some(m) {
@@ -674,19 +684,7 @@ mod tests {
     /// lower; the whole is last.
     #[test]
     fn the_pieces_tile_the_line() {
-        let mut rng = SplitMix64::new(9);
-        for k in 0..200 {
-            let data = initial_data(
-                &rng.bytes(400),
-                Limits {
-                    max_n: 2 + k % 60,
-                    max_den: 1 + (k % 3) as u32,
-                    max_speed: 1 + (k % 4) as u32,
-                },
-            );
-            let Some(s) = scale_i128(&data) else {
-                continue;
-            };
+        for (k, s) in small_scenes(9, 200, 3, 4) {
             let n = s.x.len();
             let Some(m) = cut(&s.x, &s.u, n / 2) else {
                 continue;
