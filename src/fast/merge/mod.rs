@@ -115,7 +115,7 @@ mod time;
 use events::{JOIN_NEVER, JOIN_ZERO, MAX_N};
 use history::History;
 use split::run_split;
-use sums::{within_bound, Words};
+use sums::{narrow_sums, within_bound, Words};
 pub use time::FILTER;
 
 /// Which engine computed an [`IntegerTrajectory`].
@@ -165,21 +165,18 @@ impl IntegerTrajectory {
         } else {
             None
         };
-        let Some(s) = scaled.filter(within_bound) else {
+        let Some(s) = scaled.filter(|s| within_bound(s.x.len(), s.max_abs())) else {
             return IntegerTrajectory {
                 inner: Inner::Generic(Box::new(Trajectory::new(data.clone()))),
             };
         };
-        // Cluster sums in i64 when N · M < 2^63.
-        let narrow_sums = (s.x.len() as u128)
-            .checked_mul(s.max_abs())
-            .is_some_and(|b| b < 1u128 << 63);
+        let narrow = narrow_sums(s.x.len(), s.max_abs());
         let words = match (s.x_range.narrow(&s.x), s.u_range.narrow(&s.u)) {
             (Some(x), Some(u)) => Words::I64(x, u),
             _ => Words::I128(s.x, s.u),
         };
         let (dx, du) = (s.dx, s.du);
-        let hist = match (&words, narrow_sums) {
+        let hist = match (&words, narrow) {
             (Words::I64(x, u), true) => run_split::<i64, i64>(x, u),
             (Words::I64(x, u), false) => run_split::<i64, i128>(x, u),
             (Words::I128(x, u), _) => run_split::<i128, i128>(x, u),
@@ -272,12 +269,10 @@ pub(crate) fn history_words(x: &[i64], u: &[i64], dx: i128, du: i128) -> Option<
         .map(|v| u128::from(v.unsigned_abs()))
         .max()
         .unwrap_or(0);
-    let bound = crate::fast::int::pair_bound(n).checked_mul(m)?;
-    if n >= MAX_N || bound >= 1u128 << 126 {
+    if n >= MAX_N || !within_bound(n, m) {
         return None;
     }
-    let narrow_sums = (n as u128).checked_mul(m).is_some_and(|b| b < 1u128 << 63);
-    let hist = if narrow_sums {
+    let hist = if narrow_sums(n, m) {
         run_split::<i64, i64>(x, u)
     } else {
         run_split::<i64, i128>(x, u)

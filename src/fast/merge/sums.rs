@@ -3,7 +3,6 @@
 //! the candidate time of two adjacent clusters.
 
 use crate::fast::int::pair_bound;
-use crate::fast::scaling::Scaled;
 
 use super::time::Time;
 
@@ -65,11 +64,17 @@ pub(super) fn meeting<W: SumWord>(l: &Node<W>, r: &Node<W>) -> Option<Time> {
 }
 
 /// `true` when `max(N, ⌊N²/4⌋) · M < 2^126` (the width bound of the module
-/// docs).
-pub(super) fn within_bound(s: &Scaled) -> bool {
-    pair_bound(s.x.len())
-        .checked_mul(s.max_abs())
+/// docs), for `n` particles and `m = M = max(max|X_i|, max|U_i|)`.
+pub(super) fn within_bound(n: usize, m: u128) -> bool {
+    pair_bound(n)
+        .checked_mul(m)
         .is_some_and(|b| b < 1u128 << 126)
+}
+
+/// `true` when `N · M < 2^63`: every cluster sum then fits `i64`
+/// ([`SumWord`]).
+pub(super) fn narrow_sums(n: usize, m: u128) -> bool {
+    (n as u128).checked_mul(m).is_some_and(|b| b < 1u128 << 63)
 }
 
 /// The scaled data in the narrowest word that holds them.

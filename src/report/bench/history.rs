@@ -83,8 +83,9 @@ pub fn run(n: usize, reps: usize, t: &BigRational) -> Result<HistoryReport, Stri
     // The f64 pass and the history from the columns each read a copy of
     // their input made just before them (untimed), as in the full bench,
     // where the input of those rows has just been computed; the history
-    // from the data reads the scene itself, as the `events` row does. (The allocator keeps freed memory resident in this mode,
-    // `Memory::Resident`: neither call faults in pages the other freed.)
+    // from the data reads the scene itself, as the `events` row does. (The
+    // allocator keeps freed memory resident in this mode,
+    // `Memory::Resident`: no call faults in pages another one freed.)
     let f64_pass = || {
         let y = y.clone();
         let (ns, _, out) = measured(|| isotonic::<f64>(&y));

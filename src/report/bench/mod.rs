@@ -219,14 +219,14 @@ pub enum Memory {
     /// fresh pages in (the kernel's 512-bit blocks were once 90 MB at
     /// N = 10⁶: 75–263 ns per particle depending on the machine's state).
     Warm,
-    /// Pairs (`sticky bench --history`): [`Memory::Warm`], and freed memory
-    /// is never handed back to the system (`MALLOC_TRIM_THRESHOLD_` of
-    /// 2^40), so that neither call of a pair faults in pages the other one
-    /// freed. Measured at N = 10⁶: with the default threshold the f64 pass
+    /// Rounds timed back to back (`sticky bench --history`):
+    /// [`Memory::Warm`], and freed memory is never handed back to the
+    /// system (`MALLOC_TRIM_THRESHOLD_` of 2^40), so that no call of a round
+    /// faults in pages another one freed. Measured at N = 10⁶: with the default threshold the f64 pass
     /// after a history ran at 31–41 ns per particle, with this one at
     /// 19–20 (the history unchanged, 395–419). The full bench keeps the
     /// default (see [`Memory::Warm`]); the history mode runs no `BigInt`
-    /// loop.
+    /// arithmetic (its third call only reads the `BigRational` scene).
     Resident,
     /// Peak memory: every allocation above 128 KiB is mapped afresh and
     /// returned on free (`MALLOC_MMAP_THRESHOLD_`, `MALLOC_TRIM_THRESHOLD_`),
