@@ -21,7 +21,7 @@
 //!    `prop:micro-pressure`), [`scene`] and [`quantile`] (scene files and
 //!    quantile sampling), [`columns`] (exact CSV/NPY particle files),
 //!    [`generate`], [`rate`] (log-log slopes), [`violation`], [`text`],
-//!    [`error`].
+//!    [`error`], [`progress`] (the observer of long work).
 //! 2. [`fast`] — the exact integer engines (kernel, adaptive, integer merge).
 //! 3. [`reference`](mod@reference) — the `f64` solvers, and
 //!    [`reference::measure`](mod@reference::measure), the one
@@ -74,6 +74,7 @@ pub mod contact;
 pub mod error;
 pub mod generate;
 pub mod initial;
+pub mod progress;
 pub mod projection;
 pub mod quantile;
 pub mod rate;

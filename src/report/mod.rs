@@ -6,8 +6,8 @@
 //! answer ([`solution`]) and the export of a scene as a peer reads it
 //! ([`export`]), and, with the
 //! `report` feature, the charts (`plot`, `figures`), the speed-vs-accuracy
-//! atlas (`atlas`), the benchmark (`bench`) and the peer solvers' runner
-//! (`peers`).
+//! atlas (`atlas`), the benchmark (`bench`), the peer solvers' runner
+//! (`peers`) and the terminal progress bar (`progress`).
 //!
 //! Nothing below this layer imports it.
 
@@ -25,4 +25,6 @@ pub mod json;
 pub mod peers;
 #[cfg(feature = "report")]
 pub mod plot;
+#[cfg(feature = "report")]
+pub mod progress;
 pub mod solution;
