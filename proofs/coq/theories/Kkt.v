@@ -92,3 +92,99 @@ Definition kkt_rec (z y : list Q) : Prop :=
   | [] => z = []
   | y1 :: _ => kkt_from 0 y1 z y
   end.
+
+(** ** The two forms agree *)
+
+Lemma kkt_from_qeq (z : list Q) : forall y c c' yp,
+  c == c' -> kkt_from c yp z y -> kkt_from c' yp z y.
+Proof.
+  induction z as [|zi z IH]; intros y c c' yp Hc H; destruct y as [|yi y];
+    simpl in *; try contradiction.
+  - lra.
+  - destruct H as (H1 & H2 & H3 & H4). split; [lra|split; [exact H2|split]].
+    + intro Hl. specialize (H3 Hl). lra.
+    + apply (IH y (c + (zi - yi))); [lra|exact H4].
+Qed.
+
+(** The index form of [kkt_from]: [yp :: y] lists the predecessors. *)
+Definition IdxFrom (c yp : Q) (z y : list Q) : Prop :=
+  length y = length z /\
+  (forall k, (k < length z)%nat -> nth k (yp :: y) 0 <= nth k y 0) /\
+  (forall k, (k <= length z)%nat -> 0 <= c + psum k z - psum k y) /\
+  c + psum (length z) z - psum (length z) y == 0 /\
+  (forall k, (k < length z)%nat ->
+     nth k (yp :: y) 0 < nth k y 0 -> c + psum k z - psum k y == 0).
+
+Lemma kkt_from_idx (z : list Q) : forall c yp y, kkt_from c yp z y -> IdxFrom c yp z y.
+Proof.
+  induction z as [|zi z IH]; intros c yp y H; destruct y as [|yi y];
+    simpl in H; try contradiction.
+  - repeat split.
+    + intros k Hk. simpl in Hk. lia.
+    + intros k Hk. simpl in Hk. replace k with 0%nat by lia. unfold psum. simpl. lra.
+    + unfold psum. simpl. lra.
+    + intros k Hk. simpl in Hk. lia.
+  - destruct H as (H0 & H1 & H2 & H3).
+    destruct (IH _ _ _ H3) as (L & M & P & T & C).
+    split; [|split; [|split; [|split]]].
+    + simpl. f_equal. exact L.
+    + intros [|k] Hk; simpl in Hk |- *; [exact H1|]. apply M. lia.
+    + intros [|k] Hk; simpl in Hk.
+      * unfold psum. simpl. lra.
+      * rewrite !psum_cons. specialize (P k ltac:(lia)). lra.
+    + simpl length. rewrite !psum_cons. lra.
+    + intros [|k] Hk; simpl in Hk |- *.
+      * intro Hl. specialize (H2 Hl). unfold psum. simpl. lra.
+      * intro Hl. rewrite !psum_cons. specialize (C k ltac:(lia) Hl). lra.
+Qed.
+
+Lemma idx_kkt_from (z : list Q) : forall c yp y, IdxFrom c yp z y -> kkt_from c yp z y.
+Proof.
+  induction z as [|zi z IH]; intros c yp y (L & M & P & T & C);
+    destruct y as [|yi y]; simpl in L |- *; try discriminate.
+  - unfold psum in T. simpl in T. lra.
+  - split; [|split; [|split]].
+    + specialize (P 0%nat ltac:(lia)). unfold psum in P. simpl in P. lra.
+    + apply (M 0%nat). simpl. lia.
+    + intro Hl. specialize (C 0%nat ltac:(simpl; lia) Hl). unfold psum in C. simpl in C. lra.
+    + apply IH. split; [|split; [|split; [|split]]].
+      * lia.
+      * intros k Hk. apply (M (S k)). simpl. lia.
+      * intros k Hk. specialize (P (S k) ltac:(simpl; lia)). rewrite !psum_cons in P. lra.
+      * simpl length in T. rewrite !psum_cons in T. lra.
+      * intros k Hk Hl. specialize (C (S k) ltac:(simpl; lia) Hl).
+        rewrite !psum_cons in C. lra.
+Qed.
+
+Lemma kkt_idx_head (z y : list Q) (y1 : Q) :
+  Kkt z (y1 :: y) <-> IdxFrom 0 y1 z (y1 :: y).
+Proof.
+  split.
+  - intros (L & M & P & T & C). split; [exact L|split; [|split; [|split]]].
+    + intros [|k] Hk; simpl; [apply Qle_refl|]. apply (M k). rewrite L. exact Hk.
+    + intros k Hk. specialize (P k Hk). lra.
+    + lra.
+    + intros [|k] Hk Hl; simpl in Hl.
+      * exfalso. apply (Qlt_irrefl _ Hl).
+      * rewrite (C k Hk Hl). lra.
+  - intros (L & M & P & T & C). split; [exact L|split; [|split; [|split]]].
+    + intros i Hi. apply (M (S i)). rewrite <- L. exact Hi.
+    + intros k Hk. specialize (P k Hk). lra.
+    + lra.
+    + intros k Hk Hl. specialize (C (S k) Hk Hl). lra.
+Qed.
+
+(** The index form [Kkt] and the left-to-right form [kkt_rec] are the same
+    conditions. *)
+Theorem kkt_rec_iff (z y : list Q) : kkt_rec z y <-> Kkt z y.
+Proof.
+  destruct y as [|y1 y]; simpl.
+  - split.
+    + intros ->. split; [reflexivity|split; [|split; [|split]]].
+      * intros i Hi. simpl in Hi. lia.
+      * intros k Hk. simpl in Hk. replace k with 0%nat by lia. unfold psum. simpl. lra.
+      * unfold psum. simpl. lra.
+      * intros k Hk. simpl in Hk. lia.
+    + intros (L & _). destruct z; [reflexivity|discriminate].
+  - rewrite kkt_idx_head. split; [apply kkt_from_idx|apply idx_kkt_from].
+Qed.
