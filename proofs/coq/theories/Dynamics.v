@@ -31,14 +31,14 @@ Open Scope Q_scope.
 
 (** A particle: its translated initial position [x̃⁰_i] and initial
     velocity [u⁰_i]. *)
-Definition particle : Type := (Q * Q)%type.
+Notation particle := (Q * Q)%type.
 
 (** The translated position at time [τ] of a particle in free flight,
     [z_i(τ) = x̃⁰_i + τ u⁰_i]. *)
 Definition free_position (τ : Q) (p : particle) : Q := fst p + τ * snd p.
 
 (** A cluster: a run of consecutive particles (never empty in a state). *)
-Definition cluster : Type := list particle.
+Notation cluster := (list particle).
 
 (** The number of particles of a cluster, as a rational. *)
 Definition size (c : cluster) : Q := qn (length c).
