@@ -81,6 +81,41 @@ Proof.
   destruct H as [H1 H2]. split; [exact H1|apply IH; exact H2].
 Qed.
 
+(** The clusters at [t] cut [x̃(s) + (t − s)u(s)] into pooled segments
+    whose averages are [x̃(t)], with non-decreasing means. *)
+Lemma semigroup_segments (x0 u0 : list Q) (r s t : Q) :
+  0 <= s -> s <= t -> InK r x0 ->
+  exists segs bs,
+    Forall2 Averages segs bs /\ Forall (fun l => l <> []) segs /\ Forall Pooled segs /\
+    MeansUp bs /\
+    concat segs = spread (moved s t) (clusters x0 u0 r s) /\
+    flat bs = spread (center t) (clusters x0 u0 r t).
+Proof.
+  intros Hs Hst HK.
+  assert (Ht : 0 <= t) by lra.
+  destruct (clusters_grow x0 u0 r s t Hst) as [_ (gs & Ebig & Esmall & Hgs)].
+  destruct (clusters_invariant x0 u0 r t Ht HK) as [(HNt & HSt & HOt) _].
+  destruct (clusters_invariant x0 u0 r s Hs HK) as [(HNs & _ & _) _].
+  rewrite <- Ebig, <- Esmall. rewrite <- Ebig in HNt, HSt, HOt. rewrite <- Esmall in HNs.
+  exists (map (spread (moved s t)) gs), (map (fun g => (center t (concat g), length (concat g))) gs).
+  assert (HNg : Forall (fun g => Forall Nonempty g) gs).
+  { apply Forall_forall. intros g Hg. rewrite Forall_forall in HNs |- *. intros c Hc.
+    apply HNs. apply in_concat. exists g. auto. }
+  assert (HG : Forall2 Averages (map (spread (moved s t)) gs)
+                 (map (fun g => (center t (concat g), length (concat g))) gs) /\
+               Forall (fun l => l <> []) (map (spread (moved s t)) gs) /\
+               Forall Pooled (map (spread (moved s t)) gs)).
+  { clear - HNg Hgs HSt. induction gs as [|g gs IH]; [split; [constructor|split; constructor]|].
+    inversion HNg; inversion Hgs; inversion HSt; subst.
+    destruct (group_positions s t g) as (A & B & C); auto.
+    destruct IH as (A' & B' & C'); auto. split; [|split]; constructor; auto. }
+  destruct HG as (HA & HNe & HP).
+  split; [exact HA|split; [exact HNe|split; [exact HP|split; [|split]]]].
+  - apply ordered_means_up. exact HOt.
+  - rewrite spread_concat. reflexivity.
+  - rewrite spread_flat, map_map. reflexivity.
+Qed.
+
 (** Paper, [eq:semigroup]: "x(t) = P_{K^N}(x(s) + (t − s)u(s)), 0 ≤ s ≤ t"
     (and [eq:projortho-sg], the same with the projection written through
     the orthogonality conditions). For every [N], [x⁰ ∈ K^N], any [u⁰],
@@ -95,25 +130,9 @@ Theorem semigroup (x0 u0 : list Q) (r s t : Q) :
       (translated_positions t (clusters x0 u0 r t)).
 Proof.
   intros Hs Hst HK ys us.
-  assert (Ht : 0 <= t) by lra.
   unfold ys, us. rewrite velocities_spread, moved_spread.
-  destruct (clusters_grow x0 u0 r s t Hst) as [_ (gs & Ebig & Esmall & Hgs)].
-  destruct (clusters_invariant x0 u0 r t Ht HK) as [(HNt & HSt & HOt) _].
-  destruct (clusters_invariant x0 u0 r s Hs HK) as [(HNs & _ & _) _].
   unfold translated_positions. fold (spread (center t) (clusters x0 u0 r t)).
-  rewrite <- Ebig, <- Esmall. rewrite <- Ebig in HNt, HSt, HOt. rewrite <- Esmall in HNs.
-  rewrite spread_concat, spread_flat, map_map.
-  assert (HNg : Forall (fun g => Forall Nonempty g) gs).
-  { apply Forall_forall. intros g Hg. rewrite Forall_forall in HNs |- *. intros c Hc.
-    apply HNs. apply in_concat. exists g. auto. }
-  assert (HG : Forall2 Averages (map (spread (moved s t)) gs)
-                 (map (fun g => (center t (concat g), length (concat g))) gs) /\
-               Forall (fun l => l <> []) (map (spread (moved s t)) gs) /\
-               Forall Pooled (map (spread (moved s t)) gs)).
-  { clear - HNg Hgs HSt. induction gs as [|g gs IH]; [split; [constructor|split; constructor]|].
-    inversion HNg; inversion Hgs; inversion HSt; subst.
-    destruct (group_positions s t g) as (A & B & C); auto.
-    destruct IH as (A' & B' & C'); auto. split; [|split]; constructor; auto. }
-  destruct HG as (HA & HNe & HP).
-  apply (flat_kkt _ _ HA HNe HP). apply ordered_means_up. exact HOt.
+  destruct (semigroup_segments x0 u0 r s t Hs Hst HK)
+    as (segs & bs & HA & HNe & HP & HM & <- & <-).
+  apply (flat_kkt _ _ HA HNe HP HM).
 Qed.
