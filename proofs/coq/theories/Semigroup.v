@@ -8,7 +8,8 @@
 
 From Coq Require Import QArith Qring Qfield Lqa Lia List.
 From Sticky Require Import Prelude Kkt Pava Dynamics ClusterAlgebra DynamicsInvariant
-  DynamicsProjection Multipliers TwoTimes Segments Pressure.
+  DynamicsProjection Multipliers Neighbours Contacts VelocityProjection TwoTimes Segments
+  Pressure.
 Import ListNotations.
 Open Scope Q_scope.
 
@@ -116,12 +117,11 @@ Proof.
   - rewrite spread_flat, map_map. reflexivity.
 Qed.
 
-(** Paper, [eq:semigroup]: "x(t) = P_{K^N}(x(s) + (t − s)u(s)), 0 ≤ s ≤ t"
-    (and [eq:projortho-sg], the same with the projection written through
-    the orthogonality conditions). For every [N], [x⁰ ∈ K^N], any [u⁰],
-    rational [0 ≤ s ≤ t]: [x̃(t)] meets the KKT conditions of the projection
-    of [x̃(s) + (t − s) u(s)] onto the monotone cone.
-    Ledger claims: [eq:semigroup], [eq:projortho-sg]. *)
+(** Paper, lemma "Semi-group property", [eq:semigroup]: "For any
+    0 ≤ s < t, the solution satisfies x(t) = P_{K^N}(x(s) + (t − s)u(s))".
+    For every [N], [x⁰ ∈ K^N], any [u⁰], rational [0 ≤ s ≤ t]: [x̃(t)]
+    meets the KKT conditions of the projection of [x̃(s) + (t − s) u(s)]
+    onto the monotone cone. Ledger claim: [eq:semigroup]. *)
 Theorem semigroup (x0 u0 : list Q) (r s t : Q) :
   0 <= s -> s <= t -> InK r x0 ->
   let ys := translated_positions s (clusters x0 u0 r s) in
@@ -135,4 +135,60 @@ Proof.
   destruct (semigroup_segments x0 u0 r s t Hs Hst HK)
     as (segs & bs & HA & HNe & HP & HM & <- & <-).
   apply (flat_kkt _ _ HA HNe HP HM).
+Qed.
+
+(** Paper, [eq:projortho-sg]: "For any 0 ≤ s < t, … u(t) = P_{H^N_{x(t)}}(u(s))".
+    [H_{x(t)}] is a linear subspace and [u(t) ∈ H_{x(t)}] for [t > 0]
+    ([VelocityProjection.velocity_in_H]); what is left is [u(s) − u(t) ⊥
+    H_{x(t)}], proved here for every [N], [x⁰ ∈ K^N], any [u⁰], rational
+    [0 ≤ s ≤ t]. Ledger claim: [eq:projortho-sg]. *)
+Theorem velocity_semigroup (x0 u0 : list Q) (r s t : Q) (w : list Q) :
+  0 <= s -> s <= t -> InK r x0 -> length u0 = length x0 -> length w = length x0 ->
+  InH r (positions (dynamics x0 u0 r t)) w ->
+  dot (vsub (velocities (dynamics x0 u0 r s)) (velocities (dynamics x0 u0 r t))) w == 0.
+Proof.
+  intros Hs Hst HK L Lw HH.
+  assert (Ht0 : 0 <= t) by lra.
+  set (us := velocities (dynamics x0 u0 r s)). set (ut := velocities (dynamics x0 u0 r t)).
+  assert (Lus : length us = length x0).
+  { unfold us. rewrite velocities_spread, spread_length. apply (clusters_facts x0 u0 r s Hs HK L). }
+  assert (Lut : length ut = length x0).
+  { unfold ut. rewrite velocities_spread, spread_length. apply (clusters_facts x0 u0 r t Ht0 HK L). }
+  assert (Hls : length (concat (clusters x0 u0 r s)) = length x0)
+    by apply (clusters_facts x0 u0 r s Hs HK L).
+  (* the partial sums of u(s) − u(t) vanish unless k − 1 and k share a cluster at t *)
+  assert (Hk : forall k, (k <= length x0)%nat ->
+            psum k us - psum k ut == 0 \/ SameCluster (clusters x0 u0 r t) (k - 1) k).
+  { intros k Hk.
+    destruct (multiplier_gap x0 u0 r t k Ht0 HK L Hk) as [_ [H|H]]; [left|right; exact H].
+    destruct (multiplier_gap x0 u0 r s k Hs HK L Hk) as [Hs0 _].
+    pose proof (velocity_psum_decreasing x0 u0 r s t Hs Hst HK k ltac:(lia)) as Hd.
+    fold us ut in H, Hs0, Hd. lra. }
+  setoid_replace (dot (vsub us ut) w) with (0 * 0 + dot (vsub us ut) w) by ring.
+  apply dot_by_parts.
+  - rewrite vsub_length; lia.
+  - intros k Hk'. rewrite vsub_length in Hk' by lia. rewrite psum_vsub by lia.
+    destruct (Hk k ltac:(lia)) as [H|H]; [left; lra|].
+    destruct k as [|k]; [left; unfold psum; simpl; lra|]. right. simpl nth at 1.
+    assert (Hc : Contact r (positions (dynamics x0 u0 r t)) k).
+    { unfold Contact.
+      pose proof (position_gap x0 u0 r t (S k) Ht0 HK L ltac:(lia)) as G. cbv zeta in G.
+      replace (S k - 1)%nat with k in G, H by lia. rewrite G, (H (center t)). ring. }
+    apply HH; [|exact Hc].
+    assert (Lx : length (positions (dynamics x0 u0 r t)) = length x0).
+    { rewrite positions_spread. unfold untranslate. rewrite untranslate_from_length, spread_length.
+      apply (clusters_facts x0 u0 r t Ht0 HK L). }
+    lia.
+  - rewrite <- psum_all, vsub_length, psum_vsub by lia. rewrite Lus.
+    destruct (Hk (length x0) (le_n _)) as [H|H]; [lra|].
+    (* at k = N both partial sums are the total momentum *)
+    destruct (multiplier_ends x0 u0 r s Hs HK L) as [_ Es].
+    destruct (multiplier_ends x0 u0 r t Ht0 HK L) as [_ Et].
+    unfold multiplier in Es, Et. fold us in Es. fold ut in Et.
+    destruct (length x0) as [|n] eqn:E; [unfold psum; simpl; ring|].
+    assert (Hn : 0 < qn (S n)) by (apply qn_pos; lia).
+    setoid_replace (psum (S n) us - psum (S n) ut)
+      with ((psum (S n) u0 - psum (S n) ut) / qn (S n) * qn (S n) -
+            (psum (S n) u0 - psum (S n) us) / qn (S n) * qn (S n)) by (field; lra).
+    rewrite Es, Et. ring.
 Qed.
