@@ -32,9 +32,11 @@ Definition mean_u (b : block) : Q := bsum_u b / psize b.
 (** The block of one entry. *)
 Definition single (e : Q * Q) : block := mkblock (fst e) (snd e) 1.
 
-(** Two adjacent blocks pooled into one. *)
+(** Two adjacent blocks pooled into one. The sums are kept in lowest terms
+    ([Qred], equal to the sum by [Qred_correct]) so that the extracted code's
+    numbers stay as small as the data's. *)
 Definition merge (a b : block) : block :=
-  mkblock (bsum a + bsum b) (bsum_u a + bsum_u b) (bsize a + bsize b).
+  mkblock (Qred (bsum a + bsum b)) (Qred (bsum_u a + bsum_u b)) (bsize a + bsize b).
 
 (** The left block [a] pools with the right block [b] iff its mean is [≥]
     in the lexicographic order on (mean, mean_u); means cross-multiplied. *)
@@ -188,7 +190,7 @@ Proof.
   { apply qn_pos. destruct sb; [contradiction|simpl; lia]. }
   repeat split.
   - destruct sa; [contradiction|discriminate].
-  - simpl. rewrite qsum_app, Sa, Sb. reflexivity.
+  - unfold merge. cbn [bsum]. rewrite Qred_correct, qsum_app, Sa, Sb. reflexivity.
   - simpl. rewrite app_length, Nat2Z.inj_add, La, Lb. reflexivity.
   - intros k Hk. rewrite app_length in Hk. rewrite qsum_app, app_length, qn_add.
     destruct (Nat.le_gt_cases k (length sa)) as [Hle|Hgt].
