@@ -12,10 +12,6 @@ From Sticky Require Import Prelude Kkt Dynamics Multipliers Contacts VelocityPro
 Import ListNotations.
 Open Scope Q_scope.
 
-(** Free flight [x⁰ + t u⁰], entry by entry. *)
-Definition free_flight (x0 u0 : list Q) (t : Q) : list Q :=
-  map (fun p => fst p + t * snd p) (combine x0 u0).
-
 (** Admissible data: [x⁰ ∈ K^N], [u⁰ ∈ C_{x⁰}], [r > 0]. *)
 Definition Admissible (x0 u0 : list Q) (r : Q) : Prop :=
   length u0 = length x0 /\ 0 < r /\ InK r x0 /\ InC r x0 u0.
