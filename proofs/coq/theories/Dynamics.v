@@ -129,6 +129,11 @@ Definition dynamics (x0 u0 : list Q) (r t : Q) : state :=
   let cs := clusters x0 u0 r t in
   mkstate (untranslate r (translated_positions t cs)) (cluster_velocities cs).
 
+(** Free flight [x⁰ + t u⁰], entry by entry (the point the paper projects
+    onto [K^N]). *)
+Definition free_flight (x0 u0 : list Q) (t : Q) : list Q :=
+  map (fun p => fst p + t * snd p) (combine x0 u0).
+
 (** The index of the first particle and the size of every cluster at time
     [t] (indices from 0). *)
 Fixpoint cluster_spans_from (first : nat) (cs : list cluster) : list (nat * nat) :=

@@ -12,10 +12,6 @@ From Sticky Require Import Prelude Kkt Dynamics Multipliers Contacts VelocityPro
 Import ListNotations.
 Open Scope Q_scope.
 
-(** Free flight [x⁰ + t u⁰], entry by entry. *)
-Definition free_flight (x0 u0 : list Q) (t : Q) : list Q :=
-  map (fun p => fst p + t * snd p) (combine x0 u0).
-
 (** Admissible data: [x⁰ ∈ K^N], [u⁰ ∈ C_{x⁰}], [r > 0]. *)
 Definition Admissible (x0 u0 : list Q) (r : Q) : Prop :=
   length u0 = length x0 /\ 0 < r /\ InK r x0 /\ InC r x0 u0.
@@ -119,4 +115,56 @@ Proof.
   specialize (H [0; 3 # 2] [-8; -9] (1 # 4) 1 0%nat
                 ltac:(admissible_closed) ltac:(qle_closed) ltac:(simpl; lia)).
   vm_compute in H. discriminate H.
+Qed.
+
+(** ** [eq:proj-u-micro]
+
+    Paper, [prop:proj-velo-micro]: "writing Ω^N_{x(t)} = ∪_k J_k(t), with
+    J_k(t) = ⟦j_k(t), j_k(t) + L_k(t)⟧ […] u_i(t) = (1/L_k) Σ_{l=1}^{L_k}
+    u⁰_{j_k+l} if i ∈ J_k" (read literally, as the ledger does: [J_k] is a
+    maximal run of contact indices, [i] a particle index). In 0-based
+    indices: the contacts [a, …, a + L] (contact [m] joins particles [m]
+    and [m + 1]), particle [i ∈ ⟦a, a + L⟧], [u_i = (1/L) Σ_{l=1}^{L} u⁰_{a+l}]. *)
+Definition ContactRun (r : Q) (x : list Q) (a L : nat) : Prop :=
+  (S (a + L) < length x)%nat /\
+  (forall m, (a <= m <= a + L)%nat -> Contact r x m) /\
+  (a = 0%nat \/ ~ Contact r x (a - 1)) /\
+  (S (S (a + L)) = length x \/ ~ Contact r x (S (a + L))).
+
+Definition ProjUMicroFormula : Prop :=
+  forall (x0 u0 : list Q) (r t : Q) (a L i : nat),
+    Admissible x0 u0 r -> 0 < t ->
+    ContactRun r (positions (dynamics x0 u0 r t)) a L -> (a <= i <= a + L)%nat ->
+    nth i (velocities (dynamics x0 u0 r t)) 0 ==
+    1 / qn L * qsum (map (fun l => nth (a + l) u0 0) (seq 1 L)).
+
+(** Ledger claim [eq:proj-u-micro] (counterexample), with the ledger's
+    witness (N = 2): r = 1/4, x⁰ = (0, 3/2), u⁰ = (−8, −9), t = 1, one
+    contact ([a = 0], [L = 0]), particle 0: the printed mean is [0/0] (0 in
+    Coq's [Q]) while [u_0(1) = −17/2]. *)
+Theorem proj_u_micro_formula_false : ~ ProjUMicroFormula.
+Proof.
+  intro H.
+  specialize (H [0; 3 # 2] [-8; -9] (1 # 4) 1 0%nat 0%nat 0%nat
+                ltac:(admissible_closed) ltac:(vm_compute; reflexivity)).
+  assert (HR : ContactRun (1 # 4) (positions (dynamics [0; 3 # 2] [-8; -9] (1 # 4) 1)) 0 0).
+  { split; [vm_compute; lia|split; [|split; [left; reflexivity|left; reflexivity]]].
+    intros m Hm. replace m with 0%nat by lia. unfold Contact. vm_compute. reflexivity. }
+  specialize (H HR ltac:(lia)). vm_compute in H. discriminate H.
+Qed.
+
+(** The same formula is false without any division by zero (a particle is
+    left out of the mean): N = 3, r = 1/2, x⁰ = (0, 2, 4), u⁰ = (2, 0, −1),
+    t = 1: one cluster of three particles, contacts 0 and 1 ([a = 0],
+    [L = 1]); the printed mean is [u⁰_1 = 0] but [u_0(1) = 1/3]. *)
+Theorem proj_u_micro_formula_false_nonzero_run : ~ ProjUMicroFormula.
+Proof.
+  intro H.
+  specialize (H [0; 2; 4] [2; 0; -1] (1 # 2) 1 0%nat 1%nat 0%nat
+                ltac:(admissible_closed) ltac:(vm_compute; reflexivity)).
+  assert (HR : ContactRun (1 # 2) (positions (dynamics [0; 2; 4] [2; 0; -1] (1 # 2) 1)) 0 1).
+  { split; [vm_compute; lia|split; [|split; [left; reflexivity|left; reflexivity]]].
+    intros m Hm. unfold Contact.
+    destruct m as [|[|m]]; [vm_compute; reflexivity|vm_compute; reflexivity|lia]. }
+  specialize (H HR ltac:(lia)). vm_compute in H. discriminate H.
 Qed.

@@ -111,3 +111,25 @@ Proof.
     unfold Qdiv. apply Qmult_le_compat_r; [lra|].
     apply Qlt_le_weak, Qinv_lt_0_compat. exact Hn.
 Qed.
+
+(** Paper, [prop:micro-pressure] (the ledger's reading): "p_i = dλ_i/dt
+    satisfies (x_{i+1} − x_i − 2r) p_i = 0": [λ_k] changes between [s] and
+    [t] only if particles [k − 1] and [k] (indices from 0) are in one
+    cluster at [t] — hence in contact at [t] ([Multipliers.SameCluster],
+    [Multipliers.multiplier_complementarity]). For every [N], [x⁰ ∈ K^N],
+    any [u⁰], rational [0 ≤ s ≤ t], [0 ≤ k ≤ N].
+    Ledger claim: [prop:micro-pressure]. *)
+Theorem multiplier_grows_only_in_contact (x0 u0 : list Q) (r s t : Q) (k : nat) :
+  0 <= s -> s <= t -> InK r x0 -> length u0 = length x0 -> (k <= length x0)%nat ->
+  multiplier x0 u0 r s k == multiplier x0 u0 r t k \/
+  SameCluster (clusters x0 u0 r t) (k - 1) k.
+Proof.
+  intros Hs Hst HK L Hk. assert (Ht : 0 <= t) by lra.
+  destruct (multiplier_gap x0 u0 r t k Ht HK L Hk) as [_ [H|H]]; [left|right; exact H].
+  destruct (multiplier_gap x0 u0 r s k Hs HK L Hk) as [Hs0 _].
+  destruct (clusters_facts x0 u0 r s Hs HK L) as (_ & _ & Hl).
+  pose proof (velocity_psum_decreasing x0 u0 r s t Hs Hst HK k ltac:(lia)) as Hd.
+  assert (E : psum k u0 - psum k (velocities (dynamics x0 u0 r s)) ==
+              psum k u0 - psum k (velocities (dynamics x0 u0 r t))) by lra.
+  unfold multiplier. rewrite E. reflexivity.
+Qed.
