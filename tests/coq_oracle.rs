@@ -3,8 +3,10 @@
 //!
 //! The oracle's positions are the extracted lexicographic PAVA, proved in
 //! Coq to equal `P_K(x⁰ + t u⁰)` for every N (`Sticky.Oracle.
-//! state_positions_spec`, `prop:proj-micro`); its velocities, multipliers
-//! and clusters are Coq definitions extracted with it (proofs/coq/README.md).
+//! state_positions_spec`, `prop:proj-micro`), its velocities proved to be
+//! the right derivative (`Sticky.RightDerivative.state_velocities_spec`);
+//! its multipliers and clusters are Coq definitions extracted with it
+//! (proofs/coq/README.md).
 //!
 //! Scenes: [`sticky::generate::initial_data`] — contacts, separating
 //! contacts, simultaneous collisions — many small ones (N ≤ 60) and a few
