@@ -248,16 +248,16 @@ fn every_engine_equals_the_coq_oracle_on_small_scenes() {
         ..Default::default()
     };
     let mut rng = SplitMix64::new(26);
-    let (mut compared, mut collisions) = (0, 0);
+    let (mut compared, mut times_asked) = (0, 0);
     for seed in 0..SMALL_SCENES {
         let len = 8 + (seed as usize % 200);
         let data = initial_data(&SplitMix64::new(seed).bytes(len), limits);
         let times = times_of(&data, usize::MAX, &mut rng);
-        collisions += times.len();
+        times_asked += times.len();
         compared += check_scene(&data, &times);
     }
     eprintln!(
-        "coq_oracle: {SMALL_SCENES} small scenes, {collisions} times, {compared} engine states \
+        "coq_oracle: {SMALL_SCENES} small scenes, {times_asked} times, {compared} engine states \
          equal to the Coq oracle in {:.1?}",
         start.elapsed()
     );
