@@ -3,14 +3,21 @@
 //!
 //! The oracle's positions are the extracted lexicographic PAVA, proved in
 //! Coq to equal `P_K(x⁰ + t u⁰)` for every N (`Sticky.Oracle.
-//! state_positions_spec`, `prop:proj-micro`); its velocities, multipliers
-//! and clusters are Coq definitions extracted with it (proofs/coq/README.md).
+//! state_positions_spec`, `prop:proj-micro`), its velocities proved to be
+//! the right derivative (`Sticky.RightDerivative.state_velocities_spec`);
+//! its multipliers and clusters are Coq definitions extracted with it
+//! (proofs/coq/README.md).
 //!
 //! Scenes: [`sticky::generate::initial_data`] — contacts, separating
 //! contacts, simultaneous collisions — many small ones (N ≤ 60) and a few
 //! big ones (N = 10³ and 10⁴). Times: 0, every collision instant of the
 //! generic event history (all of them for small scenes, a sample for big
 //! ones), midpoints, random rationals, one after the last collision.
+//!
+//! The oracle has a second extracted path, the event-driven dynamics
+//! (`--dynamics`, `Sticky.Dynamics.dynamics`, proved equal to `P_K(x⁰ + t u⁰)`
+//! by `Sticky.DynamicsIsProjK.dynamics_is_proj_K`); it is quadratic in N or
+//! worse, so the engines are compared with it on the small scenes only.
 //!
 //! Without the oracle built the test prints how to build it and passes,
 //! except under `CI=true`, where that is a failure.
@@ -67,16 +74,38 @@ fn oracle_input(data: &InitialData<BigRational>) -> String {
     s
 }
 
+/// Which extracted computation the oracle prints.
+#[derive(Debug, Clone, Copy)]
+enum OraclePath {
+    /// The proved PAVA (the default; O(N) per time).
+    Pava,
+    /// The event-driven dynamics (`--dynamics`; small N only).
+    Dynamics,
+}
+
 /// Runs the oracle on `data` at `times`: one JSON value per time.
-fn run_oracle(data: &InitialData<BigRational>, times: &[BigRational]) -> Vec<Value> {
+fn run_oracle(
+    data: &InitialData<BigRational>,
+    times: &[BigRational],
+    path: OraclePath,
+) -> Vec<Value> {
+    let flag = match path {
+        OraclePath::Pava => None,
+        OraclePath::Dynamics => Some("--dynamics".to_string()),
+    };
     let mut child = Command::new(ORACLE)
-        .args(times.iter().map(render_exact))
+        .args(flag.into_iter().chain(times.iter().map(render_exact)))
         .stdin(Stdio::piped())
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
         .spawn()
         .expect("start proofs/coq/oracle");
     let input = oracle_input(data);
+    let shown = if data.n() <= 20 {
+        format!("\ninput:\n{input}")
+    } else {
+        String::new()
+    };
     let mut stdin = child.stdin.take().expect("oracle stdin");
     let writer = std::thread::spawn(move || stdin.write_all(input.as_bytes()));
     let out = child.wait_with_output().expect("wait for the oracle");
@@ -86,7 +115,7 @@ fn run_oracle(data: &InitialData<BigRational>, times: &[BigRational]) -> Vec<Val
         .expect("write the scene to the oracle");
     assert!(
         out.status.success(),
-        "oracle failed on N = {}: {}",
+        "oracle ({path:?}) failed on N = {}: {}{shown}",
         data.n(),
         String::from_utf8_lossy(&out.stderr)
     );
@@ -218,9 +247,12 @@ fn times_of(
 }
 
 /// Runs every engine of [`ENGINES`] on `data` at `times` and compares each
-/// state with the oracle's line.
-fn check_scene(data: &InitialData<BigRational>, times: &[BigRational]) -> usize {
-    let lines: Vec<OracleState> = run_oracle(data, times).iter().map(parse_line).collect();
+/// state with the oracle's line (computed along `path`).
+fn check_scene(data: &InitialData<BigRational>, times: &[BigRational], path: OraclePath) -> usize {
+    let lines: Vec<OracleState> = run_oracle(data, times, path)
+        .iter()
+        .map(parse_line)
+        .collect();
     let mut compared = 0;
     for engine in ENGINES {
         let prepared = engine.prepare(data);
@@ -228,7 +260,12 @@ fn check_scene(data: &InitialData<BigRational>, times: &[BigRational]) -> usize 
             let state = prepared
                 .state_at(t)
                 .unwrap_or_else(|e| panic!("engine {}: state_at: {e}", engine.name()));
-            compare(engine.name(), data, &state, line);
+            compare(
+                &format!("{} vs {path:?}", engine.name()),
+                data,
+                &state,
+                line,
+            );
             compared += 1;
         }
     }
@@ -246,17 +283,18 @@ fn every_engine_equals_the_coq_oracle_on_small_scenes() {
         ..Default::default()
     };
     let mut rng = SplitMix64::new(26);
-    let (mut compared, mut collisions) = (0, 0);
+    let (mut compared, mut times_asked) = (0, 0);
     for seed in 0..SMALL_SCENES {
         let len = 8 + (seed as usize % 200);
         let data = initial_data(&SplitMix64::new(seed).bytes(len), limits);
         let times = times_of(&data, usize::MAX, &mut rng);
-        collisions += times.len();
-        compared += check_scene(&data, &times);
+        times_asked += times.len();
+        compared += check_scene(&data, &times, OraclePath::Pava);
+        compared += check_scene(&data, &times, OraclePath::Dynamics);
     }
     eprintln!(
-        "coq_oracle: {SMALL_SCENES} small scenes, {collisions} times, {compared} engine states \
-         equal to the Coq oracle in {:.1?}",
+        "coq_oracle: {SMALL_SCENES} small scenes, {times_asked} times, {compared} engine states \
+         equal to the Coq oracle (both paths) in {:.1?}",
         start.elapsed()
     );
 }
@@ -277,7 +315,7 @@ fn every_engine_equals_the_coq_oracle_on_big_scenes() {
         let data = initial_data(&SplitMix64::new(1000 + k as u64).bytes(8 * n), limits);
         assert_eq!(data.n(), n, "the generator fills N = {n}");
         let times = times_of(&data, BIG_COLLISION_TIMES, &mut rng);
-        compared += check_scene(&data, &times);
+        compared += check_scene(&data, &times, OraclePath::Pava);
     }
     eprintln!(
         "coq_oracle: big scenes N = {BIG_NS:?}, {compared} engine states equal to the Coq \

@@ -5,7 +5,20 @@
 
    Input (stdin): first line `N r`, then N lines `x_i u_i`; every number an
    exact rational `p/q` or an integer. Arguments: the times (exact
-   rationals, >= 0). A bad input is one line on stderr and exit code 1.
+   rationals, >= 0), optionally preceded by `--dynamics`. A bad input is one
+   line on stderr and exit code 1.
+
+   Two extracted computations of the same state:
+   - by default the proved PAVA (Sticky.Oracle.state_at: positions proved
+     = P_K(x0 + t u0), velocities proved = the right derivative), which is
+     O(N) per time; for N <= cross_check_max_n the event-driven dynamics
+     (Sticky.Dynamics.dynamics, proved = P_K(x0 + t u0) by
+     DynamicsIsProjK.dynamics_is_proj_K) is run too and the two must agree
+     on positions and velocities, else exit code 2;
+   - with `--dynamics`, the event-driven dynamics' positions and
+     velocities, for any N (it is quadratic in N or worse); the multipliers
+     and contact clusters are then computed from them by the same extracted
+     formulas.
 
    This file is the only unproved part besides the extraction itself: it
    parses, checks admissibility (r > 0, gaps >= 2r, no approaching contact,
@@ -13,8 +26,12 @@
    is the extracted Coq code (Sticky.Oracle.state_at). *)
 
 module Zr = Z (* zarith's integers, before the extracted module shadows Z *)
+module D = Sticky_dynamics
 
 open Sticky_oracle
+
+(* Up to this N the default path also runs the event-driven dynamics. *)
+let cross_check_max_n = 64
 
 exception Bad of string
 
@@ -98,19 +115,67 @@ let json_strings l = "[" ^ String.concat ", " (List.map (fun v -> "\"" ^ render 
 let json_clusters l =
   "[" ^ String.concat ", " (List.map (fun (f, s) -> Printf.sprintf "[%d, %d]" f s) l) ^ "]"
 
+(* The two extracted modules have their own (equal) record types for Q. *)
+let to_d (x : q) : D.q = { D.qnum = x.qnum; D.qden = x.qden }
+let of_d (x : D.q) : q = { qnum = x.D.qnum; qden = x.D.qden }
+
+(* The state by the event-driven dynamics, in the oracle's record. The
+   clusters printed are the contact clusters of its positions, the runs of
+   equal translated positions (Sticky.Oracle.runs), as `sticky run` prints
+   them: the dynamics' own groups (Sticky.Dynamics.cluster_spans) are the
+   clusters formed by collisions, which keep apart particles that touch at
+   t = 0 and move at equal speeds, or separate. *)
+let dynamics_state n r t x u =
+  let xd = List.map to_d x and ud = List.map to_d u in
+  let s = D.dynamics xd ud (to_d r) (to_d t) in
+  let positions = List.map (fun v -> qred (of_d v)) s.D.positions in
+  let velocities = List.map (fun v -> qred (of_d v)) s.D.velocities in
+  let two_r = qplus r r in
+  let clusters = runs (shifted_free zero two_r zero positions positions) in
+  { st_positions = positions;
+    st_velocities = velocities;
+    st_multipliers =
+      multipliers_from zero { qnum = Zr.of_int n; qden = Zr.one } u velocities;
+    st_clusters = clusters }
+
+let same_values a b = List.length a = List.length b && List.for_all2 qeq_bool a b
+
+let print_state n r t s =
+  Printf.printf
+    "{\"n\": %d, \"radius\": \"%s\", \"t\": \"%s\", \"positions\": %s, \"velocities\": %s, \"multipliers\": %s, \"clusters\": %s}\n"
+    n (render r) (render t) (json_strings s.st_positions) (json_strings s.st_velocities)
+    (json_strings s.st_multipliers) (json_clusters s.st_clusters)
+
+exception Disagree of string
+
 let () =
   try
-    let times = List.tl (Array.to_list Sys.argv) in
-    if times = [] then fail "usage: oracle T... < scene (first line `N r`, then N lines `x u`)";
+    let args = List.tl (Array.to_list Sys.argv) in
+    let use_dynamics, times =
+      match args with "--dynamics" :: rest -> true, rest | _ -> false, args in
+    if times = [] then
+      fail "usage: oracle [--dynamics] T... < scene (first line `N r`, then N lines `x u`)";
     let times = List.map (fun s -> let t = parse_q "time" s in
                            if not (qle_bool zero t) then fail "negative time %s" (render t);
                            t) times in
     let n, r, x, u = read_scene () in
     List.iter (fun t ->
-        let s = state_at r t x u in
-        Printf.printf
-          "{\"n\": %d, \"radius\": \"%s\", \"t\": \"%s\", \"positions\": %s, \"velocities\": %s, \"multipliers\": %s, \"clusters\": %s}\n"
-          n (render r) (render t) (json_strings s.st_positions) (json_strings s.st_velocities)
-          (json_strings s.st_multipliers) (json_clusters s.st_clusters))
+        if use_dynamics then print_state n r t (dynamics_state n r t x u)
+        else begin
+          let s = state_at r t x u in
+          if n <= cross_check_max_n then begin
+            let d = dynamics_state n r t x u in
+            let check what ok =
+              if not ok then
+                raise (Disagree (Printf.sprintf
+                  "PAVA and the event-driven dynamics differ in %s at t = %s" what (render t)))
+            in
+            check "positions" (same_values s.st_positions d.st_positions);
+            check "velocities" (same_values s.st_velocities d.st_velocities)
+          end;
+          print_state n r t s
+        end)
       times
-  with Bad msg -> prerr_endline ("oracle: " ^ msg); exit 1
+  with
+  | Bad msg -> prerr_endline ("oracle: " ^ msg); exit 1
+  | Disagree msg -> prerr_endline ("oracle: internal cross-check failed: " ^ msg); exit 2

@@ -6,8 +6,9 @@
     - positions: the [y]-part of the blocks, translated back. Proved:
       [state_positions_spec], they equal [P_K(x⁰ + t u⁰)] ([prop:proj-micro],
       [eq:proj-micro-x]) entrywise, for every [N].
-    - velocities: the block means of [u⁰] ([eq:proj-u-micro]); that they are
-      the right derivative of [x] is the dynamics' theorem, not proved here.
+    - velocities: the block means of [u⁰] ([eq:proj-u-micro]). Proved in
+      [RightDerivative.v] ([state_velocities_spec]): they are the right
+      derivative of [t ↦ P_K(x⁰ + t u⁰)], for every [N].
     - multipliers: [λ_i = Σ_{j ≤ i} (u⁰_j − u_j) / N], [i = 1 … N−1]
       ([eq:dyn-micro], [u − u⁰ = −N(λ_i − λ_{i−1})], [λ_0 = 0]): a definition.
     - clusters: the maximal runs of equal translated positions (gap exactly

@@ -482,8 +482,10 @@ Corollary pava_lex_is_pava (y u : list Q) :
 Proof. intro L. apply (kkt_unique y); [apply pava_lex_kkt, L|apply pava_kkt]. Qed.
 
 (** Main theorem ([prop:proj-micro], [eq:proj-u-micro]: the velocity is the
-    right derivative of [x(t) = P_K(x⁰ + t u⁰)]; ledger: [prop:proj-micro],
-    [eq:proj-u-micro]): for every [N] and [y, u ∈ Q^N] there is [δ > 0] such
+    right derivative of [x(t) = P_K(x⁰ + t u⁰)]; ledger: [prop:proj-micro];
+    the block means are [eq:proj-u-micro]'s cluster means in the ledger's
+    corrected reading — read literally, with [J_k] runs of contact indices,
+    the ledger records a counterexample): for every [N] and [y, u ∈ Q^N] there is [δ > 0] such
     that for every [0 < h ≤ δ], [P_{K̃}(y + h u) = Y + h V] entrywise, with
     [Y = pava_lex y u] ([= P_{K̃}(y)]) and [V = pava_lex_u y u] the block
     means of [u]. With [y = x̃⁰ + t u⁰], [u = u⁰]: [x̃(t + h) = x̃(t) + h V],
@@ -539,7 +541,7 @@ Lemma map_qred (l : list Q) : qeq_list (map Qred l) l.
 Proof. induction l; simpl; constructor; [apply Qred_correct|assumption]. Qed.
 
 (** Main theorem for the oracle ([prop:proj-micro], [eq:proj-u-micro];
-    ledger: [prop:proj-micro], [eq:proj-u-micro]): the velocities it prints
+    ledger: [prop:proj-micro]): the velocities it prints
     are the right derivative of [x(t) = P_K(x⁰ + t u⁰)]: for every [N],
     radius, rational [t] and data [x⁰, u⁰ ∈ Q^N] there is [δ > 0] such that
     for every [0 < h ≤ δ], [P_K(x⁰ + (t + h) u⁰) = x(t) + h u(t)] entrywise,
