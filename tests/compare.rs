@@ -414,6 +414,36 @@ fn out_dir_gets_a_whole_csv() {
 }
 
 #[test]
+fn error_chart_turns_log_when_errors_span_decades() {
+    let chart = |tag: &str, sol: &str| {
+        let d = Dir::new(tag);
+        let s = d.file("sol.json", sol);
+        let out_dir = d.0.join("out");
+        let (ok, _, err) = run(&[
+            Path::new("compare"),
+            &d.scene(),
+            &s,
+            Path::new("--out"),
+            &out_dir,
+        ]);
+        assert!(ok, "{err}");
+        std::fs::read_to_string(out_dir.join("compare-positions.svg")).unwrap()
+    };
+    // Errors 1/1000 and 1/10⁶: three decades, log scale.
+    let svg = chart(
+        "log",
+        r#"{"t": "2", "positions": ["3/4", "1.000001", "5/4", "4.001"]}"#,
+    );
+    assert!(svg.contains("log scale"));
+    // Errors 1/1000 and 2/1000: linear.
+    let svg = chart(
+        "lin",
+        r#"{"t": "2", "positions": ["3/4", "1.002", "5/4", "4.001"]}"#,
+    );
+    assert!(!svg.contains("log scale"));
+}
+
+#[test]
 fn bad_wrong_n() {
     bad(
         "n",

@@ -165,27 +165,31 @@ fn write_csv(
     Ok(path)
 }
 
-/// The charts in `--out`: the signed error (solver − sticky) of each
-/// particle, positions and velocities, one series per time (the first
-/// eight). Drawn in `f64` (a picture only: the exact values are in
-/// `compare.csv`).
+/// Nonzero errors spanning at least this ratio (two decades) are drawn on
+/// a log scale.
+const LOG_SPAN: i64 = 100;
+
+/// The charts in `--out`: the error of each particle, positions and
+/// velocities, one series per time (the first eight): signed (solver −
+/// sticky) on a linear scale, or `|solver − sticky|` on a log scale when
+/// the nonzero errors span two decades or more (zero errors are then not
+/// drawn). Drawn in `f64`, each the nearest double of the exact error (a
+/// picture only: the exact values are in `compare.csv`).
 fn write_charts(
     dir: &Path,
     frames: &[Frame],
     exact: &[sticky::State<BigRational>],
 ) -> Result<Vec<PathBuf>, Failure> {
+    use sticky::report::compare::decimal::{nearest_f64, Value};
     use sticky::report::plot::{palette, write_chart, Axis, Chart, Marker, Series};
     let mut paths = Vec::new();
     for (stem, what, velocity) in [
         ("compare-positions", "position", false),
         ("compare-velocities", "velocity", true),
     ] {
-        let mut chart = Chart::new(
-            format!("{what} error of the solution, solver − sticky (exact values in compare.csv)"),
-            Axis::linear("particle i (0-based)"),
-            Axis::linear(format!("{what} error")),
-        );
-        for (k, (f, e)) in frames.iter().zip(exact).take(8).enumerate() {
+        // Per time shown: its label and the exact signed errors.
+        let mut series: Vec<(String, Vec<BigRational>)> = Vec::new();
+        for (f, e) in frames.iter().zip(exact).take(8) {
             let (mine, theirs) = if velocity {
                 match &f.velocities {
                     Some(u) => (u, &e.velocities),
@@ -194,19 +198,58 @@ fn write_charts(
             } else {
                 (&f.positions, &e.positions)
             };
-            let points = mine
-                .iter()
-                .zip(theirs)
-                .enumerate()
-                .map(|(i, (a, b))| (i as f64, (a - b).to_f64_lossy()))
-                .collect();
-            chart.series.push(
-                Series::line(format!("t = {}", figure(&f.t)), palette(k), points)
-                    .with_marker(Marker::Circle),
-            );
+            let errors = mine.iter().zip(theirs).map(|(a, b)| a - b).collect();
+            series.push((format!("t = {}", figure(&f.t)), errors));
         }
-        if chart.series.is_empty() {
+        if series.is_empty() {
             continue;
+        }
+        let nonzero = series
+            .iter()
+            .flat_map(|(_, e)| e.iter())
+            .filter(|e| !num_traits::Zero::is_zero(*e))
+            .map(|e| e.abs());
+        let (lo, hi) = nonzero.fold(
+            (None, None),
+            |(lo, hi): (Option<BigRational>, Option<BigRational>), e| {
+                (
+                    Some(lo.map_or(e.clone(), |l| l.min(e.clone()))),
+                    Some(hi.map_or(e.clone(), |h| h.max(e))),
+                )
+            },
+        );
+        let log = match (lo, hi) {
+            (Some(lo), Some(hi)) => hi >= lo * BigRational::from_integer(LOG_SPAN.into()),
+            _ => false,
+        };
+        let mut chart = if log {
+            Chart::new(
+                format!("|{what} error| of the solution, |solver − sticky|, log scale; zero errors not drawn (exact values in compare.csv)"),
+                Axis::linear("particle i (indices from 0)"),
+                Axis::log(format!("|{what} error|")),
+            )
+        } else {
+            Chart::new(
+                format!(
+                    "{what} error of the solution, solver − sticky (exact values in compare.csv)"
+                ),
+                Axis::linear("particle i (indices from 0)"),
+                Axis::linear(format!("{what} error")),
+            )
+        };
+        for (k, (label, errors)) in series.into_iter().enumerate() {
+            let points = errors
+                .iter()
+                .enumerate()
+                .filter(|(_, e)| !log || !num_traits::Zero::is_zero(*e))
+                .filter_map(|(i, e)| {
+                    let shown = if log { e.abs() } else { e.clone() };
+                    nearest_f64(Value::Rational(&shown)).map(|y| (i as f64, y))
+                })
+                .collect();
+            chart
+                .series
+                .push(Series::line(label, palette(k), points).with_marker(Marker::Circle));
         }
         let written = write_chart(&chart, dir, stem)
             .map_err(|e| Failure(format!("{}: {e}", dir.display())))?;
