@@ -49,6 +49,22 @@ fn run(args: &[&Path]) -> (bool, String, String) {
     )
 }
 
+/// `sticky compare` with extra arguments: exit code, stdout, stderr.
+fn run_with(tag: &str, solution: &str, extra: &[&str]) -> (Option<i32>, String, String) {
+    let d = Dir::new(tag);
+    let s = d.file("sol.json", solution);
+    let scene = d.scene();
+    let mut args: Vec<&std::ffi::OsStr> =
+        vec!["compare".as_ref(), scene.as_os_str(), s.as_os_str()];
+    args.extend(extra.iter().map(|a| std::ffi::OsStr::new(*a)));
+    let o = Command::new(BIN).args(&args).output().unwrap();
+    (
+        o.status.code(),
+        String::from_utf8_lossy(&o.stdout).into_owned(),
+        String::from_utf8_lossy(&o.stderr).into_owned(),
+    )
+}
+
 fn compare_json(tag: &str, solution: &str) -> Value {
     let d = Dir::new(tag);
     let s = d.file("sol.json", solution);
@@ -109,6 +125,168 @@ fn known_perturbations_are_reported_exactly() {
     assert_eq!(v["times"][0]["position_max"]["value"], "1/8");
     assert_eq!(v["times"][0]["position_l2"], "1/8");
     assert_eq!(v["times"][0]["velocity_max"], Value::Null);
+}
+
+/// Every string in a JSON value (to check none is a "≈" decimal).
+fn strings(v: &Value, out: &mut Vec<String>) {
+    match v {
+        Value::String(s) => out.push(s.clone()),
+        Value::Array(a) => a.iter().for_each(|x| strings(x, out)),
+        Value::Object(o) => o.values().for_each(|x| strings(x, out)),
+        _ => {}
+    }
+}
+
+#[test]
+fn json_figures_are_exact_strings_and_numbers() {
+    let v = compare_json(
+        "numbers",
+        r#"{"t": "2", "positions": ["3/4", "1", "5/4", "4.001"], "velocities": ["0", "0", "0", "1/7"]}"#,
+    );
+    let t = &v["times"][0];
+    assert_eq!(t["position_max"]["value"], "1/1000");
+    assert_eq!(t["position_max"]["value_f64"].as_f64(), Some(0.001));
+    assert_eq!(t["position_l2_f64"].as_f64(), Some(0.0005));
+    assert_eq!(t["velocity_max"]["value_f64"].as_f64(), Some(1.0 / 7.0));
+    assert_eq!(t["velocity_l2_f64"].as_f64(), Some(1.0 / 14.0));
+    assert_eq!(t["t_f64"].as_f64(), Some(2.0));
+    assert_eq!(v["index_base"], 0);
+    // An L² error that is not rational: no exact root, its square exact, the
+    // nearest double of the root as a number (√(1/2)/1000 ≈ 7.07e-4).
+    let v = compare_json(
+        "irrational",
+        r#"{"t": "2", "positions": ["3/4", "1", "5/4", "4.001"], "velocities": ["0", "0", "1/1000", "1/1000"]}"#,
+    );
+    let t = &v["times"][0];
+    assert_eq!(t["velocity_l2_squared"], "1/2000000");
+    assert_eq!(t["velocity_l2"], Value::Null);
+    // √(1/2000000) = 7.0710678118654752440…e-4, whose nearest double is
+    // 0.0007071067811865475 (checked with 60-digit decimals); sqrt(0.5)/1000
+    // in f64 rounds twice and gives the next double up.
+    assert_eq!(t["velocity_l2_f64"].as_f64(), Some(0.0007071067811865475));
+    let mut all = Vec::new();
+    strings(&v, &mut all);
+    assert!(all.iter().all(|s| !s.contains('≈')), "{all:?}");
+}
+
+#[test]
+fn text_shows_decimals_beside_exact_figures() {
+    let (code, out, err) = run_with(
+        "decimals",
+        r#"{"t": "2", "positions": ["3/4", "1", "1.2", "4.001"]}"#,
+        &[],
+    );
+    assert_eq!(code, Some(0), "{err}");
+    assert!(out.contains("max 1/20 (5.000e-2) at positions[2]"), "{out}");
+    assert!(
+        out.contains("pair (1, 2) depth 1/20 (5.000e-2) = 1/5 (2.000e-1) × 2r"),
+        "{out}"
+    );
+    assert!(out.contains("L² √(2501/4000000) (2.500e-2)"), "{out}");
+    assert!(out.lines().next().unwrap().contains("indices from 0"));
+}
+
+const OVERLAP: &str = r#"{"t": "2", "positions": ["3/4", "1", "1.2", "4"]}"#;
+
+#[test]
+fn fail_on_follows_the_verdict() {
+    let inexact = r#"{"t": "2", "positions": ["3/4", "1", "5/4", "4.001"]}"#;
+    let code = |tag, sol, extra: &[&str]| run_with(tag, sol, extra).0;
+    assert_eq!(code("f1", OVERLAP, &["--fail-on", "invalid"]), Some(3));
+    assert_eq!(code("f2", OVERLAP, &[]), Some(0));
+    assert_eq!(code("f3", EXACT_T2, &["--fail-on", "invalid"]), Some(0));
+    assert_eq!(code("f4", EXACT_T2, &["--fail-on", "rounding"]), Some(0));
+    assert_eq!(code("f5", inexact, &["--fail-on", "invalid"]), Some(0));
+    assert_eq!(code("f6", inexact, &["--fail-on", "inexact"]), Some(3));
+    assert_eq!(code("f7", inexact, &["--fail-on", "rounding"]), Some(3));
+    // The report is printed whole before the exit.
+    let (c, out, _) = run_with("f8", OVERLAP, &["--fail-on", "invalid", "--json"]);
+    assert_eq!(c, Some(3));
+    let v: Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["verdict"], "invalid");
+    let (c, _, err) = run_with("f9", OVERLAP, &["--fail-on", "bad"]);
+    assert_eq!(c, Some(2));
+    assert!(err.contains("not a verdict"), "{err}");
+}
+
+#[test]
+fn overlap_tol_makes_one_ulp_rounding_and_keeps_1_1000_invalid() {
+    // 1.2499999999999998 is the double 5/4 − 2^−52: particle 2 one ulp
+    // into particle 1 (the exact cluster sits at 3/4, 1, 5/4).
+    let ulp = r#"{"t": "2", "positions": [0.75, 1, 1.2499999999999998, 4]}"#;
+    let v = compare_json("ulp0", ulp);
+    assert_eq!(v["verdict"], "invalid");
+    assert_eq!(v["times"][0]["overlaps"][0]["depth"], "1/4503599627370496");
+    let (_, out, err) = run_with("ulp1", ulp, &["--json", "--overlap-tol", "1e-12"]);
+    let v: Value = serde_json::from_str(&out).expect(&err);
+    assert_eq!(v["verdict"], "rounding");
+    assert_eq!(v["times"][0]["overlaps"][0]["within_tolerance"], true);
+    assert_eq!(v["overlap_tol"], "1/1000000000000");
+    // --fail-on inexact lets rounding pass, --fail-on rounding does not.
+    let code = |tag, extra: &[&str]| run_with(tag, ulp, extra).0;
+    assert_eq!(
+        code("ulp2", &["--overlap-tol", "1e-12", "--fail-on", "inexact"]),
+        Some(0)
+    );
+    assert_eq!(
+        code("ulp3", &["--overlap-tol", "1e-12", "--fail-on", "rounding"]),
+        Some(3)
+    );
+    // A 1/1000 overlap stays invalid under the same tolerance.
+    let deep = r#"{"t": "2", "positions": ["3/4", "1", "1.249", "4"]}"#;
+    let (_, out, _) = run_with("deep", deep, &["--json", "--overlap-tol", "1e-12"]);
+    let v: Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["verdict"], "invalid");
+    assert_eq!(v["times"][0]["overlaps"][0]["depth"], "1/1000");
+    assert_eq!(v["times"][0]["overlaps"][0]["depth_relative"], "1/250");
+    // One ulp off in a free particle's position, no overlap: rounding too;
+    // 1/1000 off: inexact.
+    let free = r#"{"t": "2", "positions": ["3/4", "1", "5/4", 4.000000000000001]}"#;
+    let (_, out, _) = run_with("free", free, &["--json", "--overlap-tol", "1e-12"]);
+    let v: Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["verdict"], "rounding");
+}
+
+#[test]
+fn wrong_clusters_are_never_rounding() {
+    // Exact positions, but the solver calls all four particles one cluster
+    // (pair (2, 3) spurious), or splits the exact [0, 3] (pair (1, 2)
+    // missed): inexact whatever the rounding tolerance.
+    for (tag, clusters) in [("sp", "[[0, 4]]"), ("mi", "[[0, 2], [2, 1], [3, 1]]")] {
+        let sol = format!(
+            r#"{{"t": "2", "positions": ["3/4", "1", "5/4", "4"], "clusters": {clusters}}}"#
+        );
+        let (_, out, err) = run_with(tag, &sol, &["--json", "--overlap-tol", "1e-12"]);
+        let v: Value = serde_json::from_str(&out).expect(&err);
+        assert_eq!(v["verdict"], "inexact", "{clusters}");
+    }
+}
+
+#[test]
+fn relative_contact_tolerance() {
+    // Particle 2 is 10⁻¹³ from touching particle 1: no contact with the
+    // default tolerance 0, a contact with 10⁻⁶·2r.
+    let near = r#"{"t": "2", "positions": ["3/4", "1", "1.2500000000001", "4"]}"#;
+    let v = compare_json("near0", near);
+    assert_eq!(v["times"][0]["missed_contacts"], 1);
+    let (_, out, _) = run_with("near1", near, &["--json", "--contact-tol-rel", "1e-6"]);
+    let v: Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["times"][0]["missed_contacts"], 0);
+    assert_eq!(v["contact_tol"], "1/4000000");
+    assert_eq!(v["verdict"], "inexact");
+    let (_, out, _) = run_with(
+        "near2",
+        near,
+        &[
+            "--json",
+            "--contact-tol-rel",
+            "1e-6",
+            "--overlap-tol",
+            "1e-12",
+        ],
+    );
+    let v: Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["verdict"], "rounding");
 }
 
 #[test]
@@ -236,6 +414,36 @@ fn out_dir_gets_a_whole_csv() {
 }
 
 #[test]
+fn error_chart_turns_log_when_errors_span_decades() {
+    let chart = |tag: &str, sol: &str| {
+        let d = Dir::new(tag);
+        let s = d.file("sol.json", sol);
+        let out_dir = d.0.join("out");
+        let (ok, _, err) = run(&[
+            Path::new("compare"),
+            &d.scene(),
+            &s,
+            Path::new("--out"),
+            &out_dir,
+        ]);
+        assert!(ok, "{err}");
+        std::fs::read_to_string(out_dir.join("compare-positions.svg")).unwrap()
+    };
+    // Errors 1/1000 and 1/10⁶: three decades, log scale.
+    let svg = chart(
+        "log",
+        r#"{"t": "2", "positions": ["3/4", "1.000001", "5/4", "4.001"]}"#,
+    );
+    assert!(svg.contains("log scale"));
+    // Errors 1/1000 and 2/1000: linear.
+    let svg = chart(
+        "lin",
+        r#"{"t": "2", "positions": ["3/4", "1.002", "5/4", "4.001"]}"#,
+    );
+    assert!(!svg.contains("log scale"));
+}
+
+#[test]
 fn bad_wrong_n() {
     bad(
         "n",
@@ -301,7 +509,7 @@ fn bad_nan() {
         "nan",
         "s.json",
         "{\"t\": 1, \"positions\": [0, 1, 2, 4]}\n{\"t\": 2, \"positions\": [0, NaN, 2, 4]}\n",
-        ":2: NaN is not a finite number",
+        ":2: positions[1]: NaN is not a finite number",
     );
 }
 

@@ -15,6 +15,9 @@ enum Json {
     Bool,
     /// The number's text, validated against the JSON grammar.
     Number(String),
+    /// `NaN`, `Infinity` or `-Infinity` (not JSON, but what some writers
+    /// print): kept so that the message names the entry that holds it.
+    NonFinite(&'static str),
     Str(String),
     Array(Vec<Value>),
     Object(Vec<(String, Value)>),
@@ -171,10 +174,8 @@ impl<'a> Reader<'a> {
         let rest = &self.s[self.pos..];
         for bad in ["NaN", "-NaN", "Infinity", "-Infinity"] {
             if rest.starts_with(bad.as_bytes()) {
-                return err(
-                    self.line,
-                    format!("{bad} is not a finite number (the solver diverged?)"),
-                );
+                self.pos += bad.len();
+                return Ok(Json::NonFinite(bad));
             }
         }
         let start = self.pos;
@@ -281,6 +282,10 @@ fn number_of(v: &Value, what: &str) -> Result<BigRational, SolutionError> {
                 message: format!("{what}: {text} is beyond the range of a double (infinite)"),
             })
         }
+        Json::NonFinite(w) => err(
+            v.line,
+            format!("{what}: {w} is not a finite number (the solver diverged?)"),
+        ),
         Json::Null => err(v.line, format!("{what}: null is not a number")),
         _ => err(v.line, format!("{what}: expected a number")),
     }
