@@ -394,7 +394,11 @@ pub fn explore(
     progress: &dyn Progress,
 ) -> Result<Exploration, SolverError> {
     let start = Instant::now();
-    let deadline = start + limits.time;
+    // The work stops a little before the budget, leaving the rest to wind
+    // down (unwinding and freeing a large path, killing the solver): 2 % of
+    // the budget, at most 2 s.
+    let reserve = (limits.time / 50).min(Duration::from_secs(2));
+    let deadline = start + limits.time - reserve;
     let _budget = budget::install(deadline, limits.max_terms);
     let mut solver = Solver::start(
         names,
@@ -471,7 +475,7 @@ pub fn explore(
             ));
             break;
         }
-        if start.elapsed() > limits.time {
+        if Instant::now() > deadline {
             result.verdict = Verdict::Unknown(format!(
                 "time limit of {} s reached after {} paths ({} still queued)",
                 limits.time.as_secs(),
