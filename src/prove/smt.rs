@@ -1,5 +1,13 @@
 //! The SMT solver, driven over SMT-LIB text through a pipe: the `z3` binary
-//! (Debian package `z3`), started once per exploration as `z3 -in`.
+//! (Debian package `z3`), started once per exploration as `z3 -in
+//! -memory:MB -T:S`, and restarted after a query it had to abandon.
+//!
+//! **Budget.** Every answer is awaited with a deadline (the output is read
+//! by a thread of its own): a query's own limit plus [`QUERY_GRACE`], never
+//! past the end of the attempt. A query past its limit, or one that hits the
+//! memory cap, kills the process and answers `unknown`; the next query
+//! starts a fresh one and re-asserts the path condition. Past the attempt's
+//! end the error [`OUT_OF_TIME`] ends the exploration.
 //!
 //! Queries are in quantifier-free nonlinear real arithmetic (products `t·u`
 //! of a time and a velocity, and cross-multiplied collision times), decided
