@@ -45,6 +45,21 @@ fn peer_lines(path: &Path) -> Vec<String> {
         .collect()
 }
 
+/// The cells of one CSV line (a quoted cell may hold commas; no quote
+/// inside a cell in these files).
+fn csv_cells(line: &str) -> Vec<String> {
+    let mut cells = vec![String::new()];
+    let mut quoted = false;
+    for c in line.chars() {
+        match c {
+            '"' => quoted = !quoted,
+            ',' if !quoted => cells.push(String::new()),
+            c => cells.last_mut().unwrap().push(c),
+        }
+    }
+    cells
+}
+
 #[test]
 fn installed_peers_are_rows_charts_and_columns() {
     let (dir, out) = run_atlas("on", &[]);
@@ -72,6 +87,23 @@ fn installed_peers_are_rows_charts_and_columns() {
         }
     }
     assert!(ran > 0, "no peer ran: {rows:?}");
+    // Each peer row that ran carries the solver call alone (the driver's
+    // median of repetitions, drawn by the charts) and, apart, the whole
+    // process, which is longer: the interpreter's start-up and imports.
+    let columns: Vec<&str> = header.split(',').collect();
+    let at = |name: &str| columns.iter().position(|c| *c == name).unwrap();
+    let (wall, repeats, process) = (at("wall_seconds"), at("repeats"), at("process_seconds"));
+    for r in rows.iter().filter(|r| r.contains(",ok,")) {
+        let cells = csv_cells(r);
+        let solve: f64 = cells[wall].parse().expect("a solve time");
+        let process: f64 = cells[process].parse().expect("a process time");
+        let repeats: usize = cells[repeats].parse().expect("repetitions");
+        assert!(repeats >= 1, "{r}");
+        assert!(
+            0.0 < solve && solve < process,
+            "solve {solve} s, process {process} s: {r}"
+        );
+    }
     // The peers that ran are in the Pareto chart and the stability table.
     let first = rows
         .iter()

@@ -82,9 +82,10 @@ def clusters_from(contacts):
     return out
 
 
-def write(path, frames, peer, setting, velocity_method, seconds):
+def write(path, frames, peer, setting, velocity_method, timing):
     """frames: list of dicts with t (exact string), positions, [velocities],
-    [multipliers], [clusters]."""
+    [multipliers], [clusters]; timing: the Timing of the solver call
+    (see `timed`)."""
     with open(path + ".tmp", "w") as f:
         for fr in frames:
             obj = {"t": fr["t"], "positions": [float(v) for v in fr["positions"]]}
@@ -97,16 +98,72 @@ def write(path, frames, peer, setting, velocity_method, seconds):
             obj["peer"] = peer
             obj["setting"] = setting
             obj["velocity_method"] = velocity_method
-            obj["wall_seconds"] = seconds
+            obj["solve_seconds"] = timing.solve_seconds
+            obj["solve_repetitions"] = timing.repetitions
+            obj["setup_seconds"] = timing.setup_seconds
+            # Last (report::peers reads it at the end of the line): the first
+            # call, its set-up included, imports and file reading not.
+            obj["wall_seconds"] = timing.first_seconds
             f.write(json.dumps(obj, allow_nan=True) + "\n")
     import os
     os.replace(path + ".tmp", path)
 
 
-class Timer:
-    def __enter__(self):
-        self.t0 = time.perf_counter()
-        return self
+# The clock discipline of `sticky bench`, applied to the solver call alone
+# (the interpreter's start-up, the imports and the file input/output are
+# outside it): one warm-up call, whose answer is the one written; then
+# repetitions of the same call until at least MIN_REPETITIONS of them and
+# MIN_SECONDS in all, or MAX_SECONDS in all; the median is reported. A
+# warm-up call of LONG_SECONDS or more is its own single measurement (its
+# first-call costs are negligible beside it, and repeating it would only
+# spend the peer's budget in the atlas).
+MIN_REPETITIONS = 3
+MIN_SECONDS = 0.2
+MAX_SECONDS = 0.5
+LONG_SECONDS = 0.25
+MAX_REPETITIONS = 1000
 
-    def __exit__(self, *a):
-        self.seconds = time.perf_counter() - self.t0
+
+class Timing:
+    """solve_seconds: median of the timed calls; repetitions: how many;
+    setup_seconds: median set-up (None when the peer has none apart);
+    first_seconds: the warm-up call, set-up included."""
+
+    def __init__(self, solve_seconds, repetitions, setup_seconds, first_seconds):
+        self.solve_seconds = solve_seconds
+        self.repetitions = repetitions
+        self.setup_seconds = setup_seconds
+        self.first_seconds = first_seconds
+
+
+def median(values):
+    v = sorted(values)
+    k = len(v) // 2
+    return v[k] if len(v) % 2 else (v[k - 1] + v[k]) / 2.0
+
+
+def timed(solve, setup=None):
+    """(answer, Timing) of the call solve() -- or solve(setup()) when the peer
+    needs a set-up (a model to build, a factorisation), timed apart before
+    each call. The answer is the warm-up call's."""
+    def once():
+        t0 = time.perf_counter()
+        state = setup() if setup is not None else None
+        t1 = time.perf_counter()
+        answer = solve(state) if setup is not None else solve()
+        t2 = time.perf_counter()
+        return answer, t1 - t0, t2 - t1
+
+    answer, s0, c0 = once()
+    setups, calls = [s0], [c0]
+    if c0 < LONG_SECONDS:
+        calls, setups = [], []
+        while len(calls) < MAX_REPETITIONS:
+            total = sum(calls)
+            if total >= MAX_SECONDS or (len(calls) >= MIN_REPETITIONS and total >= MIN_SECONDS):
+                break
+            _, s, c = once()
+            setups.append(s)
+            calls.append(c)
+    return answer, Timing(median(calls), len(calls),
+                          median(setups) if setup is not None else None, s0 + c0)

@@ -37,8 +37,8 @@ def main():
         for k in ("abstol", "reltol", "feastol"):
             cvxopt.solvers.options[k] = 1e-12
     n, r, x0, u0 = common.load(a.export)
-    frames = []
-    with common.Timer() as tm:
+    def solve_all():
+        frames = []
         for ts in a.at:
             t = common.time_of(ts)
             x = np.array(x0, dtype=float)
@@ -63,8 +63,11 @@ def main():
                 x = x + dt * u
             frames.append({"t": ts, "positions": x, "velocities": u,
                            "clusters": common.clusters_from(common.contacts(x, 2.0 * r))})
+        return frames
+
+    frames, timing = common.timed(solve_all)
     setting = "method=%s h=%g%s" % (a.method, a.h, " tight" if a.tight else "")
-    common.write(a.out, frames, peer, setting, "solver's own dynamics", tm.seconds)
+    common.write(a.out, frames, peer, setting, "solver's own dynamics", timing)
 
 
 if __name__ == "__main__":

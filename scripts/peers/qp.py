@@ -143,8 +143,9 @@ def main():
     n, r, x0, u0 = common.load(a.export)
     x0, u0 = np.array(x0), np.array(u0)
     two_r = 2.0 * r
-    frames = []
-    with common.Timer() as tm:
+
+    def solve_all():
+        frames = []
         for ts in a.at:
             t = common.time_of(ts)
             y = x0 + t * u0
@@ -165,9 +166,12 @@ def main():
                 rows = [j for j in range(n - 1) if contacts[j]]
                 v = solve(peer, np, u0, np.zeros((0, n)), np.zeros(0), diff_matrix(np, n, rows))
             frames.append({"t": ts, "positions": x, "velocities": v, "clusters": clusters})
+        return frames
+
+    frames, timing = common.timed(solve_all)
     setting = {"osqp": "default tolerances", "osqp-tight": "eps_abs=eps_rel=1e-12, polishing"}.get(
         peer, "default")
-    common.write(a.out, frames, peer, setting, "active-set projection, same solver", tm.seconds)
+    common.write(a.out, frames, peer, setting, "active-set projection, same solver", timing)
 
 
 if __name__ == "__main__":

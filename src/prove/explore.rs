@@ -22,8 +22,10 @@ use std::time::{Duration, Instant};
 use num_rational::BigRational;
 use num_traits::{Signed, Zero};
 
+use super::budget;
 use super::poly::Poly;
-use super::smt::{Sat, Solver, SolverError};
+use super::smt::{Sat, Solver, SolverError, SolverLimits};
+use crate::progress::Progress;
 
 /// A sign condition on a polynomial `p`: `p < 0`, `p ≤ 0`, …
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -345,15 +347,22 @@ pub enum Verdict {
     Unknown(String),
 }
 
-/// Limits of one exploration.
+/// Limits of one exploration: all of them are enforced on the whole
+/// attempt, the symbolic algebra ([`budget`]) as well as the solver
+/// ([`SolverLimits`]).
 #[derive(Debug, Clone, Copy)]
 pub struct Limits {
     /// Most paths run.
     pub max_paths: usize,
-    /// Wall-clock budget.
+    /// Wall-clock budget of the whole attempt.
     pub time: Duration,
     /// Per query, milliseconds.
     pub query_ms: u64,
+    /// The solver's memory cap, megabytes (z3's `-memory:`).
+    pub solver_memory_mb: u64,
+    /// The most terms a polynomial of the symbolic algebra may have (the
+    /// memory bound of our side).
+    pub max_terms: usize,
 }
 
 impl Default for Limits {
@@ -362,6 +371,8 @@ impl Default for Limits {
             max_paths: 200_000,
             time: Duration::from_secs(600),
             query_ms: 20_000,
+            solver_memory_mb: 2048,
+            max_terms: 200_000,
         }
     }
 }
@@ -369,15 +380,34 @@ impl Default for Limits {
 /// Explores every path of `program` over the variables `names` under
 /// `hypotheses` (see the module documentation). `program` must be
 /// deterministic: it is replayed from the start for each path.
+///
+/// The attempt ends by `limits.time` (plus the time to kill the solver):
+/// the deadline is enforced inside the symbolic algebra, on every answer
+/// awaited from the solver, and between paths. `progress` is told of every
+/// path (the paths explored and the time left) and asked between paths
+/// whether to stop.
 pub fn explore(
     names: &[String],
     hypotheses: &[Hypothesis],
     limits: Limits,
     program: &dyn Fn() -> PathEnd,
+    progress: &dyn Progress,
 ) -> Result<Exploration, SolverError> {
     let start = Instant::now();
-    let mut solver = Solver::start(names)?;
-    solver.timeout_ms = limits.query_ms;
+    // The work stops a little before the budget, leaving the rest to wind
+    // down (unwinding and freeing a large path, killing the solver): 2 % of
+    // the budget, at most 2 s.
+    let reserve = (limits.time / 50).min(Duration::from_secs(2));
+    let deadline = start + limits.time - reserve;
+    let _budget = budget::install(deadline, limits.max_terms);
+    let mut solver = Solver::start(
+        names,
+        SolverLimits {
+            query_ms: limits.query_ms,
+            deadline,
+            memory_mb: limits.solver_memory_mb,
+        },
+    )?;
     NAMES.with(|n| *n.borrow_mut() = names.to_vec());
     let mut base_pc = Vec::new();
     let mut base_masks = HashMap::new();
@@ -437,7 +467,15 @@ pub fn explore(
             ));
             break;
         }
-        if start.elapsed() > limits.time {
+        if progress.cancelled() {
+            result.verdict = Verdict::Unknown(format!(
+                "interrupted after {} paths ({} still queued)",
+                result.paths,
+                stack.len() + 1
+            ));
+            break;
+        }
+        if Instant::now() > deadline {
             result.verdict = Verdict::Unknown(format!(
                 "time limit of {} s reached after {} paths ({} still queued)",
                 limits.time.as_secs(),
@@ -463,8 +501,27 @@ pub fn explore(
             result.verdict = Verdict::Unknown("the oracle state was lost".into());
             break;
         };
+        if let Err(payload) = &end {
+            if let Some(why) = budget::overrun(payload.as_ref()) {
+                result.queries += st.queries;
+                result.verdict = Verdict::Unknown(format!(
+                    "{why}: path {} abandoned after {} complete paths ({} still queued)",
+                    result.paths + 1,
+                    result.paths,
+                    stack.len() + st.branches.len()
+                ));
+                state = Some(st);
+                break;
+            }
+        }
         result.paths += 1;
         result.queries += st.queries;
+        progress.advance(1);
+        progress.note(&format!(
+            "{} paths, {} s left",
+            result.paths,
+            deadline.saturating_duration_since(Instant::now()).as_secs()
+        ));
         unknown_total += st.unknown_answers;
         // Depth first: the last alternative found is explored next.
         stack.append(&mut st.branches);
@@ -493,7 +550,17 @@ pub fn explore(
             PathEnd::Excluded(_) => result.excluded += 1,
             PathEnd::Violated(message) => {
                 result.queries += 1;
-                match st.solver.check(&st.pc, None)? {
+                let answer = match st.solver.check(&st.pc, None) {
+                    Ok(a) => a,
+                    Err(e) => {
+                        result.verdict = Verdict::Unknown(format!(
+                            "{e} (deciding a path to a violation: {message})"
+                        ));
+                        state = Some(st);
+                        break;
+                    }
+                };
+                match answer {
                     Sat::Unsat => {} // an infeasible path let through by an `unknown`
                     Sat::Unknown => {
                         result.verdict = Verdict::Unknown(format!(
@@ -504,12 +571,15 @@ pub fn explore(
                     }
                     Sat::Sat => {
                         let pc = st.pc.clone();
-                        let point = st.solver.rational_model(&pc, names)?;
+                        let point = st.solver.rational_model(&pc, names);
                         result.queries += 2 * names.len();
                         result.verdict = match point {
-                            Some(point) => Verdict::Counterexample { message, point },
-                            None => Verdict::Unknown(format!(
+                            Ok(Some(point)) => Verdict::Counterexample { message, point },
+                            Ok(None) => Verdict::Unknown(format!(
                                 "a feasible path to a violation, but no rational point on it was found: {message}"
+                            )),
+                            Err(e) => Verdict::Unknown(format!(
+                                "{e} (building a rational point on a path to a violation: {message})"
                             )),
                         };
                         state = Some(st);

@@ -30,6 +30,7 @@
 //!
 //! [`Trajectory::at`]: crate::trajectory::Trajectory::at
 
+pub mod budget;
 pub mod explore;
 pub mod poly;
 pub mod record;
@@ -41,6 +42,7 @@ use num_traits::{One, Zero};
 
 use crate::claims::{registry, Case, Claim, Kind};
 use crate::initial::InitialData;
+use crate::progress::{Progress, Silent};
 use crate::scalar::Scalar;
 use crate::trajectory::Trajectory;
 
@@ -243,6 +245,20 @@ pub fn prove_program<P: Program>(
     program: &P,
     limits: Limits,
 ) -> ProofResult {
+    prove_program_observed(id, n, two_times, program, limits, &Silent)
+}
+
+/// [`prove_program`], telling `progress` of every path explored (and
+/// stopping `unknown` when it answers that the watcher cancelled).
+pub fn prove_program_observed<P: Program>(
+    id: &str,
+    n: usize,
+    two_times: bool,
+    program: &P,
+    limits: Limits,
+    progress: &dyn Progress,
+) -> ProofResult {
+    let start = std::time::Instant::now();
     let names = variable_names(n, two_times);
     let (hyps, hyp_text) = hypotheses(n, two_times);
     let sym = symbolic_input(n, two_times);
@@ -258,16 +274,16 @@ pub fn prove_program<P: Program>(
         witness: None,
         note: None,
     };
-    let exploration = match explore(&names, &hyps, limits, &run) {
+    let exploration = match explore(&names, &hyps, limits, &run, progress) {
         Ok(e) => e,
         Err(e) => {
             result.note = Some(e.0);
+            result.seconds = start.elapsed().as_secs_f64();
             return result;
         }
     };
     result.paths = exploration.paths;
     result.queries = exploration.queries;
-    result.seconds = exploration.seconds;
     match exploration.verdict {
         Verdict::Proved => {
             result.status = Status::Proved;
@@ -295,6 +311,7 @@ pub fn prove_program<P: Program>(
             }
         }
     }
+    result.seconds = start.elapsed().as_secs_f64();
     result
 }
 
@@ -419,7 +436,17 @@ pub fn targets() -> Vec<Target> {
 
 /// Proves one registry target at N.
 pub fn prove_target(target: &Target, n: usize, limits: Limits) -> ProofResult {
-    prove_program(&target.id, n, target.two_times, target, limits)
+    prove_target_observed(target, n, limits, &Silent)
+}
+
+/// [`prove_target`], telling `progress` of every path explored.
+pub fn prove_target_observed(
+    target: &Target,
+    n: usize,
+    limits: Limits,
+    progress: &dyn Progress,
+) -> ProofResult {
+    prove_program_observed(&target.id, n, target.two_times, target, limits, progress)
 }
 
 /// One JSON object (DESIGN.md §3): `{"id", "n", "status", "paths",

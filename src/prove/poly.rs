@@ -15,6 +15,8 @@ use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{One, Signed, Zero};
 
+use super::budget;
+
 /// A variable: an index into the prover's list of names.
 pub type Var = u16;
 
@@ -68,6 +70,7 @@ impl Poly {
         self.terms.is_empty()
     }
     fn add_term(&mut self, m: Vec<Var>, c: BigRational) {
+        budget::tick();
         if c.is_zero() {
             return;
         }
@@ -85,6 +88,7 @@ impl Poly {
         for (m, c) in &other.terms {
             out.add_term(m.clone(), c.clone());
         }
+        budget::check_size(out.len());
         out
     }
     /// `−self`.
@@ -93,7 +97,10 @@ impl Poly {
             terms: self
                 .terms
                 .iter()
-                .map(|(m, c)| (m.clone(), -c.clone()))
+                .map(|(m, c)| {
+                    budget::tick();
+                    (m.clone(), -c.clone())
+                })
                 .collect(),
         }
     }
@@ -110,7 +117,10 @@ impl Poly {
             terms: self
                 .terms
                 .iter()
-                .map(|(m, c)| (m.clone(), c.clone() * q))
+                .map(|(m, c)| {
+                    budget::tick();
+                    (m.clone(), c.clone() * q)
+                })
                 .collect(),
         }
     }
@@ -131,6 +141,7 @@ impl Poly {
                 m.sort_unstable();
                 out.add_term(m, ca.clone() * cb);
             }
+            budget::check_size(out.len());
         }
         out
     }
@@ -150,6 +161,7 @@ impl Poly {
     pub fn eval(&self, point: &[BigRational]) -> BigRational {
         let mut acc = BigRational::zero();
         for (m, c) in &self.terms {
+            budget::tick();
             let mut term = c.clone();
             for &v in m {
                 term *= point
@@ -168,6 +180,7 @@ impl Poly {
         }
         let mut parts: Vec<String> = Vec::with_capacity(self.terms.len());
         for (m, c) in &self.terms {
+            budget::tick();
             let mut factors: Vec<String> = Vec::with_capacity(m.len() + 1);
             if !c.is_one() || m.is_empty() {
                 factors.push(smt_rational(c));

@@ -1,5 +1,13 @@
 //! The SMT solver, driven over SMT-LIB text through a pipe: the `z3` binary
-//! (Debian package `z3`), started once per exploration as `z3 -in`.
+//! (Debian package `z3`), started once per exploration as `z3 -in
+//! -memory:MB -T:S`, and restarted after a query it had to abandon.
+//!
+//! **Budget.** Every answer is awaited with a deadline (the output is read
+//! by a thread of its own): a query's own limit plus [`QUERY_GRACE`], never
+//! past the end of the attempt. A query past its limit, or one that hits the
+//! memory cap, kills the process and answers `unknown`; the next query
+//! starts a fresh one and re-asserts the path condition. Past the attempt's
+//! end the error [`OUT_OF_TIME`] ends the exploration.
 //!
 //! Queries are in quantifier-free nonlinear real arithmetic (products `t·u`
 //! of a time and a velocity, and cross-multiplied collision times), decided
@@ -10,7 +18,9 @@
 //! queries `qfnra-nlsat` alone was the fastest of those tried).
 
 use std::io::{BufRead, BufReader, Write};
-use std::process::{Child, ChildStdin, ChildStdout, Command, Stdio};
+use std::process::{Child, ChildStdin, Command, Stdio};
+use std::sync::mpsc::{self, Receiver, RecvTimeoutError};
+use std::time::{Duration, Instant};
 
 use num_bigint::BigInt;
 use num_rational::BigRational;
@@ -23,21 +33,63 @@ pub enum Sat {
     Sat,
     /// Unsatisfiable: no real datum takes it.
     Unsat,
-    /// The solver gave up (time limit): neither answer is known.
+    /// The solver gave up (time or memory limit): neither answer is known.
     Unknown,
 }
 
-/// A running solver with the names of the declared real variables.
-pub struct Solver {
+/// The limits the solver runs under (the solver's share of a proof
+/// attempt's budget).
+#[derive(Debug, Clone, Copy)]
+pub struct SolverLimits {
+    /// Milliseconds per query before the query is abandoned (`unknown`):
+    /// asked of z3 (`try-for`) and enforced here (the process is killed
+    /// [`QUERY_GRACE`] later and restarted for the next query).
+    pub query_ms: u64,
+    /// The end of the whole attempt: no answer is awaited past it.
+    pub deadline: Instant,
+    /// z3's memory cap in megabytes (`-memory:`); a query that reaches it
+    /// answers `unknown` and the process is restarted.
+    pub memory_mb: u64,
+}
+
+/// How long past a query's own time limit its answer is awaited before the
+/// process is killed (z3's `try-for` is not always honoured by `nlsat`).
+pub const QUERY_GRACE: Duration = Duration::from_secs(2);
+
+/// How long a non-query command (`get-value`) may take.
+const COMMAND_LIMIT: Duration = Duration::from_secs(30);
+
+/// One running `z3 -in` process: its input and the lines of its output, read
+/// by a thread of their own so that an answer can be awaited with a
+/// deadline.
+struct Process {
     child: Child,
     stdin: ChildStdin,
-    stdout: BufReader<ChildStdout>,
+    lines: Receiver<String>,
+}
+
+impl Process {
+    fn kill(mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+/// A solver with the names of the declared real variables, started on first
+/// use and restarted after a query it had to abandon.
+pub struct Solver {
+    process: Option<Process>,
+    /// The declared variables.
+    names: Vec<String>,
     /// Constraints currently asserted, one `push` level each.
     stack: Vec<String>,
-    /// Milliseconds per query before the solver gives up (`unknown`).
-    pub timeout_ms: u64,
-    /// The program that was started.
+    /// The limits.
+    pub limits: SolverLimits,
+    /// The program that is started.
     pub program: String,
+    /// How many times the process was killed (a query past its limit, the
+    /// memory cap).
+    pub restarts: usize,
 }
 
 /// Why the solver could not be used.
@@ -49,6 +101,10 @@ impl std::fmt::Display for SolverError {
         f.write_str(&self.0)
     }
 }
+
+/// The message of the error that ends an attempt whose deadline passed
+/// while the solver was working.
+pub const OUT_OF_TIME: &str = "the time budget ran out during a solver query";
 
 /// The solver binary: `$STICKY_Z3` or `z3`.
 pub fn program() -> String {
@@ -63,12 +119,49 @@ pub fn available() -> Option<String> {
         .then(|| String::from_utf8_lossy(&out.stdout).trim().to_string())
 }
 
+/// How a wait for the solver's answer ended without one.
+enum NoAnswer {
+    /// The wait's limit passed (the process was killed).
+    Timeout,
+    /// The process or the pipe failed.
+    Failed(SolverError),
+}
+
 impl Solver {
     /// Starts the solver and declares the real variables `names`.
-    pub fn start(names: &[String]) -> Result<Self, SolverError> {
-        let program = program();
-        let mut child = Command::new(&program)
+    pub fn start(names: &[String], limits: SolverLimits) -> Result<Self, SolverError> {
+        let mut solver = Solver {
+            process: None,
+            names: names.to_vec(),
+            stack: Vec::new(),
+            limits,
+            program: program(),
+            restarts: 0,
+        };
+        solver.ensure_running()?;
+        Ok(solver)
+    }
+
+    /// Starts the process when none runs (first use, or after a kill): the
+    /// assertion stack is then empty.
+    fn ensure_running(&mut self) -> Result<(), SolverError> {
+        if self.process.is_some() {
+            return Ok(());
+        }
+        let left = self
+            .limits
+            .deadline
+            .saturating_duration_since(Instant::now());
+        if left.is_zero() {
+            return Err(SolverError(OUT_OF_TIME.into()));
+        }
+        let program = &self.program;
+        // `-T:` is a backstop in whole seconds: the process ends by itself
+        // shortly after the deadline even if this side were stuck.
+        let mut child = Command::new(program)
             .arg("-in")
+            .arg(format!("-memory:{}", self.limits.memory_mb.max(16)))
+            .arg(format!("-T:{}", left.as_secs() + 2))
             .stdin(Stdio::piped())
             .stdout(Stdio::piped())
             .stderr(Stdio::null())
@@ -82,49 +175,75 @@ impl Solver {
             .stdin
             .take()
             .ok_or_else(|| SolverError("no stdin".into()))?;
-        let stdout = BufReader::new(
-            child
-                .stdout
-                .take()
-                .ok_or_else(|| SolverError("no stdout".into()))?,
-        );
-        let mut solver = Solver {
+        let stdout = child
+            .stdout
+            .take()
+            .ok_or_else(|| SolverError("no stdout".into()))?;
+        let (tx, lines) = mpsc::channel();
+        std::thread::spawn(move || {
+            for line in BufReader::new(stdout).lines() {
+                let Ok(line) = line else { break };
+                if tx.send(line).is_err() {
+                    break;
+                }
+            }
+        });
+        self.process = Some(Process {
             child,
             stdin,
-            stdout,
-            stack: Vec::new(),
-            timeout_ms: 20_000,
-            program,
-        };
+            lines,
+        });
+        self.stack.clear();
         let mut decl =
             String::from("(set-option :print-success false)\n(set-option :pp.decimal false)\n");
-        for n in names {
+        for n in &self.names {
             decl.push_str(&format!("(declare-const {n} Real)\n"));
         }
-        solver.send(&decl)?;
-        Ok(solver)
+        self.send(&decl)
+    }
+
+    /// Kills the process (it is restarted on next use).
+    fn kill(&mut self) {
+        if let Some(p) = self.process.take() {
+            p.kill();
+            self.restarts += 1;
+        }
+        self.stack.clear();
     }
 
     fn send(&mut self, text: &str) -> Result<(), SolverError> {
-        self.stdin
+        let Some(p) = self.process.as_mut() else {
+            return Err(SolverError("the solver is not running".into()));
+        };
+        p.stdin
             .write_all(text.as_bytes())
-            .and_then(|()| self.stdin.flush())
+            .and_then(|()| p.stdin.flush())
             .map_err(|e| SolverError(format!("solver pipe: {e}")))
     }
 
-    /// Reads one complete s-expression (or atom) from the solver.
-    fn read_sexp(&mut self) -> Result<String, SolverError> {
+    /// Reads one complete s-expression (or atom) from the solver, waiting
+    /// until `limit` at most (then the process is killed).
+    fn read_until(&mut self, limit: Instant) -> Result<String, NoAnswer> {
         let mut out = String::new();
         let mut depth: i64 = 0;
         loop {
-            let mut line = String::new();
-            let n = self
-                .stdout
-                .read_line(&mut line)
-                .map_err(|e| SolverError(format!("solver pipe: {e}")))?;
-            if n == 0 {
-                return Err(SolverError("the solver exited".into()));
-            }
+            let Some(p) = self.process.as_ref() else {
+                return Err(NoAnswer::Failed(SolverError(
+                    "the solver is not running".into(),
+                )));
+            };
+            let wait = limit.saturating_duration_since(Instant::now());
+            let line = match p.lines.recv_timeout(wait) {
+                Ok(line) => line,
+                Err(RecvTimeoutError::Timeout) => {
+                    self.kill();
+                    return Err(NoAnswer::Timeout);
+                }
+                Err(RecvTimeoutError::Disconnected) => {
+                    self.kill();
+                    return Err(NoAnswer::Failed(SolverError("the solver exited".into())));
+                }
+            };
             for c in line.chars() {
                 match c {
                     '(' => depth += 1,
@@ -133,18 +252,27 @@ impl Solver {
                 }
             }
             out.push_str(&line);
+            out.push('\n');
             if depth <= 0 && !out.trim().is_empty() {
-                let text = out.trim().to_string();
-                if text.starts_with("(error") {
-                    return Err(SolverError(format!("solver: {text}")));
-                }
-                return Ok(text);
+                return Ok(out.trim().to_string());
             }
+        }
+    }
+
+    /// The answer to a command that is not a query (`get-value`).
+    fn read_sexp(&mut self) -> Result<String, SolverError> {
+        let limit = (Instant::now() + COMMAND_LIMIT).min(self.limits.deadline);
+        match self.read_until(limit) {
+            Ok(text) if text.starts_with("(error") => Err(SolverError(format!("solver: {text}"))),
+            Ok(text) => Ok(text),
+            Err(NoAnswer::Timeout) => Err(SolverError(OUT_OF_TIME.into())),
+            Err(NoAnswer::Failed(e)) => Err(e),
         }
     }
 
     /// Makes the solver's assertion stack equal to `constraints`.
     fn sync(&mut self, constraints: &[String]) -> Result<(), SolverError> {
+        self.ensure_running()?;
         let common = self
             .stack
             .iter()
@@ -172,16 +300,33 @@ impl Solver {
             Ok(t) if !t.is_empty() => format!("(check-sat-using {t})\n"),
             _ => format!(
                 "(check-sat-using (try-for qfnra-nlsat {}))\n",
-                self.timeout_ms
+                self.limits.query_ms
             ),
         };
         self.send(&cmd)?;
-        let answer = self.read_sexp()?;
-        Ok(match answer.as_str() {
-            "sat" => Sat::Sat,
-            "unsat" => Sat::Unsat,
-            _ => Sat::Unknown,
-        })
+        let own = Instant::now() + Duration::from_millis(self.limits.query_ms) + QUERY_GRACE;
+        let limit = own.min(self.limits.deadline);
+        match self.read_until(limit) {
+            Ok(answer) => Ok(match answer.as_str() {
+                "sat" => Sat::Sat,
+                "unsat" => Sat::Unsat,
+                a if a.starts_with("(error") && a.contains("memory") => {
+                    // The memory cap: this query is abandoned, the process
+                    // restarted for the next one.
+                    self.kill();
+                    Sat::Unknown
+                }
+                a if a.starts_with("(error") => {
+                    return Err(SolverError(format!("solver: {a}")));
+                }
+                _ => Sat::Unknown,
+            }),
+            Err(NoAnswer::Timeout) if Instant::now() >= self.limits.deadline => {
+                Err(SolverError(OUT_OF_TIME.into()))
+            }
+            Err(NoAnswer::Timeout) => Ok(Sat::Unknown),
+            Err(NoAnswer::Failed(e)) => Err(e),
+        }
     }
 
     /// Is `constraints ∧ extra` satisfiable?
@@ -196,9 +341,17 @@ impl Solver {
             Some(e) => {
                 self.send(&format!("(push 1)\n(assert {e})\n"))?;
                 let r = self.check_now();
-                self.send("(pop 1)\n")?;
+                self.pop_extra();
                 r
             }
+        }
+    }
+
+    /// Pops the level of an extra assertion (nothing to pop when the
+    /// process was killed meanwhile: its stack is gone).
+    fn pop_extra(&mut self) {
+        if self.process.is_some() && self.send("(pop 1)\n").is_err() {
+            self.kill();
         }
     }
 
@@ -243,7 +396,7 @@ impl Solver {
             Ok(Sat::Sat) => self.model(names),
             _ => Ok(None),
         };
-        self.send("(pop 1)\n")?;
+        self.pop_extra();
         Ok((r?, model?))
     }
 
@@ -316,8 +469,9 @@ impl Solver {
 impl Drop for Solver {
     fn drop(&mut self) {
         let _ = self.send("(exit)\n");
-        let _ = self.child.kill();
-        let _ = self.child.wait();
+        if let Some(p) = self.process.take() {
+            p.kill();
+        }
     }
 }
 

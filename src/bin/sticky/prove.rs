@@ -5,7 +5,9 @@
 use std::io::Write;
 use std::time::Duration;
 
+use sticky::progress::Progress;
 use sticky::prove::{self, ProofLimits, Status};
+use sticky::report::progress::Bar;
 
 use crate::{io_err, Failure};
 
@@ -31,6 +33,25 @@ pub struct Args {
     /// Solver time limit per query, in milliseconds.
     #[arg(long, default_value_t = 20_000)]
     query_ms: u64,
+    /// Memory cap of the solver process, in megabytes (z3's `-memory:`).
+    #[arg(long, default_value_t = 2048)]
+    solver_mb: u64,
+}
+
+/// The bar of one claim at one N: every note of the explorer is shown after
+/// the claim's id and N.
+struct ClaimBar<'a> {
+    bar: &'a Bar,
+    claim: String,
+}
+
+impl Progress for ClaimBar<'_> {
+    fn advance(&self, steps: u64) {
+        self.bar.advance(steps);
+    }
+    fn note(&self, what: &str) {
+        self.bar.note(&format!("{}: {what}", self.claim));
+    }
 }
 
 /// Runs `sticky prove`.
@@ -60,8 +81,10 @@ pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
     let limits = ProofLimits {
         time: Duration::from_secs(args.seconds.max(1)),
         query_ms: args.query_ms.max(100),
+        solver_memory_mb: args.solver_mb.max(64),
         ..ProofLimits::default()
     };
+    let bar = Bar::for_command("prove");
     if !args.json {
         writeln!(out, "solver: {version}").map_err(io_err)?;
         writeln!(
@@ -78,13 +101,16 @@ pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
     }
     for n in args.from.max(1)..=args.n {
         for t in &targets {
-            let r = prove::prove_target(t, n, limits);
+            let claim = format!("{}, N = {n}", t.id);
+            bar.stage(&claim, None);
+            let r = prove::prove_target_observed(t, n, limits, &ClaimBar { bar: &bar, claim });
+            let mut text = String::new();
             if args.json {
-                writeln!(out, "{}", prove::json(&r, t.erratum)).map_err(io_err)?;
+                text.push_str(&prove::json(&r, t.erratum));
+                text.push('\n');
             } else {
-                writeln!(
-                    out,
-                    "{:<52} {:>2} {:>8} {:>7} {:>8} {:>8.2}  {}",
+                text.push_str(&format!(
+                    "{:<52} {:>2} {:>8} {:>7} {:>8} {:>8.2}  {}\n",
                     r.id,
                     r.n,
                     r.status.as_str(),
@@ -92,16 +118,20 @@ pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
                     r.queries,
                     r.seconds,
                     if t.erratum { "yes" } else { "" }
-                )
-                .map_err(io_err)?;
+                ));
                 if r.status == Status::Unknown {
                     if let Some(note) = &r.note {
-                        writeln!(out, "    unknown: {note}").map_err(io_err)?;
+                        text.push_str(&format!("    unknown: {note}\n"));
                     }
                 }
             }
-            out.flush().map_err(io_err)?;
+            // The bar is lifted while the line is written, so that the two
+            // do not interleave on a terminal.
+            bar.indicatif()
+                .suspend(|| out.write_all(text.as_bytes()).and_then(|()| out.flush()))
+                .map_err(io_err)?;
         }
     }
+    bar.finish();
     Ok(())
 }

@@ -1,4 +1,4 @@
-//! The charts: Pareto fronts (error against wall time), errors against
+//! The charts: Pareto fronts (error against solve time), errors against
 //! `Δt`, and cost against `N`.
 
 use crate::reference::ErrorsF64;
@@ -85,7 +85,7 @@ pub(super) fn pareto_chart(case: &str, rows: &[&Row], velocity: bool) -> Option<
     };
     let mut chart = Chart::new(
         format!(
-            "{case}, N = {}, t = {}: {} vs wall time (error 0 drawn at {floor:.0e})",
+            "{case}, N = {}, t = {}: {} vs solve time (error 0 drawn at {floor:.0e})",
             first.n,
             short(first.t),
             if velocity {
@@ -94,7 +94,7 @@ pub(super) fn pareto_chart(case: &str, rows: &[&Row], velocity: bool) -> Option<
                 "position error"
             }
         ),
-        Axis::log("wall time per solve [s]"),
+        Axis::log("solve time [s] (peers: the solver call alone, median)"),
         Axis::log(what),
     );
     let mut points_all = Vec::new();
@@ -235,9 +235,9 @@ pub(super) fn representative(r: &Row) -> Option<String> {
 
 pub(super) fn cost_chart(rows: &[Row]) -> Chart {
     let mut chart = Chart::new(
-        "cost vs N on the random scenes (t = 1025/1024): wall time per solve",
+        "cost vs N on the random scenes (t = 1025/1024): solve time",
         Axis::log("number of particles N"),
-        Axis::log("wall time per solve [s]"),
+        Axis::log("solve time [s] (peers: the solver call alone, median)"),
     );
     for method in all_methods() {
         let mut label = None;

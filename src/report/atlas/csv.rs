@@ -65,6 +65,8 @@ fn csv_row(row: &Row) -> Vec<String> {
         opt(row.work.map(|w| w.unconverged), int),
         opt(row.converged, |c| c.to_string()),
         opt(row.residual, num),
+        opt(row.process_seconds, num),
+        opt(row.setup_seconds, num),
     ]
 }
 

@@ -218,9 +218,16 @@ impl From<PlotError> for AtlasError {
 /// `spurious_contacts`, `cluster_mismatch` (their sum), `min_gap`
 /// (`min x_{i+1} − x_i − 2r`, negative = overlap) and `min_gap_over_2r`,
 /// `min_lambda`, `min_pressure_jump`, `oleinik_violations`; then work
-/// counters `steps, iterations, unconverged, converged, residual`. Empty
-/// cells are values the method does not produce.
-pub const CSV_COLUMNS: [&str; 29] = [
+/// counters `steps, iterations, unconverged, converged, residual`; then,
+/// for the peers, `process_seconds` (the wall time of the driver's whole
+/// process: interpreter start-up, imports, file input and output, set-up and
+/// the warm-up and timed calls) and `setup_seconds` (the median set-up done
+/// apart from the call — a model to build —, empty when the peer has none).
+/// A peer's `wall_seconds` is the solver call alone as the driver timed it
+/// (a warm-up call, then `repeats` repetitions, the median: the clock
+/// discipline of `sticky bench`), which the charts draw. Empty cells are
+/// values the method does not produce.
+pub const CSV_COLUMNS: [&str; 31] = [
     "scene",
     "n",
     "t",
@@ -250,6 +257,8 @@ pub const CSV_COLUMNS: [&str; 29] = [
     "unconverged",
     "converged",
     "residual",
+    "process_seconds",
+    "setup_seconds",
 ];
 
 /// The floating-point methods, in the order of the tables.

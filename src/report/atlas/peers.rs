@@ -11,6 +11,12 @@
 //! `N · ⌈t/h⌉` particle-steps at its measured [`Peer::step_seconds`]. A run
 //! still going at the budget is stopped. Both get a `skipped` row with the
 //! reason (`—` and the reason in `stability.md`).
+//!
+//! **Timing.** A peer's row carries the solver call alone as its driver
+//! timed it (warm-up, repetitions, median: `wall_seconds`, `repeats`), the
+//! set-up done apart (`setup_seconds`) and the whole process
+//! (`process_seconds`: interpreter start-up and imports included); the
+//! charts draw the first, as they draw our methods' in-process times.
 
 use std::collections::BTreeSet;
 use std::path::Path;
@@ -150,8 +156,23 @@ impl PeerRunner {
                 }
                 Err(e) => row.status = Status::Refused(e.message),
                 Ok(PeerOutcome::Ran(run)) => {
-                    row.wall = run.wall_seconds;
-                    row.repeats = 1;
+                    let timing = DriverTiming::read(&run.solution);
+                    row.process_seconds = Some(run.wall_seconds);
+                    row.setup_seconds = timing.setup_seconds;
+                    match timing.solve {
+                        Some((median, repetitions)) => {
+                            row.wall = median;
+                            row.repeats = repetitions;
+                        }
+                        None => {
+                            row.status = Status::Refused(
+                                "the driver did not time its solver call (solve_seconds)"
+                                    .to_string(),
+                            );
+                            out.push(row);
+                            continue;
+                        }
+                    }
                     match (&exact, run.frames.first()) {
                         (None, _) => {
                             row.status = Status::Refused("no exact state at t".to_string())
@@ -167,6 +188,45 @@ impl PeerRunner {
             out.push(row);
         }
         out
+    }
+}
+
+/// The driver's own timing of its solver call, from the first line of its
+/// SOLUTION (`scripts/peers/common.py`, `timed`): the median of the timed
+/// calls and their number, and the set-up done apart.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+struct DriverTiming {
+    /// `(solve_seconds, solve_repetitions)`.
+    solve: Option<(f64, usize)>,
+    /// `setup_seconds` (`null` when the peer has no set-up apart).
+    setup_seconds: Option<f64>,
+}
+
+impl DriverTiming {
+    fn read(solution: &Path) -> DriverTiming {
+        let text = std::fs::read_to_string(solution).unwrap_or_default();
+        DriverTiming::parse(text.lines().next().unwrap_or(""))
+    }
+
+    /// The fields are numbers (or `null`) that the driver writes with
+    /// Python's `json.dumps`; a line without them gives no timing.
+    fn parse(line: &str) -> DriverTiming {
+        let field = |key: &str| -> Option<&str> {
+            let at = line.find(&format!("\"{key}\": "))? + key.len() + 4;
+            let rest = &line[at..];
+            let end = rest.find([',', '}']).unwrap_or(rest.len());
+            Some(rest[..end].trim())
+        };
+        let seconds = field("solve_seconds")
+            .and_then(|v| v.parse::<f64>().ok())
+            .filter(|s| s.is_finite() && *s >= 0.0);
+        let repetitions = field("solve_repetitions")
+            .and_then(|v| v.parse::<usize>().ok())
+            .filter(|k| *k > 0);
+        DriverTiming {
+            solve: seconds.zip(repetitions),
+            setup_seconds: field("setup_seconds").and_then(|v| v.parse::<f64>().ok()),
+        }
     }
 }
 
@@ -209,4 +269,27 @@ fn score(
         min_pressure_jump: None,
         oleinik_violations: c.oleinik.as_ref().map(Vec::len),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::DriverTiming;
+
+    #[test]
+    fn the_drivers_timing_is_read_from_its_first_line() {
+        let line = r#"{"t": "1", "positions": [0.0], "peer": "osqp", "setting": "default", "velocity_method": "x", "solve_seconds": 0.0025, "solve_repetitions": 80, "setup_seconds": null, "wall_seconds": 0.004}"#;
+        assert_eq!(
+            DriverTiming::parse(line),
+            DriverTiming {
+                solve: Some((0.0025, 80)),
+                setup_seconds: None
+            }
+        );
+        let with_setup = line.replace(r#""setup_seconds": null"#, r#""setup_seconds": 0.5"#);
+        assert_eq!(DriverTiming::parse(&with_setup).setup_seconds, Some(0.5));
+        // A driver that did not time its call (the old format) gives none.
+        let old = r#"{"t": "1", "positions": [0.0], "wall_seconds": 0.004}"#;
+        assert_eq!(DriverTiming::parse(old).solve, None);
+        assert_eq!(DriverTiming::parse("not json").solve, None);
+    }
 }

@@ -57,6 +57,10 @@ pub(super) struct Row {
     pub(super) work: Option<Work>,
     pub(super) converged: Option<bool>,
     pub(super) residual: Option<f64>,
+    /// A peer's whole process, seconds (see [`super::CSV_COLUMNS`]).
+    pub(super) process_seconds: Option<f64>,
+    /// A peer's set-up done apart from its solver call, seconds.
+    pub(super) setup_seconds: Option<f64>,
 }
 
 impl Row {
@@ -77,6 +81,8 @@ impl Row {
             work: None,
             converged: None,
             residual: None,
+            process_seconds: None,
+            setup_seconds: None,
         }
     }
 }
