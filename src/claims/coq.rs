@@ -313,5 +313,10 @@ mod tests {
         assert_eq!(v["coq"][0]["theorem"], "Sticky.Oleinik.oleinik");
         assert_eq!(v["coq"][0]["kind"], "proves");
         assert_eq!(v["coq"][0]["file"], "proofs/coq/theories/Oleinik.v");
+        assert!(markdown_line("no-such-claim").is_empty());
+        assert!(markdown_line("prop:Oleinik")
+            .starts_with("Coq (every N, over Q): proves `Sticky.Oleinik.oleinik` (t > 0"));
+        assert!(markdown_line("eq:w-Hs-perp")
+            .contains("proves `Sticky.InclHSN.incl_HSN` (corrected statement, "));
     }
 }
