@@ -441,13 +441,14 @@ pub fn json(entries: &[Entry]) -> String {
                 ),
             };
             format!(
-                "{{\"id\": {}, \"section\": {}, \"statement\": {}, {}, \"engines\": [{}], \"correction\": {}}}",
+                "{{\"id\": {}, \"section\": {}, \"statement\": {}, {}, \"engines\": [{}], \"correction\": {}, {}}}",
                 s(e.id),
                 s(e.section),
                 s(e.statement),
                 json_outcome(&e.outcome),
                 engines.join(", "),
-                correction
+                correction,
+                super::coq::json_field(e.id)
             )
         })
         .collect();
@@ -521,6 +522,7 @@ pub fn markdown(entries: &[Entry], budget: Budget, proofs: &Proofs) -> String {
         if let Some(p) = proofs.get(e.id) {
             out.push_str(&proof_line(p));
         }
+        out.push_str(&super::coq::markdown_line(e.id));
         if let Status::NotCheckable(r) = &e.outcome.status {
             out.push_str(&format!("Not checkable: {r}\n\n"));
         }

@@ -25,6 +25,7 @@ use crate::state::State;
 use crate::trajectory::Trajectory;
 
 pub mod continuum;
+pub mod coq;
 pub mod density;
 pub mod discrete;
 pub mod eulerian;

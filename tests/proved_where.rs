@@ -1,0 +1,115 @@
+//! `docs/guide/proved-where.md` carries, for every claim of the ledger, what
+//! settles it: a Coq theorem for every N (`proofs/coq/claims.tsv`), the
+//! symbolic prover for all real data at small N (`docs/prove-*.jsonl`), or
+//! only the ledger's sampled checks. This test regenerates that table and
+//! fails if the committed page is stale. To refresh it:
+//! `STICKY_BLESS=1 cargo test --release --test proved_where`.
+
+use std::path::Path;
+
+use num_rational::BigRational;
+use sticky::claims::coq::{coq_theorems, CoqKind, Statement};
+use sticky::claims::ledger::Proofs;
+use sticky::claims::{registry, Kind};
+
+const BEGIN: &str = "<!-- proved-where:begin -->\n";
+const END: &str = "<!-- proved-where:end -->";
+
+/// The Coq cell of one statement: theorems grouped by kind.
+fn coq_cell(id: &str, statement: Statement) -> String {
+    let rows: Vec<_> = coq_theorems(id)
+        .iter()
+        .filter(|t| t.statement == statement)
+        .collect();
+    let group = |kind: CoqKind, words: &str| {
+        let names: Vec<String> = rows
+            .iter()
+            .filter(|t| t.kind == kind)
+            .map(|t| format!("`{}`", t.qualified().trim_start_matches("Sticky.")))
+            .collect();
+        (!names.is_empty()).then(|| format!("{words} {}", names.join(", ")))
+    };
+    let parts: Vec<String> = [
+        group(CoqKind::Proves, "**proved**:"),
+        group(CoqKind::Part, "in part:"),
+        group(CoqKind::Refutes, "**refuted**:"),
+    ]
+    .into_iter()
+    .flatten()
+    .collect();
+    if parts.is_empty() {
+        "—".to_string()
+    } else {
+        parts.join("; ")
+    }
+}
+
+/// How the ledger samples a claim.
+fn sampled<S>(kind: &Kind<S>) -> &'static str {
+    match kind {
+        Kind::Case(_) => "random and shipped cases",
+        Kind::Scaling(_) => "scaling, N = 4 … 4096",
+        Kind::Formula(_) => "a fixed formula, checked once",
+        Kind::NotCheckable(_) => "not checkable",
+    }
+}
+
+fn table(proofs: &Proofs) -> String {
+    let cell = |key: &str| proofs.get(key).map_or("—".to_string(), |p| p.cell.clone());
+    let mut out = String::from(
+        "| claim | statement | Coq, every N, over Q | `sticky prove`, all real data | sampled by the ledger |\n|---|---|---|---|---|\n",
+    );
+    for c in registry::<BigRational>() {
+        out.push_str(&format!(
+            "| `{}` | printed | {} | {} | {} |\n",
+            c.id,
+            coq_cell(c.id, Statement::Printed),
+            cell(c.id),
+            sampled(&c.kind)
+        ));
+        if let Some(corr) = &c.correction {
+            out.push_str(&format!(
+                "| `{}` | corrected | {} | {} | {} |\n",
+                c.id,
+                coq_cell(c.id, Statement::Corrected),
+                cell(&format!("{} (corrected)", c.id)),
+                sampled(&corr.check)
+            ));
+        }
+    }
+    out
+}
+
+#[test]
+fn proved_where_is_current() {
+    let proofs = sticky::prove::record::ledger_proofs().expect("the committed proof record");
+    let fresh = table(&proofs);
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/guide/proved-where.md");
+    let page = std::fs::read_to_string(&path).unwrap_or_default();
+    let (Some(a), Some(b)) = (page.find(BEGIN), page.find(END)) else {
+        panic!("{} lacks the markers {BEGIN:?} … {END:?}", path.display());
+    };
+    let current = &page[a + BEGIN.len()..b];
+    if current != fresh && std::env::var("STICKY_BLESS").is_ok_and(|v| v == "1") {
+        let blessed = format!("{}{BEGIN}{fresh}{}", &page[..a], &page[b..]);
+        std::fs::write(&path, blessed).expect("write proved-where.md");
+        return;
+    }
+    assert!(
+        current == fresh,
+        "docs/guide/proved-where.md is stale: regenerate it with `STICKY_BLESS=1 cargo test --release --test proved_where`"
+    );
+}
+
+#[test]
+fn every_coq_row_reaches_the_table() {
+    let proofs = sticky::prove::record::ledger_proofs().expect("the committed proof record");
+    let t = table(&proofs);
+    for row in sticky::claims::coq::all() {
+        let name = row.qualified();
+        assert!(
+            t.contains(name.trim_start_matches("Sticky.")),
+            "{name} missing from the table"
+        );
+    }
+}
