@@ -43,6 +43,7 @@ proptest! {
     /// The same, on the paper's radius 2r = 1/N only (section 3 claims
     /// apply to every case).
     #[test]
+    #[ignore = "campaign: every claim on 256 random data at 2r = 1/N, over a minute; CI runs it (cargo test --release -- --ignored)"]
     fn prop_every_claim_paper_radius(bytes in proptest::collection::vec(any::<u8>(), 1..160), max_n in 2usize..16) {
         let mut b = bytes;
         b[0] &= !0b11; // radius code 0: 2r = 1/N

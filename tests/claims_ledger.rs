@@ -8,6 +8,7 @@ use std::path::Path;
 use sticky::claims::ledger::{self, Budget, Status};
 
 #[test]
+#[ignore = "campaign: the whole ledger (every checker, every case), ~3 min; CI runs it (cargo test --release -- --ignored)"]
 fn claims_md_is_current() {
     let budget = Budget::default();
     let entries = ledger::run(budget, |_| {});
