@@ -19,12 +19,12 @@ use crate::{io_err, load, parse_time, Failure};
 /// The state x(t), u(t), λ(t) and the contact clusters at each requested time.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Scene file (TOML; README, "Scenes").
+    /// Scene file (TOML; docs/guide/scenes.md).
     scene: PathBuf,
     /// A time t ≥ 0, exact: "3/2", "0.125", "1e-3" (repeat for several).
     #[arg(long = "at", required = true, allow_hyphen_values = true, value_parser = parse_time)]
     at: Vec<BigRational>,
-    /// One JSON object per time (the interop contract: README, "JSON output");
+    /// One JSON object per time (the interop contract: docs/guide/json.md);
     /// the same as `--format json`.
     #[arg(long)]
     json: bool,
