@@ -6,8 +6,8 @@
 #                                          #[ignore = "campaign: …"]: the
 #                                          bounded-exhaustive proofs, the
 #                                          symbolic proofs at N <= 3, the whole
-#                                          ledger vs CLAIMS.md, the long random
-#                                          campaigns.
+#                                          ledger vs CLAIMS.md, the peer solvers,
+#                                          the long random campaigns.
 # Together they are exactly the old `cargo test --release`: nothing is skipped.
 # tests/prove.rs fails under CI=true without z3, so z3 is installed first.
 set -euo pipefail
