@@ -286,8 +286,8 @@ pub fn read_npy(bytes: &[u8]) -> Result<Columns, ColumnsError> {
             npy_err(
                 end + at,
                 format!(
-                    "particle {} has a non-finite {} ({v})",
-                    row + 1,
+                    "particle {} (from 0) has a non-finite {} ({v})",
+                    row,
                     ["position", "velocity"][col]
                 ),
             )
@@ -639,7 +639,8 @@ mod tests {
         let bytes = write_npy(&[(0.0, 1.0), (f64::NAN, 2.0)]);
         let e = read_npy(&bytes).unwrap_err();
         assert!(
-            e.message.contains("particle 2 has a non-finite position"),
+            e.message
+                .contains("particle 1 (from 0) has a non-finite position"),
             "{e}"
         );
         // Truncated data, wrong dtype, wrong shape, garbage.

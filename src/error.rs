@@ -2,8 +2,10 @@
 //! message that names the field and, for constraint violations, the first
 //! offending pair. Library code reports these; it never panics on user input.
 //!
-//! Particle numbers in messages are 1-based, as in the paper (`x_1 … x_N`);
-//! JSON output indices are 0-based (DESIGN.md §3).
+//! Particle and block indices in messages count from 0, like the field paths
+//! (`particles.positions[2]`, `macro.blocks[1]`) and every program output
+//! (issue 28: one index convention); the paper's `x_1 … x_N` is `positions[0]`
+//! … `positions[N-1]`.
 
 use std::fmt;
 
@@ -77,7 +79,7 @@ pub enum Error {
     },
     /// Two consecutive particles overlap: `x_{i+1} - x_i < 2r` (`df:KN`).
     Overlap {
-        /// 1-based number of the left particle.
+        /// Index of the left particle, from 0.
         i: usize,
         /// The gap `x_{i+1} - x_i`.
         gap: String,
@@ -87,7 +89,7 @@ pub enum Error {
     /// Two particles in contact approach each other: `u⁰` is outside the
     /// velocity cone `C_{x⁰}` (`def:velcone`).
     Approaching {
-        /// 1-based number of the left particle.
+        /// Index of the left particle, from 0.
         i: usize,
         /// Velocity of the left particle.
         left: String,
@@ -96,7 +98,7 @@ pub enum Error {
     },
     /// A `[macro]` block has a density outside `(0, 1]`.
     Density {
-        /// 1-based block number.
+        /// Index of the block in `macro.blocks`, from 0.
         block: usize,
         /// The density given.
         density: String,
@@ -109,7 +111,7 @@ pub enum Error {
     /// `[macro]` blocks that are empty, unsorted or overlapping, or a velocity
     /// not allowed on a block.
     Block {
-        /// 1-based block number.
+        /// Index of the block in `macro.blocks`, from 0.
         block: usize,
         /// What is wrong with it.
         reason: String,
@@ -167,28 +169,22 @@ impl fmt::Display for Error {
             }
             Error::Overlap { i, gap, two_r } => write!(
                 f,
-                "positions {} and {} overlap: gap {gap} < 2r = {two_r}",
-                i,
+                "positions[{i}] and positions[{}] overlap: gap {gap} < 2r = {two_r}",
                 i + 1
             ),
             Error::Approaching { i, left, right } => write!(
                 f,
-                "velocities {} and {} leave the velocity cone: particles {} and {} are in contact and approach each other (u_{} = {left} > u_{} = {right})",
-                i,
-                i + 1,
-                i,
-                i + 1,
-                i,
-                i + 1
+                "particles {i} and {j} (indices from 0) are in contact and approach each other: velocities[{i}] = {left} > velocities[{j}] = {right} (u⁰ outside the velocity cone)",
+                j = i + 1
             ),
             Error::Density { block, density } => write!(
                 f,
-                "macro block {block}: density {density} is not in (0, 1]"
+                "macro.blocks[{block}]: density {density} is not in (0, 1]"
             ),
             Error::Mass { mass } => {
                 write!(f, "macro blocks carry total mass {mass}, not 1")
             }
-            Error::Block { block, reason } => write!(f, "macro block {block}: {reason}"),
+            Error::Block { block, reason } => write!(f, "macro.blocks[{block}]: {reason}"),
             Error::DataFile { file, message } => {
                 write!(f, "particle data file {file}: {message}")
             }

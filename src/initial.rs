@@ -16,7 +16,7 @@ pub struct InitialData<S> {
 
 impl<S: Scalar> InitialData<S> {
     /// Checks and wraps initial data. Errors name the first offending pair
-    /// (1-based, as in the paper).
+    /// (indexed from 0: `positions[i]` is the paper's `x_{i+1}`).
     pub fn new(radius: S, positions: Vec<S>, velocities: Vec<S>) -> Result<Self, Error> {
         if positions.len() != velocities.len() {
             return Err(Error::LengthMismatch {
@@ -38,7 +38,7 @@ impl<S: Scalar> InitialData<S> {
             match gap.total_cmp(&two_r) {
                 std::cmp::Ordering::Less => {
                     return Err(Error::Overlap {
-                        i: i + 1,
+                        i,
                         gap: gap.render(),
                         two_r: two_r.render(),
                     })
@@ -46,7 +46,7 @@ impl<S: Scalar> InitialData<S> {
                 std::cmp::Ordering::Equal => {
                     if velocities[i].total_cmp(&velocities[i + 1]).is_gt() {
                         return Err(Error::Approaching {
-                            i: i + 1,
+                            i,
                             left: velocities[i].render(),
                             right: velocities[i + 1].render(),
                         });
@@ -162,9 +162,9 @@ mod tests {
             vec![q(0, 1), q(1, 8), q(1, 4), q(3, 8)],
             vec![q(1, 1), q(1, 1), q(-1, 1), q(-1, 1)],
         );
-        assert!(ok.is_err(), "particles 2 and 3 touch and approach");
+        assert!(ok.is_err(), "particles 1 and 2 (from 0) touch and approach");
         let err = ok.unwrap_err();
-        assert!(matches!(err, Error::Approaching { i: 2, .. }), "{err}");
+        assert!(matches!(err, Error::Approaching { i: 1, .. }), "{err}");
         let overlap = InitialData::new(
             r.clone(),
             vec![q(0, 1), q(1, 8), q(1, 5), q(1, 2)],
@@ -173,7 +173,7 @@ mod tests {
         .unwrap_err();
         assert_eq!(
             overlap.to_string(),
-            "positions 2 and 3 overlap: gap 3/40 < 2r = 1/8"
+            "positions[1] and positions[2] overlap: gap 3/40 < 2r = 1/8"
         );
         let fine = InitialData::new(
             r.clone(),

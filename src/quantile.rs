@@ -28,8 +28,8 @@
 //!
 //! Everything here is exact ([`BigRational`]); nothing is rounded.
 //!
-//! Conventions: blocks are numbered from 1 in error messages
-//! ([`Error::Block`], [`Error::Density`]), as the paper numbers particles; at a
+//! Conventions: blocks are indexed from 0 in error messages
+//! ([`Error::Block`], [`Error::Density`]), as `macro.blocks[k]`; at a
 //! mass breakpoint `w = m_b`, [`MacroDatum::x0`] and [`MacroDatum::u0`] use
 //! the block on the left (`X⁰` is left-continuous, being a generalised
 //! inverse of a CDF).
@@ -149,7 +149,7 @@ impl MacroDatum {
     /// and finally that the total mass `Σ density·(to − from)` is exactly 1
     /// (`thm:main`: `ρ⁰` is a probability measure; else [`Error::Mass`]). An
     /// empty list of blocks has mass 0 and is refused with [`Error::Mass`].
-    /// Block numbers in errors are 1-based.
+    /// Block indices in errors count from 0 (`macro.blocks[k]`).
     pub fn new(blocks: Vec<Block>) -> Result<Self, Error> {
         let one = BigRational::one();
         let mut breakpoints = Vec::with_capacity(blocks.len() + 1);
@@ -157,7 +157,7 @@ impl MacroDatum {
         breakpoints.push(mass.clone());
         let mut previous: Option<&Block> = None;
         for (k, block) in blocks.iter().enumerate() {
-            let number = k + 1;
+            let number = k;
             if block.from >= block.to {
                 return Err(Error::Block {
                     block: number,
@@ -184,17 +184,16 @@ impl MacroDatum {
                 if block.from < prev.to {
                     let reason = if block.from < prev.from {
                         format!(
-                            "unsorted: it starts at {}, before block {} (which starts at {}); list blocks from left to right",
+                            "unsorted: it starts at {}, before macro.blocks[{}] (which starts at {}); list blocks from left to right",
                             render_short(&block.from),
-                            k,
+                            k - 1,
                             render_short(&prev.from)
                         )
                     } else {
                         format!(
-                            "overlaps block {}: it starts at {}, before block {} ends at {}",
-                            k,
+                            "overlaps macro.blocks[{}]: it starts at {}, before that block ends at {}",
+                            k - 1,
                             render_short(&block.from),
-                            k,
                             render_short(&prev.to)
                         )
                     };

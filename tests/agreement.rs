@@ -34,6 +34,7 @@ fn random_scenes(count: u64, seed: u64) -> impl Iterator<Item = InitialData<BigR
 }
 
 #[test]
+#[ignore = "campaign: 3,000 random scenes, about a minute; CI runs it (cargo test --release -- --ignored)"]
 fn events_equal_projection_on_random_scenes() {
     let scenes = 3000;
     let mut checks = 0usize;

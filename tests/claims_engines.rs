@@ -33,6 +33,7 @@ proptest! {
 
     /// Every case claim (or its correction) on random admissible data.
     #[test]
+    #[ignore = "campaign: every claim on 256 random data, about a minute; CI runs it (cargo test --release -- --ignored)"]
     fn prop_every_claim(bytes in proptest::collection::vec(any::<u8>(), 0..160), max_n in 1usize..16) {
         let c = case(&bytes, max_n);
         if let Err(v) = check_case(&claims(), &c) {
@@ -43,6 +44,7 @@ proptest! {
     /// The same, on the paper's radius 2r = 1/N only (section 3 claims
     /// apply to every case).
     #[test]
+    #[ignore = "campaign: every claim on 256 random data at 2r = 1/N, over a minute; CI runs it (cargo test --release -- --ignored)"]
     fn prop_every_claim_paper_radius(bytes in proptest::collection::vec(any::<u8>(), 1..160), max_n in 2usize..16) {
         let mut b = bytes;
         b[0] &= !0b11; // radius code 0: 2r = 1/N
@@ -65,6 +67,7 @@ fn qc_property(bytes: Vec<u8>, max_n: u8) -> TestResult {
 
 /// quickcheck's shrinking over the same checkers.
 #[test]
+#[ignore = "campaign: every claim on 256 quickcheck cases, tens of seconds; CI runs it (cargo test --release -- --ignored)"]
 fn qc_every_claim() {
     QuickCheck::new()
         .tests(if cfg!(debug_assertions) { 64 } else { 256 })

@@ -431,7 +431,7 @@ fn error_overlapping_positions() {
     bad_scene(
         "overlap",
         "[particles]\nradius = \"1/8\"\npositions = [\"0\", \"1/2\", \"5/8\"]\nvelocities = [0, 0, 0]\n",
-        &["positions 2 and 3 overlap", "1/8", "2r = 1/4"],
+        &["positions[1] and positions[2] overlap", "1/8", "2r = 1/4"],
     );
 }
 
@@ -440,7 +440,7 @@ fn error_approaching_contact() {
     bad_scene(
         "approach",
         "[particles]\nradius = \"1/8\"\npositions = [\"0\", \"1/4\"]\nvelocities = [\"1\", \"0\"]\n",
-        &["velocities 1 and 2", "approach"],
+        &["particles 0 and 1 (indices from 0)", "approach"],
     );
 }
 
@@ -513,7 +513,7 @@ fn error_density_above_one() {
     bad_scene(
         "density",
         "[macro]\nparticles = 4\nblocks = [{ from = 0, to = \"2/3\", density = \"3/2\", velocity = 0 }]\n",
-        &["macro block 1", "density 3/2"],
+        &["macro.blocks[0]", "density 3/2"],
     );
 }
 
@@ -531,7 +531,7 @@ fn error_unsorted_blocks() {
     bad_scene(
         "unsorted",
         "[macro]\nparticles = 4\nblocks = [\n  { from = 2, to = \"5/2\", density = 1, velocity = 0 },\n  { from = 0, to = \"1/2\", density = 1, velocity = 0 },\n]\n",
-        &["macro block 2", "unsorted"],
+        &["macro.blocks[1]", "unsorted"],
     );
 }
 
@@ -540,7 +540,7 @@ fn error_overlapping_blocks() {
     bad_scene(
         "overlapblocks",
         "[macro]\nparticles = 4\nblocks = [\n  { from = 0, to = 1, density = \"1/2\", velocity = 0 },\n  { from = \"1/2\", to = 1, density = 1, velocity = 0 },\n]\n",
-        &["macro block 2", "overlaps block 1"],
+        &["macro.blocks[1]", "overlaps macro.blocks[0]"],
     );
 }
 
@@ -691,4 +691,35 @@ fn generate_writes_where_it_is_told() {
         assert_eq!(scene.data, from_stdout.data, "--format {format}");
     }
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// One index convention (issue 28): every text output counts particles from
+/// 0, as the JSON does, and says so in its header. On
+/// three-cluster-simultaneous the first collision forms the cluster of the
+/// JSON's `{"first": 0, "size": 7}`: particles 0–6.
+#[test]
+fn text_outputs_index_particles_from_0_and_say_so() {
+    let path = scene_path("three-cluster-simultaneous.toml");
+    let events = stdout_ok(&["events", &path]);
+    let mut lines = events.lines();
+    assert_eq!(
+        lines.next(),
+        Some("2 collisions   (particle indices from 0)")
+    );
+    assert!(lines.any(|l| l.starts_with("  1/2  0–6 ")), "{events}");
+    let table = stdout_ok(&["run", &path, "--at", "1/2"]);
+    assert!(table
+        .lines()
+        .next()
+        .unwrap_or("")
+        .ends_with("(particle indices from 0)"));
+    let rows: Vec<&str> = table.lines().skip(2).collect();
+    assert!(rows[0].starts_with("  0  3/2 "), "{table}");
+    assert!(rows[7].starts_with("  7  23/2 "), "{table}");
+    assert!(rows[7].ends_with("  7"), "{table}");
+    let check = stdout_ok(&["check", &path]);
+    assert!(
+        check.contains("final clusters (t ≥ 2): [0–7]   (particle indices from 0)"),
+        "{check}"
+    );
 }

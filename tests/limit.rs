@@ -821,7 +821,9 @@ fn sampling_hypotheses() {
         s.checks.failures()[0].hypothesis,
         Hypothesis::ContactVelocities
     );
-    assert!(s.checks.failures()[0].detail.contains("particles 4 and 5"));
+    assert!(s.checks.failures()[0]
+        .detail
+        .contains("particles 3 and 4 (indices from 0)"));
     // Raw blocks: each failure named.
     let bad = vec![
         block(q(0, 1), q(1, 2), q(3, 2), c(0)),

@@ -104,14 +104,14 @@ fn errors_name_the_file_and_the_place() {
     let e = scene::load(&scene_with(&d, "nan.npy", "1/8")).unwrap_err();
     assert!(
         e.to_string()
-            .contains("particle 2 has a non-finite position"),
+            .contains("particle 1 (from 0) has a non-finite position"),
         "{e}"
     );
 
     // The constraints are those of every scene.
     write(&d, "overlap.csv", b"position,velocity\n0,0\n1/10,0\n");
     let e = scene::load(&scene_with(&d, "overlap.csv", "1/8")).unwrap_err();
-    assert!(matches!(e, Error::Overlap { i: 1, .. }), "{e}");
+    assert!(matches!(e, Error::Overlap { i: 0, .. }), "{e}");
 
     // One source of columns, and a folder to read it from.
     let both = "[particles]\ndata = \"p.csv\"\npositions = [\"0\"]\n";

@@ -60,30 +60,36 @@ fn overlapping_positions_name_the_pair() {
     assert_eq!(
         e,
         Error::Overlap {
-            i: 3,
+            i: 2,
             gap: "1/20".into(),
             two_r: "1/16".into()
         }
     );
     assert_eq!(
         e.to_string(),
-        "positions 3 and 4 overlap: gap 1/20 < 2r = 1/16"
+        "positions[2] and positions[3] overlap: gap 1/20 < 2r = 1/16"
     );
 }
 
 #[test]
 fn velocities_outside_the_cone() {
-    // 2r = 1/8: particles 2 and 3 touch and approach (u_2 = 1 > u_3 = -1).
+    // 2r = 1/8: particles 1 and 2 (from 0) touch and approach (1 > -1).
     let text = particles(
         Some(r#""1/16""#),
         r#"["0", "1/2", "5/8", "1"]"#,
         r#"["0", "1", "-1", "0"]"#,
     );
-    let e = err(&text, &["particles 2 and 3", "u_2 = 1 > u_3 = -1"]);
+    let e = err(
+        &text,
+        &[
+            "particles 1 and 2 (indices from 0)",
+            "velocities[1] = 1 > velocities[2] = -1",
+        ],
+    );
     assert_eq!(
         e,
         Error::Approaching {
-            i: 2,
+            i: 1,
             left: "1".into(),
             right: "-1".into()
         }
@@ -234,11 +240,11 @@ fn density_above_one() {
         "4",
         &[r#"{ from = "0", to = "1/2", density = "2", velocity = "0" }"#],
     );
-    let e = err(&text, &["macro block 1", "density 2"]);
+    let e = err(&text, &["macro.blocks[0]", "density 2"]);
     assert_eq!(
         e,
         Error::Density {
-            block: 1,
+            block: 0,
             density: "2".into()
         }
     );
@@ -254,11 +260,11 @@ fn density_zero_or_negative() {
                 &format!(r#"{{ from = "2", to = "3", density = {d}, velocity = "0" }}"#),
             ],
         );
-        let e = err(&text, &["macro block 2", shown]);
+        let e = err(&text, &["macro.blocks[1]", shown]);
         assert_eq!(
             e,
             Error::Density {
-                block: 2,
+                block: 1,
                 density: shown.into()
             }
         );
@@ -290,15 +296,15 @@ fn empty_block() {
         "4",
         &[r#"{ from = "1", to = "1", density = "1", velocity = "0" }"#],
     );
-    let e = err(&text, &["macro block 1", "empty"]);
-    assert!(matches!(e, Error::Block { block: 1, .. }), "{e:?}");
+    let e = err(&text, &["macro.blocks[0]", "empty"]);
+    assert!(matches!(e, Error::Block { block: 0, .. }), "{e:?}");
 }
 
 #[test]
 fn unsorted_blocks() {
     let text = macro_scene("4", &[HALF_B, HALF_A]);
-    let e = err(&text, &["macro block 2", "unsorted"]);
-    assert!(matches!(e, Error::Block { block: 2, .. }), "{e:?}");
+    let e = err(&text, &["macro.blocks[1]", "unsorted"]);
+    assert!(matches!(e, Error::Block { block: 1, .. }), "{e:?}");
 }
 
 #[test]
@@ -310,8 +316,8 @@ fn overlapping_blocks() {
             r#"{ from = "1/4", to = "3/4", density = "1", velocity = "0" }"#,
         ],
     );
-    let e = err(&text, &["macro block 2", "overlaps block 1"]);
-    assert!(matches!(e, Error::Block { block: 2, .. }), "{e:?}");
+    let e = err(&text, &["macro.blocks[1]", "overlaps macro.blocks[0]"]);
+    assert!(matches!(e, Error::Block { block: 1, .. }), "{e:?}");
 }
 
 #[test]
@@ -320,8 +326,8 @@ fn affine_velocity_on_a_congested_block() {
         "4",
         &[r#"{ from = "0", to = "1", density = "1", velocity = ["0", "1"] }"#],
     );
-    let e = err(&text, &["macro block 1", "hyp:u0", "constant"]);
-    assert!(matches!(e, Error::Block { block: 1, .. }), "{e:?}");
+    let e = err(&text, &["macro.blocks[0]", "hyp:u0", "constant"]);
+    assert!(matches!(e, Error::Block { block: 0, .. }), "{e:?}");
 }
 
 #[test]
@@ -335,8 +341,8 @@ fn touching_congested_blocks_that_collide_give_approaching_particles() {
             r#"{ from = "1/2", to = "1", density = "1", velocity = "-1" }"#,
         ],
     );
-    let e = err(&text, &["particles 2 and 3"]);
-    assert!(matches!(e, Error::Approaching { i: 2, .. }), "{e:?}");
+    let e = err(&text, &["particles 1 and 2 (indices from 0)"]);
+    assert!(matches!(e, Error::Approaching { i: 1, .. }), "{e:?}");
 }
 
 #[test]

@@ -436,11 +436,11 @@ fn macro_datum_errors() {
     assert!(matches!(MacroDatum::new(vec![]), Err(Error::Mass { .. })));
     assert!(matches!(
         MacroDatum::new(vec![constant(int(0), int(2), q(3, 2), int(0))]),
-        Err(Error::Density { block: 1, .. })
+        Err(Error::Density { block: 0, .. })
     ));
     assert!(matches!(
         MacroDatum::new(vec![ok(int(0)), constant(int(-1), int(0), int(1), int(0))]),
-        Err(Error::Block { block: 2, reason }) if reason.contains("unsorted")
+        Err(Error::Block { block: 1, reason }) if reason.contains("unsorted")
     ));
     assert!(matches!(
         MacroDatum::new(vec![Block {
@@ -449,7 +449,7 @@ fn macro_datum_errors() {
             density: int(1),
             velocity: BlockVelocity::Affine(int(0), int(1)),
         }]),
-        Err(Error::Block { block: 1, reason }) if reason.contains("hyp:u0")
+        Err(Error::Block { block: 0, reason }) if reason.contains("hyp:u0")
     ));
     // An "affine" velocity with equal end values is constant: allowed.
     let d = MacroDatum::new(vec![Block {

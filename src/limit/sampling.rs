@@ -108,15 +108,15 @@ fn check(hypothesis: Hypothesis, failure: Option<String>) -> Check {
 }
 
 /// Checks every hypothesis of `thm:main` on raw blocks (which need not
-/// pass [`MacroDatum::new`]); block numbers are 1-based.
+/// pass [`MacroDatum::new`]); blocks are named `blocks[k]`, indexed from 0.
 pub fn check_blocks(blocks: &[Block]) -> HypothesisReport {
     let one = BigRational::from_integer(1.into());
     let mut well = None;
     for (k, b) in blocks.iter().enumerate() {
         if b.from >= b.to {
             well = Some(format!(
-                "block {} is empty: from = {} ≥ to = {}",
-                k + 1,
+                "blocks[{}] is empty: from = {} ≥ to = {}",
+                k,
                 b.from.render(),
                 b.to.render()
             ));
@@ -124,10 +124,10 @@ pub fn check_blocks(blocks: &[Block]) -> HypothesisReport {
         }
         if k > 0 && b.from < blocks[k - 1].to {
             well = Some(format!(
-                "block {} starts at {} before block {} ends at {} (the density would add up on the overlap)",
-                k + 1,
-                b.from.render(),
+                "blocks[{}] starts at {} before blocks[{}] ends at {} (the density would add up on the overlap)",
                 k,
+                b.from.render(),
+                k - 1,
                 blocks[k - 1].to.render()
             ));
             break;
@@ -140,13 +140,7 @@ pub fn check_blocks(blocks: &[Block]) -> HypothesisReport {
         .iter()
         .enumerate()
         .find(|(_, b)| !b.density.is_positive() || b.density > one)
-        .map(|(k, b)| {
-            format!(
-                "block {} has density {} ∉ (0, 1]",
-                k + 1,
-                b.density.render()
-            )
-        });
+        .map(|(k, b)| format!("blocks[{}] has density {} ∉ (0, 1]", k, b.density.render()));
     let mass = blocks
         .iter()
         .filter(|b| b.from < b.to)
@@ -158,8 +152,8 @@ pub fn check_blocks(blocks: &[Block]) -> HypothesisReport {
     for (k, b) in blocks.iter().enumerate() {
         if b.density == one && !b.velocity.is_constant() {
             hyp = Some(format!(
-                "block {} is congested (density 1) with a non-constant velocity",
-                k + 1
+                "blocks[{}] is congested (density 1) with a non-constant velocity",
+                k
             ));
             break;
         }
@@ -169,9 +163,9 @@ pub fn check_blocks(blocks: &[Block]) -> HypothesisReport {
                 let (va, vb) = (a.velocity_at(&a.to), b.velocity_at(&b.from));
                 if va != vb {
                     hyp = Some(format!(
-                        "congested blocks {} and {} touch at x = {} with velocities {} and {}: ∂ₓu⁰ has a Dirac mass inside {{ρ⁰ = 1}}",
+                        "congested blocks[{}] and blocks[{}] touch at x = {} with velocities {} and {}: ∂ₓu⁰ has a Dirac mass inside {{ρ⁰ = 1}}",
+                        k - 1,
                         k,
-                        k + 1,
                         b.from.render(),
                         va.render(),
                         vb.render()
@@ -239,18 +233,18 @@ pub fn check_sampling(datum: &MacroDatum, n: usize) -> Result<SamplingReport, Er
         let gap = &x[i + 1] - &x[i];
         if gap < two_r && overlap.is_none() {
             overlap = Some(format!(
-                "particles {} and {}: gap {} < 2r = {}",
+                "particles {} and {} (indices from 0): gap {} < 2r = {}",
+                i,
                 i + 1,
-                i + 2,
                 gap.render(),
                 two_r.render()
             ));
         }
         if gap == two_r && u[i] != u[i + 1] && contact.is_none() {
             contact = Some(format!(
-                "particles {} and {} touch with velocities {} and {}",
+                "particles {} and {} (indices from 0) touch with velocities {} and {}",
+                i,
                 i + 1,
-                i + 2,
                 u[i].render(),
                 u[i + 1].render()
             ));

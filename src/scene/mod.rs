@@ -49,10 +49,10 @@
 //! **Field names** in errors are dotted paths with **0-based** array indices,
 //! as TOML tools show them: `particles.positions[3]`,
 //! `macro.blocks[2].density`, `macro.blocks[0].velocity[1]`. Constraint
-//! violations found after reading use the paper's **1-based** numbering:
-//! particles `x_1 … x_N` ([`Error::Overlap`], [`Error::Approaching`]) and
-//! blocks `1 … B` ([`Error::Block`], [`Error::Density`]). So
-//! `macro.blocks[0]` is "macro block 1".
+//! violations found after reading count from 0 the same way: particles
+//! `positions[0] … positions[N-1]` (the paper's `x_1 … x_N`;
+//! [`Error::Overlap`], [`Error::Approaching`]) and blocks `macro.blocks[k]`
+//! ([`Error::Block`], [`Error::Density`]).
 //!
 //! **Robustness.** [`parse`] never panics. The only allocation whose size the
 //! file chooses beyond its own length is the `[macro]` sample, bounded by

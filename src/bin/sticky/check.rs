@@ -11,7 +11,7 @@ use sticky::scene::{Scene, SceneKind};
 use sticky::trajectory::probe_times;
 use sticky::Scalar;
 
-use crate::table::{abbreviate, range_1based, write_events_table};
+use crate::table::{abbreviate, particle_range, write_events_table, INDICES_FROM_0};
 use crate::{io_err, load, Failure};
 
 /// Summary of a scene: collisions, final clusters, and the section-2
@@ -63,13 +63,13 @@ pub fn summary(out: &mut impl Write, scene: &Scene, origin: &str) -> Result<(), 
     let clusters: Vec<String> = last
         .clusters
         .iter()
-        .map(|c| format!("[{}]", range_1based(c)))
+        .map(|c| format!("[{}]", particle_range(c)))
         .collect();
     w(out, String::new())?;
     w(
         out,
         format!(
-            "final clusters (t ≥ {}): {}",
+            "final clusters (t ≥ {}): {}   {INDICES_FROM_0}",
             t_final.render(),
             abbreviate(&clusters, 12)
         ),

@@ -13,7 +13,7 @@ use crate::{io_err, load, Failure};
 pub struct Args {
     /// Scene file (TOML).
     scene: PathBuf,
-    /// `{"events": [...]}` (the interop contract: README, "JSON output").
+    /// `{"events": [...]}` (the interop contract: docs/guide/json.md).
     #[arg(long)]
     json: bool,
 }

@@ -14,7 +14,7 @@ use crate::{io_err, load, print_paths, Failure};
 /// The scene's data as a peer solver reads it.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Scene file (TOML; README, "Scenes").
+    /// Scene file (TOML; docs/guide/scenes.md).
     scene: PathBuf,
     /// json: exact strings, nearest doubles and rounding errors; csv: the
     /// same, one row per particle; npy: the (N, 2) '<f8' array of positions

@@ -46,7 +46,7 @@ use sticky::Scalar;
     name = "sticky",
     version,
     about = "Exact sticky particles on a line (Signorini constraint), after C. Perrin's 'Microscopic derivation of the one-dimensional constrained Euler equations'.",
-    after_help = "Scene files, the JSON output and every command are described in the README (README.md in the source tree; `cargo doc --open` for the library).",
+    after_help = "Scene files, every command and the JSON output are described in the user guide, docs/guide/ in the source tree (README.md links it; `cargo doc --open` for the library). Particle indices in every output count from 0.",
     long_about = None
 )]
 struct Cli {

@@ -13,18 +13,18 @@ use sticky::report::json;
 use sticky::scene::{Scene, SceneKind};
 use sticky::{Scalar, State};
 
-use crate::table::{range_1based, write_table};
+use crate::table::{particle_range, write_table, INDICES_FROM_0};
 use crate::{io_err, load, parse_time, Failure};
 
 /// The state x(t), u(t), λ(t) and the contact clusters at each requested time.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Scene file (TOML; README, "Scenes").
+    /// Scene file (TOML; docs/guide/scenes.md).
     scene: PathBuf,
     /// A time t ≥ 0, exact: "3/2", "0.125", "1e-3" (repeat for several).
     #[arg(long = "at", required = true, allow_hyphen_values = true, value_parser = parse_time)]
     at: Vec<BigRational>,
-    /// One JSON object per time (the interop contract: README, "JSON output");
+    /// One JSON object per time (the interop contract: docs/guide/json.md);
     /// the same as `--format json`.
     #[arg(long)]
     json: bool,
@@ -323,8 +323,8 @@ fn run_continuum(
             .map(|g| {
                 vec![
                     format!("[{}, {}]", g.w0, g.w1),
-                    (g.block + 1).to_string(),
-                    g.plateau.map_or("—".into(), |k| (k + 1).to_string()),
+                    g.block.to_string(),
+                    g.plateau.map_or("—".into(), |k| k.to_string()),
                     poly(&g.x),
                     poly(&g.u),
                     poly(&g.lambda),
@@ -335,8 +335,8 @@ fn run_continuum(
             out,
             &[
                 "w (mass)",
-                "block",
-                "congested",
+                "block (from 0)",
+                "congested: plateau (from 0)",
                 "X(t, w)",
                 "U(t, w)",
                 "Λ(t, w)",
@@ -355,7 +355,7 @@ fn write_state_table(
 ) -> io::Result<()> {
     writeln!(
         out,
-        "t = {}   N = {}   r = {}   {} contact cluster{}",
+        "t = {}   N = {}   r = {}   {} contact cluster{}   {INDICES_FROM_0}",
         s.t.render(),
         s.positions.len(),
         radius.render(),
@@ -366,16 +366,20 @@ fn write_state_table(
     for c in &s.clusters {
         for i in c.range() {
             rows.push(vec![
-                (i + 1).to_string(),
+                i.to_string(),
                 s.positions[i].render(),
                 s.velocities[i].render(),
                 s.multipliers
                     .get(i)
                     .map_or_else(|| "—".into(), |l| l.render()),
-                range_1based(c),
+                particle_range(c),
             ]);
         }
     }
-    write_table(out, &["i", "x_i", "u_i", "λ_i", "cluster"], &rows)?;
+    write_table(
+        out,
+        &["i", "position", "velocity", "λ of (i, i+1)", "cluster"],
+        &rows,
+    )?;
     writeln!(out)
 }

@@ -8,13 +8,17 @@ use sticky::cluster::Cluster;
 use sticky::trajectory::Trajectory;
 use sticky::Scalar;
 
-pub fn range_1based(c: &Cluster) -> String {
+/// The particles of a cluster, indexed from 0 and inclusive: `3` or `0–6`.
+pub fn particle_range(c: &Cluster) -> String {
     if c.size == 1 {
-        format!("{}", c.first + 1)
+        format!("{}", c.first)
     } else {
-        format!("{}–{}", c.first + 1, c.end())
+        format!("{}–{}", c.first, c.end() - 1)
     }
 }
+
+/// What every text output that prints particle indices says about them.
+pub const INDICES_FROM_0: &str = "(particle indices from 0)";
 
 /// Left-aligned columns, two spaces apart.
 pub fn write_table(out: &mut impl Write, header: &[&str], rows: &[Vec<String>]) -> io::Result<()> {
@@ -41,17 +45,21 @@ pub fn write_table(out: &mut impl Write, header: &[&str], rows: &[Vec<String>]) 
 
 pub fn write_events_table(out: &mut impl Write, traj: &Trajectory<BigRational>) -> io::Result<()> {
     let n = traj.impulses().len();
-    writeln!(out, "{n} collision{}", if n == 1 { "" } else { "s" })?;
     if n == 0 {
-        return Ok(());
+        return writeln!(out, "0 collisions");
     }
+    writeln!(
+        out,
+        "{n} collision{}   {INDICES_FROM_0}",
+        if n == 1 { "" } else { "s" }
+    )?;
     let rows: Vec<Vec<String>> = traj
         .impulses()
         .iter()
         .map(|i| {
             vec![
                 i.t.render(),
-                range_1based(&i.cluster),
+                particle_range(&i.cluster),
                 i.cluster.size.to_string(),
                 i.parts
                     .iter()
