@@ -33,10 +33,10 @@ use num_rational::BigRational;
 use num_traits::{Signed, ToPrimitive, Zero};
 
 use crate::cluster::{runs, Cluster};
-use crate::columns::{read_csv_small, read_npy_small, Small};
+use crate::columns::{f64_small, read_csv_small, read_npy_small, Small};
 use crate::fast::int::gcd;
 use crate::fast::kernel::{pava_words, size_bits, Run};
-use crate::fast::scaling::scale_pairs;
+use crate::fast::scaling::{scale_pairs, small_word};
 use crate::scene::{column_scene, inline_scene, MAX_NUMBER_BITS, MAX_SCENE_BYTES};
 
 /// Bits of `|v|` (0 for 0).
@@ -143,6 +143,31 @@ impl Lean {
             }
         };
         Lean::new(scene.radius, scene.charged_bits, xs, us)
+    }
+
+    /// The streaming path for columns of doubles, each taken as the exact
+    /// binary rational it is ([`crate::columns::f64_small`]), with radius
+    /// `radius` (`None`: `1/(2N)`): what the Python package hands over from
+    /// numpy arrays. `None` when a value is not finite or not on words, or
+    /// the data are not valid (the general path, [`crate::InitialData::new`]
+    /// on [`crate::columns::f64_exact`] values, then answers or names the
+    /// error).
+    pub fn from_doubles(radius: Option<BigRational>, xs: &[f64], us: &[f64]) -> Option<Lean> {
+        let col = |v: &[f64]| v.iter().map(|&d| f64_small(d)).collect::<Option<Vec<_>>>();
+        Lean::new(radius, 0, col(xs)?, col(us)?)
+    }
+
+    /// The streaming path for validated initial data whose every value has
+    /// a numerator and a denominator on 64-bit words; `None` otherwise (the
+    /// general path, [`crate::fast::kernel`], then answers).
+    pub fn from_data(data: &crate::InitialData<BigRational>) -> Option<Lean> {
+        let col = |v: &[BigRational]| v.iter().map(small_word).collect::<Option<Vec<_>>>();
+        Lean::new(
+            Some(data.radius().clone()),
+            0,
+            col(data.positions())?,
+            col(data.velocities())?,
+        )
     }
 
     /// The scene of radius `radius` (`None`: `1/(2N)`) with columns `xs`,

@@ -362,3 +362,42 @@ fn lean_values_beyond_i128_denominators() {
     assert_eq!(b.clusters(), want.clusters);
     assert_eq!(b.runs.iter().map(|r| r.k).collect::<Vec<_>>(), [1, 1, 2]);
 }
+
+/// `Lean::from_doubles` reads each double as its exact binary value: the
+/// same scene as `Lean::from_data` on those values (same state at several
+/// times), and `None` for a NaN, an infinity, an overlap and a length
+/// mismatch, which the general path then names.
+#[test]
+fn doubles_are_read_exactly() {
+    let xs = [0.0, 0.3, 0.7, 1.0e-3 + 2.0];
+    let us = [1.0, 0.5, -0.25, -1.0 / 3.0];
+    let exact = |v: &[f64]| {
+        v.iter()
+            .map(|&d| crate::columns::f64_exact(d).unwrap())
+            .collect::<Vec<_>>()
+    };
+    let r = q(1, 8);
+    let data = InitialData::new(r.clone(), exact(&xs), exact(&us)).unwrap();
+    let a = Lean::from_doubles(Some(r.clone()), &xs, &us).expect("doubles on words");
+    let b = Lean::from_data(&data).expect("the same data on words");
+    let d = IntegerData::new(&data);
+    for t in [q(0, 1), q(1, 3), q(1, 1), q(5, 1)] {
+        let want = state_at(&d, &t).unwrap();
+        for l in [&a, &b] {
+            let blocks = l.blocks_at(&t).unwrap();
+            let mut got = Vec::new();
+            blocks
+                .positions(|e| {
+                    got.push(value(e));
+                    Ok(())
+                })
+                .unwrap();
+            assert_eq!(got, want.positions, "t = {t}");
+            assert_eq!(blocks.clusters(), want.clusters, "t = {t}");
+        }
+    }
+    assert!(Lean::from_doubles(Some(r.clone()), &[0.0, f64::NAN], &[0.0, 0.0]).is_none());
+    assert!(Lean::from_doubles(Some(r.clone()), &[0.0, f64::INFINITY], &[0.0, 0.0]).is_none());
+    assert!(Lean::from_doubles(Some(r.clone()), &[0.0, 0.2], &[0.0, 0.0]).is_none());
+    assert!(Lean::from_doubles(Some(r), &[0.0, 1.0], &[0.0]).is_none());
+}
