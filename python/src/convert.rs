@@ -59,9 +59,8 @@ pub fn entry(name: &str, i: usize) -> String {
 /// The exact value of the double `d`, or the `ValueError` that names `what`.
 pub fn double(d: f64, what: &str) -> PyResult<BigRational> {
     f64_exact(d).ok_or_else(|| {
-        let kind = if d.is_nan() { "NaN" } else { "infinite" };
         PyValueError::new_err(format!(
-            "{what} is {kind} ({d}): every value must be a finite number"
+            "{what} is {d}: every value must be a finite number"
         ))
     })
 }

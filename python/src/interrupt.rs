@@ -33,6 +33,25 @@ impl Progress for Interrupt {
     }
 }
 
+/// Work of at most this many steps (particles times requests) runs on the
+/// calling thread: it ends in well under a millisecond, less than starting
+/// a thread costs.
+pub const INLINE_STEPS: usize = 1 << 14;
+
+/// [`run`] for work of about `steps` steps: small work on the calling
+/// thread (GIL released), the rest on a thread of its own.
+pub fn run_sized<R, F>(py: Python<'_>, steps: usize, work: F) -> PyResult<R>
+where
+    R: Send + 'static,
+    F: FnOnce(&Interrupt) -> R + Send + 'static,
+{
+    if steps <= INLINE_STEPS {
+        let observer = Interrupt::default();
+        return Ok(py.detach(move || work(&observer)));
+    }
+    run(py, work)
+}
+
 /// Runs `work` on its own thread with the GIL released, and returns its
 /// answer; `KeyboardInterrupt` (or whatever exception a signal handler
 /// raised) as soon as the user presses Ctrl-C.

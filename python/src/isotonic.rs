@@ -32,6 +32,7 @@ pub fn isotonic<'py>(
     exact: bool,
 ) -> PyResult<Bound<'py, PyAny>> {
     let z = convert::column(z, "z")?.into_exact("z")?;
-    let fitted = interrupt::run(py, move |_| sticky::projection::isotonic(&z))?;
+    let steps = z.len();
+    let fitted = interrupt::run_sized(py, steps, move |_| sticky::projection::isotonic(&z))?;
     output(py, &fitted, exact)
 }

@@ -401,7 +401,7 @@ impl Scene {
         let inner = &self.inner;
         let r = py.detach(|| inner.radius()).map_err(py_error)?;
         let two_r = &r + &r;
-        let x = interrupt::run(py, move |_| sticky::projection::project_k(&z, &two_r))?;
+        let x = interrupt::run_sized(py, n, move |_| sticky::projection::project_k(&z, &two_r))?;
         crate::isotonic::output(py, &x, exact)
     }
 
@@ -419,8 +419,9 @@ impl Scene {
 impl Scene {
     /// The states at `times`, on a worker thread (GIL released, Ctrl-C).
     fn answers(&self, py: Python<'_>, times: Vec<BigRational>) -> PyResult<Vec<State>> {
+        let steps = self.n(py)?.saturating_mul(times.len());
         let inner = Arc::clone(&self.inner);
-        let answers = interrupt::run(py, move |stop| -> Result<Vec<Answer>, Error> {
+        let answers = interrupt::run_sized(py, steps, move |stop| -> Result<Vec<Answer>, Error> {
             let mut out = Vec::with_capacity(times.len());
             for t in &times {
                 if sticky::progress::Progress::cancelled(stop) {
