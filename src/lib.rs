@@ -37,7 +37,10 @@
 //!
 //! ## Features
 //!
-//! * `cli` (default) — the `sticky` binary (clap); implies `report`;
+//! * `cli` (default) — the `sticky` binary (clap); implies `report` and
+//!   `json`;
+//! * `json` — the JSON of `sticky compare`'s report
+//!   (`report::compare::json`; serde, serde_json);
 //! * `report` — charts, the atlas and the benchmark (plotters, indicatif).
 //!
 //! `cargo build --lib --no-default-features` builds the library alone, with

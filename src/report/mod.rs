@@ -4,7 +4,9 @@
 //! the convergence study ([`converge`](mod@converge)), the file helpers
 //! ([`io`]: whole writes, CSV fields), the exact reading of another solver's
 //! answer ([`solution`]) and the export of a scene as a peer reads it
-//! ([`export`]), and, with the
+//! ([`export`]), another solver's answer measured and judged
+//! ([`compare`](mod@compare): the report of `sticky compare`, its JSON with
+//! the `json` feature), and, with the
 //! `report` feature, the charts (`plot`, `figures`), the speed-vs-accuracy
 //! atlas (`atlas`), the benchmark (`bench`), the peer solvers' runner
 //! (`peers`) and the terminal progress bar (`progress`).
@@ -15,6 +17,7 @@
 pub mod atlas;
 #[cfg(feature = "report")]
 pub mod bench;
+pub mod compare;
 pub mod converge;
 pub mod export;
 #[cfg(feature = "report")]

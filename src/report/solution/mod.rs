@@ -55,6 +55,20 @@ pub struct Frame {
 }
 
 impl Frame {
+    /// A frame not read from a file (`line` 0): positions at time `t`, no
+    /// velocities, multipliers or clusters (set the public fields to add
+    /// them).
+    pub fn new(t: BigRational, positions: Vec<BigRational>) -> Frame {
+        Frame {
+            line: 0,
+            t,
+            positions,
+            velocities: None,
+            multipliers: None,
+            contacts: None,
+        }
+    }
+
     /// This time of the solution as what [`compare`] scores against the
     /// exact state.
     ///
