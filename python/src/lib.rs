@@ -6,9 +6,11 @@
 //! * [`state`] — `State`: nearest doubles at once, exact values on demand;
 //! * [`events`] — `Event`;
 //! * [`isotonic`] — exact isotonic regression;
+//! * [`compare`] — another solver's answer against the exact one;
 //! * [`convert`] — Python numbers to exact rationals and back;
 //! * [`interrupt`] — long work off the interpreter's thread (GIL, Ctrl-C).
 
+mod compare;
 mod convert;
 mod events;
 mod interrupt;
@@ -70,6 +72,9 @@ fn _sticky(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<scene::Scene>()?;
     m.add_class::<state::State>()?;
     m.add_class::<events::Event>()?;
+    m.add_class::<compare::CompareReport>()?;
+    m.add_class::<compare::FrameFigures>()?;
+    m.add_function(wrap_pyfunction!(compare::compare, m)?)?;
     m.add_function(wrap_pyfunction!(isotonic::isotonic, m)?)?;
     m.add_function(wrap_pyfunction!(claims, m)?)?;
     m.add_function(wrap_pyfunction!(export, m)?)?;

@@ -15,6 +15,26 @@ doubles and, on demand, as lists of fractions.Fraction.
 Particles are indexed from 0 everywhere (clusters, events, messages).
 """
 
-from ._sticky import Event, Scene, State, claims, export, isotonic
+from ._sticky import (
+    CompareFrame,
+    CompareReport,
+    Event,
+    Scene,
+    State,
+    claims,
+    compare,
+    export,
+    isotonic,
+)
 
-__all__ = ["Event", "Scene", "State", "claims", "export", "isotonic"]
+__all__ = [
+    "CompareFrame",
+    "CompareReport",
+    "Event",
+    "Scene",
+    "State",
+    "claims",
+    "compare",
+    "export",
+    "isotonic",
+]

@@ -120,3 +120,79 @@ def claims(
 
 def export(scene: Scene) -> dict[str, Any]:
     """The scene's data rounded to doubles, as `sticky export --format json`."""
+
+MaxError = Tuple[Fraction, Optional[float], int]
+
+class CompareFrame:
+    """One time of a comparison: every figure exact and as a float (indices from 0)."""
+
+    @property
+    def t(self) -> Fraction: ...
+    @property
+    def verdict(self) -> str:
+        """"exact", "rounding", "inexact" or "invalid"."""
+    @property
+    def exact(self) -> bool: ...
+    @property
+    def position_max(self) -> Fraction: ...
+    @property
+    def position_max_float(self) -> Optional[float]: ...
+    @property
+    def position_max_index(self) -> int: ...
+    @property
+    def position_l2_squared(self) -> Fraction: ...
+    @property
+    def position_l2_float(self) -> Optional[float]: ...
+    @property
+    def velocity_max(self) -> Optional[MaxError]: ...
+    @property
+    def velocity_l2_squared(self) -> Optional[Fraction]: ...
+    @property
+    def velocity_l2_float(self) -> Optional[float]: ...
+    @property
+    def multiplier_max(self) -> Optional[MaxError]: ...
+    @property
+    def overlaps(self) -> List[Tuple[int, Fraction, Optional[float]]]:
+        """[(pair j, depth 2r - gap, depth as float)]."""
+    @property
+    def missed_contacts(self) -> int: ...
+    @property
+    def spurious_contacts(self) -> int: ...
+    @property
+    def missed_clusters(self) -> List[Tuple[int, int]]: ...
+    @property
+    def spurious_clusters(self) -> List[Tuple[int, int]]: ...
+    @property
+    def negative_multipliers(self) -> List[Tuple[int, Fraction]]: ...
+    @property
+    def complementarity(self) -> List[Tuple[int, Fraction]]: ...
+    @property
+    def oleinik(self) -> Optional[List[int]]: ...
+
+class CompareReport:
+    """The verdict and the figures; with one time, the frame's figures are attributes too."""
+
+    @property
+    def verdict(self) -> str: ...
+    @property
+    def frames(self) -> List[CompareFrame]: ...
+    def text(self) -> str:
+        """The text report of `sticky compare`."""
+    def summary(self) -> str:
+        """The verdict line."""
+    def to_dict(self) -> dict[str, Any]:
+        """The JSON of `sticky compare --json`."""
+    def __getattr__(self, name: str) -> Any: ...
+
+def compare(
+    scene: Scene,
+    t: Number,
+    positions: Numbers,
+    velocities: Optional[Numbers] = None,
+    *,
+    multipliers: Optional[Numbers] = None,
+    clusters: Optional[Sequence[Tuple[int, int]]] = None,
+    contact_tol: Optional[Number] = None,
+    overlap_tol: Optional[Number] = None,
+) -> CompareReport:
+    """Another solver's answer at t against the exact one, as `sticky compare` measures it."""
