@@ -64,12 +64,12 @@ impl Answer {
     /// The nearest doubles from the streaming path's blocks (the exact
     /// values are computed again when asked for).
     pub fn from_blocks(b: &LeanBlocks<'_>) -> Answer {
-        let lossy = Exact::to_f64_lossy;
+        let nearest = b.nearest();
         Answer {
             t: b.t().clone(),
-            positions: collect(|f| b.positions(f), lossy),
-            velocities: collect(|f| b.velocities(f), lossy),
-            multipliers: collect(|f| b.multipliers(f), lossy),
+            positions: nearest.positions,
+            velocities: nearest.velocities,
+            multipliers: nearest.multipliers,
             clusters: b.clusters(),
             exact: None,
         }

@@ -401,3 +401,76 @@ fn doubles_are_read_exactly() {
     assert!(Lean::from_doubles(Some(r.clone()), &[0.0, 0.2], &[0.0, 0.0]).is_none());
     assert!(Lean::from_doubles(Some(r), &[0.0, 1.0], &[0.0]).is_none());
 }
+
+/// `nearest_ratio` is the nearest double, ties to even, against the exact
+/// check of `report::export::nearest_f64` (both neighbours compared
+/// exactly): small and 128-bit terms, exact ties, signs.
+#[test]
+fn nearest_ratio_rounds_to_nearest_even() {
+    use crate::report::export::nearest_f64;
+    let mut rng = SplitMix64::new(7);
+    let mut cases: Vec<(i128, i128)> = vec![
+        (1, 3),
+        (-1, 3),
+        (2, 3),
+        ((1 << 53) + 1, 1), // a tie: to even, 2^53
+        ((1 << 53) + 3, 1), // a tie: to even, 2^53 + 4
+        (((1 << 53) + 1) << 20, 1 << 20),
+        ((1 << 100) + 1, 1 << 47),
+        (i128::MAX, 3),
+        (-i128::MAX, i128::MAX - 1),
+        (1, i128::MAX),
+    ];
+    for _ in 0..20_000 {
+        let width = 1 + rng.next_u64() % 126;
+        let mask = (1u128 << width) - 1;
+        let word = |rng: &mut SplitMix64| {
+            ((u128::from(rng.next_u64()) << 64) | u128::from(rng.next_u64())) & mask
+        };
+        let num = word(&mut rng) as i128 * if rng.next_u64() % 2 == 0 { 1 } else { -1 };
+        let den = (word(&mut rng) >> (rng.next_u64() % 100)).max(1) as i128;
+        cases.push((num, den));
+    }
+    let mut answered = 0;
+    for (num, den) in cases {
+        if let Some(v) = nearest_ratio(num, den) {
+            let want = nearest_f64(&BigRational::new(num.into(), den.into())).unwrap();
+            assert_eq!(v.to_bits(), want.to_bits(), "{num}/{den}");
+            answered += 1;
+        }
+    }
+    assert!(answered > 15_000, "{answered}");
+}
+
+/// `LeanBlocks::nearest` gives the nearest doubles of the exact state, the
+/// same bits as rounding each exact value of the visitors.
+#[test]
+fn nearest_is_the_rounded_exact_state() {
+    let mut rng = SplitMix64::new(77);
+    for k in 0..120 {
+        let data = initial_data(
+            &rng.bytes(200),
+            Limits {
+                max_n: 1 + k % 25,
+                max_den: 1 + (k % 6) as u32,
+                max_speed: 1 + (k % 7) as u32,
+            },
+        );
+        let l = lean(&data, true).expect("small data on words");
+        let history = Trajectory::new(data.clone());
+        for t in probe_times(&history, Some(6)) {
+            let b = l.blocks_at(&t).unwrap();
+            let exact = state_at(&IntegerData::new(&data), &t).unwrap();
+            let round = |v: &[BigRational]| -> Vec<u64> {
+                v.iter()
+                    .map(|q| crate::report::export::nearest_f64(q).unwrap().to_bits())
+                    .collect()
+            };
+            let got = b.nearest();
+            let bits = |v: &[f64]| -> Vec<u64> { v.iter().map(|d| d.to_bits()).collect() };
+            assert_eq!(bits(&got.positions), round(&exact.positions), "t = {t}");
+            assert_eq!(bits(&got.velocities), round(&exact.velocities), "t = {t}");
+            assert_eq!(bits(&got.multipliers), round(&exact.multipliers), "t = {t}");
+        }
+    }
+}
