@@ -33,10 +33,10 @@ use num_rational::BigRational;
 use num_traits::{Signed, ToPrimitive, Zero};
 
 use crate::cluster::{runs, Cluster};
-use crate::columns::{read_csv_small, read_npy_small, Small};
+use crate::columns::{f64_small, read_csv_small, read_npy_small, Small};
 use crate::fast::int::gcd;
 use crate::fast::kernel::{pava_words, size_bits, Run};
-use crate::fast::scaling::scale_pairs;
+use crate::fast::scaling::{scale_pairs, small_word};
 use crate::scene::{column_scene, inline_scene, MAX_NUMBER_BITS, MAX_SCENE_BYTES};
 
 /// Bits of `|v|` (0 for 0).
@@ -145,6 +145,31 @@ impl Lean {
         Lean::new(scene.radius, scene.charged_bits, xs, us)
     }
 
+    /// The streaming path for columns of doubles, each taken as the exact
+    /// binary rational it is ([`crate::columns::f64_small`]), with radius
+    /// `radius` (`None`: `1/(2N)`): what the Python package hands over from
+    /// numpy arrays. `None` when a value is not finite or not on words, or
+    /// the data are not valid (the general path, [`crate::InitialData::new`]
+    /// on [`crate::columns::f64_exact`] values, then answers or names the
+    /// error).
+    pub fn from_doubles(radius: Option<BigRational>, xs: &[f64], us: &[f64]) -> Option<Lean> {
+        let col = |v: &[f64]| v.iter().map(|&d| f64_small(d)).collect::<Option<Vec<_>>>();
+        Lean::new(radius, 0, col(xs)?, col(us)?)
+    }
+
+    /// The streaming path for validated initial data whose every value has
+    /// a numerator and a denominator on 64-bit words; `None` otherwise (the
+    /// general path, [`crate::fast::kernel`], then answers).
+    pub fn from_data(data: &crate::InitialData<BigRational>) -> Option<Lean> {
+        let col = |v: &[BigRational]| v.iter().map(small_word).collect::<Option<Vec<_>>>();
+        Lean::new(
+            Some(data.radius().clone()),
+            0,
+            col(data.positions())?,
+            col(data.velocities())?,
+        )
+    }
+
     /// The scene of radius `radius` (`None`: `1/(2N)`) with columns `xs`,
     /// `us`, `charged_bits` already charged against the number budget.
     pub(crate) fn new(
@@ -241,6 +266,76 @@ impl Lean {
             dy: (i128::from(q).checked_mul(self.dx)).and_then(|v| v.checked_mul(self.du)),
         })
     }
+}
+
+/// The nearest double of `num / den` (`den > 0`; round to nearest, ties to
+/// even), on 128-bit words with no reduction to lowest terms: one correctly
+/// rounded division when both terms are exact doubles, else the quotient
+/// scaled to 55 or 56 bits by one integer division, rounded with the
+/// remainder as sticky bit. `None` when the scaling does not fit 128 bits or
+/// the result would not be a normal double (the caller then reduces and
+/// rounds through [`Exact::to_f64_lossy`]).
+pub fn nearest_ratio(num: i128, den: i128) -> Option<f64> {
+    const EXACT: u128 = 1 << 53;
+    if den <= 0 {
+        return None;
+    }
+    if num == 0 {
+        return Some(0.0);
+    }
+    let (a, b) = (num.unsigned_abs(), den.unsigned_abs());
+    let sign = if num < 0 { -1.0 } else { 1.0 };
+    if a <= EXACT && b <= EXACT {
+        return Some(sign * (a as f64 / b as f64));
+    }
+    let la = 128 - i64::from(a.leading_zeros());
+    let lb = 128 - i64::from(b.leading_zeros());
+    // a/b lies in (2^(la-lb-1), 2^(la-lb+1)): q = ⌊a 2^s / b⌋ with
+    // s = 55 - (la - lb) lies in [2^54, 2^56).
+    let s = 55 - (la - lb);
+    let (q, inexact) = if s >= 0 {
+        if la + s > 127 {
+            return None;
+        }
+        let a2 = a << s;
+        (a2 / b, a2 % b != 0)
+    } else {
+        if lb - s > 127 {
+            return None;
+        }
+        let b2 = b << (-s);
+        (a / b2, a % b2 != 0)
+    };
+    debug_assert!((1u128 << 54..1u128 << 56).contains(&q));
+    let drop = 128 - i64::from(q.leading_zeros()) - 53;
+    let mut m = q >> drop;
+    let rest = q & ((1u128 << drop) - 1);
+    let half = 1u128 << (drop - 1);
+    if rest > half || (rest == half && (inexact || m & 1 == 1)) {
+        m += 1;
+    }
+    // The value is m · 2^e, m ≤ 2^53 exact in a double.
+    let e = drop - s;
+    if !(-1022..=1023 - 54).contains(&e) {
+        return None;
+    }
+    let scale = f64::from_bits(u64::try_from(e + 1023).ok()? << 52);
+    Some(sign * (m as f64) * scale)
+}
+
+/// A callback of the value visitors of [`LeanBlocks`].
+type Visitor<'a> = dyn FnMut(&Exact) -> io::Result<()> + 'a;
+
+/// The state of a [`LeanBlocks`] rounded to the nearest doubles
+/// ([`LeanBlocks::nearest`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Nearest {
+    /// `x(t)`.
+    pub positions: Vec<f64>,
+    /// `u(t)`.
+    pub velocities: Vec<f64>,
+    /// `λ_1 … λ_{N−1}`.
+    pub multipliers: Vec<f64>,
 }
 
 /// The PAVA blocks of a [`Lean`] scene at one time, and the state they give,
@@ -423,6 +518,74 @@ impl LeanBlocks<'_> {
             i += k;
         }
         Ok(())
+    }
+
+    /// The state rounded to the nearest doubles (ties to even), each value
+    /// rounded once from its exact value: the same doubles as
+    /// [`Exact::to_f64_lossy`] of [`Self::positions`], [`Self::velocities`]
+    /// and [`Self::multipliers`], without their reductions to lowest terms
+    /// ([`nearest_ratio`] on the unreduced fractions; the reduced path when
+    /// one of them does not fit words).
+    pub fn nearest(&self) -> Nearest {
+        self.nearest_words().unwrap_or_else(|| Nearest {
+            positions: self.rounded(|f| self.positions(f)),
+            velocities: self.rounded(|f| self.velocities(f)),
+            multipliers: self.rounded(|f| self.multipliers(f)),
+        })
+    }
+
+    /// The values a visitor gives, each rounded to the nearest double.
+    fn rounded(&self, visit: impl FnOnce(&mut Visitor<'_>) -> io::Result<()>) -> Vec<f64> {
+        let mut v = Vec::with_capacity(self.n());
+        // The visitors fail only when their callback does; this one never does.
+        let _ = visit(&mut |e| {
+            v.push(e.to_f64_lossy());
+            Ok(())
+        });
+        v
+    }
+
+    fn nearest_words(&self) -> Option<Nearest> {
+        let n = self.n();
+        let (rn, rd) = self.d.two_r;
+        let big_n = i128::try_from(n).ok()?;
+        let mut out = Nearest {
+            positions: Vec::with_capacity(n),
+            velocities: Vec::with_capacity(n),
+            multipliers: Vec::with_capacity(n.saturating_sub(1)),
+        };
+        let mut first = 0usize;
+        for r in &self.runs {
+            let k = i128::from(r.k);
+            // x_i = S_Y / (k D_Y) + (r_n / r_d) i = (S_Y r_d + r_n k D_Y i) / (k D_Y r_d).
+            let ky = self.dy?.checked_mul(k)?;
+            let den = ky.checked_mul(rd)?;
+            let step = ky.checked_mul(rn)?;
+            let base = r.sy.checked_mul(rd)?;
+            let first_i = i128::try_from(first).ok()?;
+            for m in 0..k {
+                let num = base.checked_add(step.checked_mul(first_i + m)?)?;
+                out.positions.push(nearest_ratio(num, den)?);
+            }
+            let u = nearest_ratio(r.su, k.checked_mul(self.d.du)?)?;
+            out.velocities.extend(std::iter::repeat_n(u, r.k as usize));
+            // λ of the m-th pair of the block: (k Σ_{j ≤ m} U_j − m S) / (k D_u N).
+            let den = k.checked_mul(self.d.du)?.checked_mul(big_n)?;
+            let mut prefix = 0i128;
+            for m in 1..=r.k as usize {
+                let i = first + m - 1;
+                if i + 1 >= n {
+                    break;
+                }
+                prefix = prefix.checked_add(i128::from(self.d.u[i]))?;
+                let num = k
+                    .checked_mul(prefix)?
+                    .checked_sub(i128::try_from(m).ok()?.checked_mul(r.su)?)?;
+                out.multipliers.push(nearest_ratio(num, den)?);
+            }
+            first += r.k as usize;
+        }
+        Some(out)
     }
 
     /// The contact clusters of `x(t)` (`df:Omega-micro`): runs of blocks

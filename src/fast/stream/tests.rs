@@ -362,3 +362,115 @@ fn lean_values_beyond_i128_denominators() {
     assert_eq!(b.clusters(), want.clusters);
     assert_eq!(b.runs.iter().map(|r| r.k).collect::<Vec<_>>(), [1, 1, 2]);
 }
+
+/// `Lean::from_doubles` reads each double as its exact binary value: the
+/// same scene as `Lean::from_data` on those values (same state at several
+/// times), and `None` for a NaN, an infinity, an overlap and a length
+/// mismatch, which the general path then names.
+#[test]
+fn doubles_are_read_exactly() {
+    let xs = [0.0, 0.3, 0.7, 1.0e-3 + 2.0];
+    let us = [1.0, 0.5, -0.25, -1.0 / 3.0];
+    let exact = |v: &[f64]| {
+        v.iter()
+            .map(|&d| crate::columns::f64_exact(d).unwrap())
+            .collect::<Vec<_>>()
+    };
+    let r = q(1, 8);
+    let data = InitialData::new(r.clone(), exact(&xs), exact(&us)).unwrap();
+    let a = Lean::from_doubles(Some(r.clone()), &xs, &us).expect("doubles on words");
+    let b = Lean::from_data(&data).expect("the same data on words");
+    let d = IntegerData::new(&data);
+    for t in [q(0, 1), q(1, 3), q(1, 1), q(5, 1)] {
+        let want = state_at(&d, &t).unwrap();
+        for l in [&a, &b] {
+            let blocks = l.blocks_at(&t).unwrap();
+            let mut got = Vec::new();
+            blocks
+                .positions(|e| {
+                    got.push(value(e));
+                    Ok(())
+                })
+                .unwrap();
+            assert_eq!(got, want.positions, "t = {t}");
+            assert_eq!(blocks.clusters(), want.clusters, "t = {t}");
+        }
+    }
+    assert!(Lean::from_doubles(Some(r.clone()), &[0.0, f64::NAN], &[0.0, 0.0]).is_none());
+    assert!(Lean::from_doubles(Some(r.clone()), &[0.0, f64::INFINITY], &[0.0, 0.0]).is_none());
+    assert!(Lean::from_doubles(Some(r.clone()), &[0.0, 0.2], &[0.0, 0.0]).is_none());
+    assert!(Lean::from_doubles(Some(r), &[0.0, 1.0], &[0.0]).is_none());
+}
+
+/// `nearest_ratio` is the nearest double, ties to even, against the exact
+/// check of `report::export::nearest_f64` (both neighbours compared
+/// exactly): small and 128-bit terms, exact ties, signs.
+#[test]
+fn nearest_ratio_rounds_to_nearest_even() {
+    use crate::report::export::nearest_f64;
+    let mut rng = SplitMix64::new(7);
+    let mut cases: Vec<(i128, i128)> = vec![
+        (1, 3),
+        (-1, 3),
+        (2, 3),
+        ((1 << 53) + 1, 1), // a tie: to even, 2^53
+        ((1 << 53) + 3, 1), // a tie: to even, 2^53 + 4
+        (((1 << 53) + 1) << 20, 1 << 20),
+        ((1 << 100) + 1, 1 << 47),
+        (i128::MAX, 3),
+        (-i128::MAX, i128::MAX - 1),
+        (1, i128::MAX),
+    ];
+    for _ in 0..20_000 {
+        let width = 1 + rng.next_u64() % 126;
+        let mask = (1u128 << width) - 1;
+        let word = |rng: &mut SplitMix64| {
+            ((u128::from(rng.next_u64()) << 64) | u128::from(rng.next_u64())) & mask
+        };
+        let num = word(&mut rng) as i128 * if rng.next_u64() % 2 == 0 { 1 } else { -1 };
+        let den = (word(&mut rng) >> (rng.next_u64() % 100)).max(1) as i128;
+        cases.push((num, den));
+    }
+    let mut answered = 0;
+    for (num, den) in cases {
+        if let Some(v) = nearest_ratio(num, den) {
+            let want = nearest_f64(&BigRational::new(num.into(), den.into())).unwrap();
+            assert_eq!(v.to_bits(), want.to_bits(), "{num}/{den}");
+            answered += 1;
+        }
+    }
+    assert!(answered > 15_000, "{answered}");
+}
+
+/// `LeanBlocks::nearest` gives the nearest doubles of the exact state, the
+/// same bits as rounding each exact value of the visitors.
+#[test]
+fn nearest_is_the_rounded_exact_state() {
+    let mut rng = SplitMix64::new(77);
+    for k in 0..120 {
+        let data = initial_data(
+            &rng.bytes(200),
+            Limits {
+                max_n: 1 + k % 25,
+                max_den: 1 + (k % 6) as u32,
+                max_speed: 1 + (k % 7) as u32,
+            },
+        );
+        let l = lean(&data, true).expect("small data on words");
+        let history = Trajectory::new(data.clone());
+        for t in probe_times(&history, Some(6)) {
+            let b = l.blocks_at(&t).unwrap();
+            let exact = state_at(&IntegerData::new(&data), &t).unwrap();
+            let round = |v: &[BigRational]| -> Vec<u64> {
+                v.iter()
+                    .map(|q| crate::report::export::nearest_f64(q).unwrap().to_bits())
+                    .collect()
+            };
+            let got = b.nearest();
+            let bits = |v: &[f64]| -> Vec<u64> { v.iter().map(|d| d.to_bits()).collect() };
+            assert_eq!(bits(&got.positions), round(&exact.positions), "t = {t}");
+            assert_eq!(bits(&got.velocities), round(&exact.velocities), "t = {t}");
+            assert_eq!(bits(&got.multipliers), round(&exact.multipliers), "t = {t}");
+        }
+    }
+}

@@ -1,0 +1,38 @@
+//! `sticky.isotonic`: exact isotonic regression (increasing, equal
+//! weights), the exact counterpart of `scipy.optimize.isotonic_regression`
+//! — the projection onto the monotone cone that `P_K` becomes in shifted
+//! coordinates (`df:translat-x`, `prop:proj-micro`).
+
+use num_rational::BigRational;
+use numpy::PyArray1;
+use pyo3::prelude::*;
+
+use crate::{convert, interrupt};
+
+/// Values as the nearest doubles (a numpy array) or, with `exact`, as a
+/// list of `fractions.Fraction`.
+pub fn output<'py>(py: Python<'py>, v: &[BigRational], exact: bool) -> PyResult<Bound<'py, PyAny>> {
+    if exact {
+        Ok(convert::fractions(py, v)?.into_any())
+    } else {
+        Ok(PyArray1::from_vec(py, convert::nearest(v)).into_any())
+    }
+}
+
+/// isotonic(z, exact=False): the exact isotonic regression of z
+/// (non-decreasing, equal weights; pool-adjacent-violators on exact
+/// rationals), each input read exactly (a float as its binary value). A
+/// numpy float64 array of the nearest doubles, or with exact=True a list of
+/// fractions.Fraction.
+#[pyfunction]
+#[pyo3(signature = (z, exact=false))]
+pub fn isotonic<'py>(
+    py: Python<'py>,
+    z: &Bound<'py, PyAny>,
+    exact: bool,
+) -> PyResult<Bound<'py, PyAny>> {
+    let z = convert::column(z, "z")?.into_exact("z")?;
+    let steps = z.len();
+    let fitted = interrupt::run_sized(py, steps, move |_| sticky::projection::isotonic(&z))?;
+    output(py, &fitted, exact)
+}

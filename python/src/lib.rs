@@ -1,0 +1,82 @@
+//! The native part of the `sticky` Python package (`sticky._sticky`):
+//! bindings of the library's public API — no engine or metric code of its
+//! own (DESIGN.md §4).
+//!
+//! * [`scene`] — `Scene`: input, validation, the state at t, events, P_K;
+//! * [`state`] — `State`: nearest doubles at once, exact values on demand;
+//! * [`events`] — `Event`;
+//! * [`isotonic`] — exact isotonic regression;
+//! * [`compare`] — another solver's answer against the exact one;
+//! * [`convert`] — Python numbers to exact rationals and back;
+//! * [`interrupt`] — long work off the interpreter's thread (GIL, Ctrl-C).
+
+mod compare;
+mod convert;
+mod events;
+mod interrupt;
+mod isotonic;
+mod scene;
+mod state;
+
+use pyo3::prelude::*;
+use sticky::claims::ledger::{self, Budget};
+
+/// Text as Python's `json.loads` reads it.
+fn json_loads<'py>(py: Python<'py>, text: &str) -> PyResult<Bound<'py, PyAny>> {
+    py.import("json")?.call_method1("loads", (text,))
+}
+
+/// claims(cases=200, max_n=24, scaling_max_n=4096, seed=0x5EED) ->
+/// list[dict]: the ledger of the paper's claims, each checked now as
+/// `sticky claims --json` checks it (id, section, statement, status,
+/// cases, engines, witness, correction). The default budget takes about a
+/// minute; the GIL is released, Ctrl-C returns at once.
+#[pyfunction]
+#[pyo3(signature = (cases=None, max_n=None, scaling_max_n=None, seed=None))]
+fn claims<'py>(
+    py: Python<'py>,
+    cases: Option<usize>,
+    max_n: Option<usize>,
+    scaling_max_n: Option<usize>,
+    seed: Option<u64>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let d = Budget::default();
+    let budget = Budget {
+        cases: cases.unwrap_or(d.cases),
+        max_n: max_n.unwrap_or(d.max_n).max(1),
+        scaling_max_n: scaling_max_n.unwrap_or(d.scaling_max_n).max(8),
+        seed: seed.unwrap_or(d.seed),
+    };
+    let text = interrupt::run(py, move |_| ledger::json(&ledger::run(budget, |_| {})))?;
+    json_loads(py, &text)
+}
+
+/// export(scene) -> dict: the scene's data rounded to doubles, as `sticky
+/// export --format json` writes them (each value's exact string, its double
+/// and the rounding error). ValueError when a value is beyond the range of
+/// a double.
+#[pyfunction]
+fn export<'py>(py: Python<'py>, scene: &scene::Scene) -> PyResult<Bound<'py, PyAny>> {
+    let file = scene.file(py)?;
+    let text = py
+        .detach(|| {
+            sticky::report::export::export(file).map(|e| sticky::report::export::json(file, &e))
+        })
+        .map_err(|e| pyo3::exceptions::PyValueError::new_err(e.to_string()))?;
+    json_loads(py, &text)
+}
+
+/// The module `sticky._sticky`.
+#[pymodule]
+fn _sticky(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<scene::Scene>()?;
+    m.add_class::<state::State>()?;
+    m.add_class::<events::Event>()?;
+    m.add_class::<compare::CompareReport>()?;
+    m.add_class::<compare::FrameFigures>()?;
+    m.add_function(wrap_pyfunction!(compare::compare, m)?)?;
+    m.add_function(wrap_pyfunction!(isotonic::isotonic, m)?)?;
+    m.add_function(wrap_pyfunction!(claims, m)?)?;
+    m.add_function(wrap_pyfunction!(export, m)?)?;
+    Ok(())
+}

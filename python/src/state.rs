@@ -1,0 +1,228 @@
+//! `sticky.State`: the state at one time, as numpy arrays of the nearest
+//! doubles at once and as exact `fractions.Fraction` lists on demand.
+
+use std::sync::{Arc, OnceLock};
+
+use num_bigint::BigInt;
+use num_rational::BigRational;
+use numpy::PyArray1;
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+use sticky::cluster::Cluster;
+use sticky::fast::stream::{Exact, LeanBlocks};
+use sticky::Scalar;
+
+use crate::convert;
+use crate::scene::{py_error, Inner};
+
+/// What an engine answered at one time: the nearest doubles and the
+/// clusters, and the exact state when the engine gave it whole.
+pub struct Answer {
+    t: BigRational,
+    positions: Vec<f64>,
+    velocities: Vec<f64>,
+    multipliers: Vec<f64>,
+    clusters: Vec<Cluster>,
+    exact: Option<sticky::State<BigRational>>,
+}
+
+/// Collects a visitor's values.
+fn collect<T>(
+    visit: impl FnOnce(&mut dyn FnMut(&Exact) -> std::io::Result<()>) -> std::io::Result<()>,
+    f: impl Fn(&Exact) -> T,
+) -> Vec<T> {
+    let mut out = Vec::new();
+    // The visitors fail only when their callback does; this one never does.
+    let _ = visit(&mut |e| {
+        out.push(f(e));
+        Ok(())
+    });
+    out
+}
+
+/// An exact value of the streaming path as a `BigRational` (already in
+/// lowest terms).
+fn big(e: &Exact) -> BigRational {
+    match e {
+        Exact::Small(n, d) => BigRational::new_raw(BigInt::from(*n), BigInt::from(*d)),
+        Exact::Big(q) => q.clone(),
+    }
+}
+
+/// The whole exact state from the streaming path's blocks.
+pub fn exact_state(b: &LeanBlocks<'_>) -> sticky::State<BigRational> {
+    sticky::State {
+        t: b.t().clone(),
+        positions: collect(|f| b.positions(f), big),
+        velocities: collect(|f| b.velocities(f), big),
+        multipliers: collect(|f| b.multipliers(f), big),
+        clusters: b.clusters(),
+    }
+}
+
+impl Answer {
+    /// The nearest doubles from the streaming path's blocks (the exact
+    /// values are computed again when asked for).
+    pub fn from_blocks(b: &LeanBlocks<'_>) -> Answer {
+        let nearest = b.nearest();
+        Answer {
+            t: b.t().clone(),
+            positions: nearest.positions,
+            velocities: nearest.velocities,
+            multipliers: nearest.multipliers,
+            clusters: b.clusters(),
+            exact: None,
+        }
+    }
+
+    /// The nearest doubles of an exact state, which is kept.
+    pub fn from_state(s: sticky::State<BigRational>) -> Answer {
+        Answer {
+            t: s.t.clone(),
+            positions: convert::nearest(&s.positions),
+            velocities: convert::nearest(&s.velocities),
+            multipliers: convert::nearest(&s.multipliers),
+            clusters: s.clusters.clone(),
+            exact: Some(s),
+        }
+    }
+}
+
+/// The state of the particles at one time t: positions x(t), velocities
+/// u(t) (right derivatives: after the collisions at t), multipliers λ(t)
+/// (λ_1 … λ_{N-1} of the paper's eq:dyn-micro; entry i belongs to the pair
+/// (i, i+1), indices from 0) and contact clusters. `positions`,
+/// `velocities`, `multipliers` are numpy float64 arrays of the nearest
+/// doubles; `exact_positions()` and its siblings give the exact values.
+#[pyclass(module = "sticky", frozen)]
+pub struct State {
+    scene: Arc<Inner>,
+    t: BigRational,
+    positions: Py<PyArray1<f64>>,
+    velocities: Py<PyArray1<f64>>,
+    multipliers: Py<PyArray1<f64>>,
+    clusters: Vec<Cluster>,
+    exact: OnceLock<sticky::State<BigRational>>,
+}
+
+impl State {
+    /// Wraps an engine's answer.
+    pub fn new(py: Python<'_>, scene: Arc<Inner>, a: Answer) -> PyResult<State> {
+        let exact = OnceLock::new();
+        if let Some(s) = a.exact {
+            let _ = exact.set(s);
+        }
+        Ok(State {
+            scene,
+            t: a.t,
+            positions: PyArray1::from_vec(py, a.positions).unbind(),
+            velocities: PyArray1::from_vec(py, a.velocities).unbind(),
+            multipliers: PyArray1::from_vec(py, a.multipliers).unbind(),
+            clusters: a.clusters,
+            exact,
+        })
+    }
+
+    /// The exact state (computed again on first use for the streaming
+    /// path, with the GIL released).
+    pub fn exact(&self, py: Python<'_>) -> PyResult<&sticky::State<BigRational>> {
+        if let Some(s) = self.exact.get() {
+            return Ok(s);
+        }
+        let (scene, t) = (&self.scene, &self.t);
+        let s = py.detach(|| scene.exact(t)).map_err(py_error)?;
+        Ok(self.exact.get_or_init(|| s))
+    }
+}
+
+#[pymethods]
+impl State {
+    /// The time t, exact (fractions.Fraction).
+    #[getter]
+    fn t<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        convert::fraction(py, &self.t)
+    }
+
+    /// The number of particles N.
+    #[getter]
+    fn n(&self, py: Python<'_>) -> usize {
+        self.positions.bind(py).len().unwrap_or(0)
+    }
+
+    /// x(t): numpy float64 array, the nearest double of each exact value.
+    #[getter]
+    fn positions<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.positions.bind(py).clone()
+    }
+
+    /// u(t) (right derivative): numpy float64 array of nearest doubles.
+    #[getter]
+    fn velocities<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.velocities.bind(py).clone()
+    }
+
+    /// λ(t), N - 1 values (entry i: the pair (i, i+1)): numpy float64
+    /// array of nearest doubles.
+    #[getter]
+    fn multipliers<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.multipliers.bind(py).clone()
+    }
+
+    /// The contact clusters of x(t), left to right, as (first, size) pairs
+    /// (first indexed from 0), as `run --json` gives them.
+    #[getter]
+    fn clusters(&self) -> Vec<(usize, usize)> {
+        self.clusters.iter().map(|c| (c.first, c.size)).collect()
+    }
+
+    /// x(t) exact: a list of fractions.Fraction.
+    fn exact_positions<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
+        convert::fractions(py, &self.exact(py)?.positions)
+    }
+
+    /// u(t) exact: a list of fractions.Fraction.
+    fn exact_velocities<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
+        convert::fractions(py, &self.exact(py)?.velocities)
+    }
+
+    /// λ(t) exact: a list of N - 1 fractions.Fraction.
+    fn exact_multipliers<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
+        convert::fractions(py, &self.exact(py)?.multipliers)
+    }
+
+    /// The state as `sticky run --json` prints it: a dict with "n",
+    /// "radius", "t", "positions", "velocities", "multipliers" (exact
+    /// strings "p/q" in lowest terms) and "clusters" ([first, size],
+    /// indices from 0).
+    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let s = self.exact(py)?;
+        let text = |v: &[BigRational]| v.iter().map(Scalar::render).collect::<Vec<_>>();
+        let radius = self.scene.radius().map_err(py_error)?;
+        let d = PyDict::new(py);
+        d.set_item("n", s.positions.len())?;
+        d.set_item("radius", radius.render())?;
+        d.set_item("t", s.t.render())?;
+        d.set_item("positions", text(&s.positions))?;
+        d.set_item("velocities", text(&s.velocities))?;
+        d.set_item("multipliers", text(&s.multipliers))?;
+        let clusters: Vec<[usize; 2]> = s.clusters.iter().map(|c| [c.first, c.size]).collect();
+        d.set_item("clusters", clusters)?;
+        Ok(d)
+    }
+
+    fn __repr__(&self, py: Python<'_>) -> String {
+        let shown: Vec<String> = self
+            .clusters
+            .iter()
+            .take(8)
+            .map(|c| format!("({}, {})", c.first, c.size))
+            .collect();
+        let more = if self.clusters.len() > 8 { ", ..." } else { "" };
+        format!(
+            "State(t={}, n={}, clusters=[{}{more}])",
+            self.t.render(),
+            self.n(py),
+            shown.join(", ")
+        )
+    }
+}

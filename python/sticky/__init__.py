@@ -1,0 +1,40 @@
+"""sticky: exact sticky-particle dynamics on a line, from Python.
+
+N particles of radius r on a line stick together when they collide (C.
+Perrin, "Microscopic derivation of the one-dimensional constrained Euler
+equations"). Every answer is exact: inputs are read exactly (a float as the
+binary value of the double), the state x(t) = P_K(x0 + t u0) is computed on
+exact rationals, and returned both as numpy float64 arrays of the nearest
+doubles and, on demand, as lists of fractions.Fraction.
+
+    >>> import sticky
+    >>> scene = sticky.Scene([0, 2], [1, -1], radius="1/4")
+    >>> scene.state("1").exact_positions()
+    [Fraction(3, 4), Fraction(5, 4)]
+
+Particles are indexed from 0 everywhere (clusters, events, messages).
+"""
+
+from ._sticky import (
+    CompareFrame,
+    CompareReport,
+    Event,
+    Scene,
+    State,
+    claims,
+    compare,
+    export,
+    isotonic,
+)
+
+__all__ = [
+    "CompareFrame",
+    "CompareReport",
+    "Event",
+    "Scene",
+    "State",
+    "claims",
+    "compare",
+    "export",
+    "isotonic",
+]

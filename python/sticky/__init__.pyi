@@ -1,0 +1,198 @@
+"""Type stubs of the sticky package (the native module sticky._sticky)."""
+
+from fractions import Fraction
+from os import PathLike
+from typing import Any, Iterable, List, Optional, Sequence, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+# A number read exactly: a float (its binary value), an int, a Fraction, or
+# an exact string such as "1/3", "0.125", "1e-3".
+Number = Union[float, int, Fraction, str, np.floating, np.integer]
+Numbers = Union[npt.ArrayLike, Sequence[Number], Iterable[Number]]
+FloatArray = npt.NDArray[np.float64]
+
+class State:
+    """The state at one time t (indices from 0)."""
+
+    @property
+    def t(self) -> Fraction:
+        """The time, exact."""
+    @property
+    def n(self) -> int:
+        """The number of particles N."""
+    @property
+    def positions(self) -> FloatArray:
+        """x(t), the nearest double of each exact value."""
+    @property
+    def velocities(self) -> FloatArray:
+        """u(t) (right derivative), nearest doubles."""
+    @property
+    def multipliers(self) -> FloatArray:
+        """λ(t), N - 1 values (entry i: the pair (i, i+1)), nearest doubles."""
+    @property
+    def clusters(self) -> List[Tuple[int, int]]:
+        """Contact clusters as (first, size), left to right."""
+    def exact_positions(self) -> List[Fraction]:
+        """x(t), exact."""
+    def exact_velocities(self) -> List[Fraction]:
+        """u(t), exact."""
+    def exact_multipliers(self) -> List[Fraction]:
+        """λ(t), exact."""
+    def to_dict(self) -> dict[str, Any]:
+        """The state as `sticky run --json` prints it (exact strings)."""
+
+class Event:
+    """A cluster formed by a collision."""
+
+    @property
+    def t(self) -> Fraction:
+        """The collision time, exact."""
+    @property
+    def t_float(self) -> float:
+        """The collision time, nearest double."""
+    @property
+    def first(self) -> int:
+        """The first particle of the cluster formed (from 0)."""
+    @property
+    def size(self) -> int:
+        """The size of the cluster formed."""
+    @property
+    def parts(self) -> List[int]:
+        """The sizes of the clusters that merged, left to right."""
+    def to_dict(self) -> dict[str, Any]:
+        """The event as `sticky events --json` prints it."""
+
+class Scene:
+    """N particles of radius r on a line, validated; exact answers on demand."""
+
+    def __init__(self, positions: Numbers, velocities: Numbers, radius: Optional[Number] = None) -> None:
+        """Raises ValueError (overlap, velocity cone, NaN, length mismatch)."""
+    @staticmethod
+    def load(path: Union[str, PathLike[str]]) -> Scene:
+        """A TOML scene file ([particles] inline, CSV or NPY columns, or [macro])."""
+    @staticmethod
+    def from_toml(text: str) -> Scene:
+        """A scene from the text of a TOML scene file."""
+    @property
+    def n(self) -> int:
+        """The number of particles N."""
+    def __len__(self) -> int: ...
+    @property
+    def radius(self) -> Fraction:
+        """The radius r, exact."""
+    @property
+    def name(self) -> Optional[str]:
+        """The scene's name field."""
+    @property
+    def kind(self) -> str:
+        """"particles" or "macro"."""
+    @property
+    def positions(self) -> FloatArray:
+        """x⁰, nearest doubles."""
+    @property
+    def velocities(self) -> FloatArray:
+        """u⁰, nearest doubles."""
+    def exact_positions(self) -> List[Fraction]:
+        """x⁰, exact."""
+    def exact_velocities(self) -> List[Fraction]:
+        """u⁰, exact."""
+    def state(self, t: Number) -> State:
+        """The exact state at t ≥ 0."""
+    def states(self, ts: Numbers) -> List[State]:
+        """The exact state at every t of ts."""
+    def events(self) -> List[Event]:
+        """Every cluster formed by a collision, by time then first particle."""
+    def project(self, z: Numbers, exact: bool = False) -> Union[FloatArray, List[Fraction]]:
+        """P_K(z), the exact projection onto K = {x : x[i+1] - x[i] ≥ 2r}."""
+
+def isotonic(z: Numbers, exact: bool = False) -> Union[FloatArray, List[Fraction]]:
+    """Exact isotonic regression (non-decreasing, equal weights)."""
+
+def claims(
+    cases: Optional[int] = None,
+    max_n: Optional[int] = None,
+    scaling_max_n: Optional[int] = None,
+    seed: Optional[int] = None,
+) -> List[dict[str, Any]]:
+    """The ledger of the paper's claims, checked now."""
+
+def export(scene: Scene) -> dict[str, Any]:
+    """The scene's data rounded to doubles, as `sticky export --format json`."""
+
+MaxError = Tuple[Fraction, Optional[float], int]
+
+class CompareFrame:
+    """One time of a comparison: every figure exact and as a float (indices from 0)."""
+
+    @property
+    def t(self) -> Fraction: ...
+    @property
+    def verdict(self) -> str:
+        """"exact", "rounding", "inexact" or "invalid"."""
+    @property
+    def exact(self) -> bool: ...
+    @property
+    def position_max(self) -> Fraction: ...
+    @property
+    def position_max_float(self) -> Optional[float]: ...
+    @property
+    def position_max_index(self) -> int: ...
+    @property
+    def position_l2_squared(self) -> Fraction: ...
+    @property
+    def position_l2_float(self) -> Optional[float]: ...
+    @property
+    def velocity_max(self) -> Optional[MaxError]: ...
+    @property
+    def velocity_l2_squared(self) -> Optional[Fraction]: ...
+    @property
+    def velocity_l2_float(self) -> Optional[float]: ...
+    @property
+    def multiplier_max(self) -> Optional[MaxError]: ...
+    @property
+    def overlaps(self) -> List[Tuple[int, Fraction, Optional[float]]]:
+        """[(pair j, depth 2r - gap, depth as float)]."""
+    @property
+    def missed_contacts(self) -> int: ...
+    @property
+    def spurious_contacts(self) -> int: ...
+    @property
+    def missed_clusters(self) -> List[Tuple[int, int]]: ...
+    @property
+    def spurious_clusters(self) -> List[Tuple[int, int]]: ...
+    @property
+    def negative_multipliers(self) -> List[Tuple[int, Fraction]]: ...
+    @property
+    def complementarity(self) -> List[Tuple[int, Fraction]]: ...
+    @property
+    def oleinik(self) -> Optional[List[int]]: ...
+
+class CompareReport:
+    """The verdict and the figures; with one time, the frame's figures are attributes too."""
+
+    @property
+    def verdict(self) -> str: ...
+    @property
+    def frames(self) -> List[CompareFrame]: ...
+    def text(self) -> str:
+        """The text report of `sticky compare`."""
+    def summary(self) -> str:
+        """The verdict line."""
+    def to_dict(self) -> dict[str, Any]:
+        """The JSON of `sticky compare --json`."""
+    def __getattr__(self, name: str) -> Any: ...
+
+def compare(
+    scene: Scene,
+    t: Number,
+    positions: Numbers,
+    velocities: Optional[Numbers] = None,
+    *,
+    multipliers: Optional[Numbers] = None,
+    clusters: Optional[Sequence[Tuple[int, int]]] = None,
+    contact_tol: Optional[Number] = None,
+    overlap_tol: Optional[Number] = None,
+) -> CompareReport:
+    """Another solver's answer at t against the exact one, as `sticky compare` measures it."""
