@@ -570,7 +570,18 @@ fn bad_csv_rows() {
         "1,0,0\n1,0,1\n",
         ":2: particle i = 0 at t = 1 given twice",
     );
-    bad("csv4", "s.csv", "1,0,abc\n", ":1: position: \"abc\"");
+    bad(
+        "csv4",
+        "s.csv",
+        "1,0,abc\n",
+        ":1: position of i = 0: \"abc\"",
+    );
+    bad(
+        "csv6",
+        "s.csv",
+        "1,0,0,1\n1,1,1,0\n1,2,2,0\n1,3,nan,0\n",
+        ":4: position of i = 3: \"nan\"",
+    );
     bad("csv5", "s.csv", "1,0\n", ":1: 2 columns");
 }
 

@@ -16,8 +16,8 @@ use crate::error::Error;
 use crate::limit::converge::ConvergenceReport;
 use crate::limit::eulerian::DensityGrid;
 use crate::report::plot::{
-    palette, ramp, series_style, write_chart, write_heatmap, Axis, Chart, ColourScale, Heatmap,
-    Marker, PlotError, Polylines, Series, BLACK_RGB,
+    palette, series_style, write_chart, write_heatmap, Axis, Chart, ColourScale, Heatmap, Marker,
+    PlotError, Polylines, Series, BLACK_RGB,
 };
 use crate::scalar::Scalar;
 use crate::trajectory::Trajectory;
@@ -172,7 +172,10 @@ pub fn spacetime(
         Axis::linear("time t"),
     );
     chart.polylines.push(Polylines {
-        label: Some("particle worldlines".into()),
+        label: Some(format!(
+            "worldline, colour = contact cluster at t = {}",
+            t_end.render()
+        )),
         lines: colours.into_iter().zip(lines).collect(),
         width: 1,
     });
@@ -246,7 +249,9 @@ fn centred_edges(c: &[f64]) -> Vec<f64> {
 }
 
 /// The pressure impulses: one marker per non-zero jump of `λ_i`, at the
-/// contact point and collision time, in five classes of weight.
+/// contact point and collision time, in five classes of weight (the weight
+/// of an impulse is the jump of `λ_i` there, `prop:micro-pressure`), one
+/// palette colour each.
 pub fn pressure(
     atoms: &[(BigRational, BigRational, BigRational)],
     dir: &Path,
@@ -263,18 +268,20 @@ pub fn pressure(
         classes[k].push((x.to_f64_lossy(), t.to_f64_lossy()));
     }
     let mut chart = Chart::new(
-        "pressure impulses p = dλ/dt (prop:micro-pressure): jumps of λ_i at collisions",
+        "pressure impulses p = dλ/dt (prop:micro-pressure): weight = jump of λ_i at a collision",
         Axis::linear("position x of the contact"),
         Axis::linear("time t"),
     );
     for (k, pts) in classes.into_iter().enumerate() {
         let mut series = Series::scatter(
             format!(
-                "weight in ({:.2e}, {:.2e}]",
+                "jump of λ_i in ({:.2e}, {:.2e}]",
                 max * k as f64 / 5.0,
                 max * (k + 1) as f64 / 5.0
             ),
-            ramp((k as f64 + 1.0) / 5.0),
+            // Five distinct colours (the ramp's middle classes were two
+            // nearly identical greens), the marker growing with the weight.
+            palette(k),
             Marker::Circle,
             pts,
         );

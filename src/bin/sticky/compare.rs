@@ -46,7 +46,7 @@ pub struct Args {
     out: Option<PathBuf>,
     /// When the solution gives no `clusters`, pairs with gap ≤ 2r + TOL count
     /// as the solver's contacts (a length, exact; default 0).
-    #[arg(long = "contact-tol", value_parser = parse_tol, conflicts_with = "contact_tol_rel")]
+    #[arg(long = "contact-tol", value_name = "TOL", value_parser = parse_tol, conflicts_with = "contact_tol_rel")]
     contact_tol: Option<BigRational>,
     /// The same rule with TOL = K·2r (K exact; the peers use 1e-6).
     #[arg(long = "contact-tol-rel", value_name = "K", value_parser = parse_tol)]

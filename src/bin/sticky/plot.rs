@@ -85,15 +85,34 @@ fn plot(
         160,
     )
     .map_err(lib_err)?;
-    paths.extend(
-        sticky::report::figures::density(
-            &grid,
-            "particle density ρ_N = 1/∂_w X̃_N",
-            &scale,
-            &dir,
-            "density-particles",
+    // ρ_N is 1 in contact only under the paper's scaling 2r = 1/N; in
+    // contact it is 1/(N·2r) in general. Other scenes are drawn as
+    // ρ_N·N·2r (1 in contact, on the shared 0…1 scale) and the title says so.
+    let n_two_r = BigRational::from_i64(n as i64) * scene.data.two_r();
+    let (grid, title) = if n_two_r == BigRational::from_i64(1) {
+        (
+            grid,
+            "particle density ρ_N = 1/∂_w X̃_N (2r = 1/N: 1 in contact)".to_string(),
         )
-        .map_err(lib_err)?,
+    } else {
+        let k = n_two_r.to_f64_lossy();
+        let mut grid = grid;
+        for row in &mut grid.values {
+            for v in row.iter_mut() {
+                *v *= k;
+            }
+        }
+        (
+            grid,
+            format!(
+                "particle density scaled to this scene's 2r: ρ_N·N·2r (1 in contact), ρ_N = 1/∂_w X̃_N, N·2r = {}",
+                n_two_r.render()
+            ),
+        )
+    };
+    paths.extend(
+        sticky::report::figures::density(&grid, &title, &scale, &dir, "density-particles")
+            .map_err(lib_err)?,
     );
     if let SceneKind::Macro { datum, .. } = &scene.kind {
         let c = sticky::limit::continuum::Continuum::new(datum);

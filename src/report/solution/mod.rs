@@ -207,9 +207,9 @@ fn parse_csv(text: &str, n: usize) -> Result<Vec<Frame>, SolutionError> {
                 )
             }
         };
-        let x = num(cols[2], "position")?;
+        let x = num(cols[2], &format!("position of i = {i}"))?;
         let u = match cols.get(3) {
-            Some(s) => Some(num(s, "velocity")?),
+            Some(s) => Some(num(s, &format!("velocity of i = {i}"))?),
             None => None,
         };
         let fi = match frames.iter().position(|f| f.t == t) {
