@@ -10,7 +10,7 @@ use sticky::claims::ledger::{self, Budget, Status};
 #[test]
 fn claims_md_is_current() {
     let budget = Budget::default();
-    let entries = ledger::run(budget, |_| {});
+    let entries = ledger::run(budget, &sticky::progress::Silent);
     let proofs = sticky::prove::record::ledger_proofs().expect("the committed proof record");
     let md = ledger::markdown(&entries, budget, &proofs);
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("CLAIMS.md");

@@ -16,6 +16,7 @@ use num_rational::BigRational;
 use super::{scaling, Case, Claim, Kind, Violation};
 use crate::fast::kernel;
 use crate::generate::{initial_data, Limits, SplitMix64};
+use crate::progress::Progress;
 use crate::scene::{self, particles_toml};
 
 /// The engines that call every [`Kind::Case`] checker of the registry
@@ -332,13 +333,15 @@ fn run_kind(
     }
 }
 
-/// Runs the whole registry.
-pub fn run(budget: Budget, mut progress: impl FnMut(&str)) -> Vec<Entry> {
+/// Runs the whole registry, telling `progress` of each claim as it starts
+/// (one stage, `claims`, with one step per claim).
+pub fn run(budget: Budget, progress: &dyn Progress) -> Vec<Entry> {
     let shipped = shipped_cases();
     let claims: Vec<Claim<BigRational>> = super::registry();
     let mut out = Vec::with_capacity(claims.len());
+    progress.stage("claims", Some(claims.len() as u64));
     for claim in &claims {
-        progress(claim.id);
+        progress.note(claim.id);
         let (outcome, engines) = run_kind(&claim.kind, claim.applies, budget, &shipped);
         let correction = claim.correction.as_ref().map(|c| {
             let (o, _) = run_kind(&c.check, claim.applies, budget, &shipped);
@@ -352,7 +355,9 @@ pub fn run(budget: Budget, mut progress: impl FnMut(&str)) -> Vec<Entry> {
             outcome,
             correction,
         });
+        progress.advance(1);
     }
+    progress.finish();
     out
 }
 
