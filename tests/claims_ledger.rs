@@ -22,8 +22,8 @@ fn claims_md_is_current() {
         committed == md,
         "CLAIMS.md is stale: regenerate it with `STICKY_BLESS=1 cargo test --release --test claims_ledger` (or `sticky claims --markdown > CLAIMS.md`)"
     );
-    // README carries the summary between markers.
-    let readme_path = Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md");
+    // The guide page of the ledger carries the summary between markers.
+    let readme_path = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/guide/claims.md");
     let readme = std::fs::read_to_string(&readme_path).unwrap_or_default();
     let (begin, end) = (
         "<!-- ledger-summary:begin -->\n",
@@ -33,13 +33,13 @@ fn claims_md_is_current() {
     if std::env::var("STICKY_BLESS").is_ok_and(|v| v == "1") {
         if let (Some(a), Some(b)) = (readme.find(begin), readme.find(end)) {
             let fresh = format!("{}{begin}{summary}{}", &readme[..a], &readme[b..]);
-            std::fs::write(&readme_path, fresh).expect("write README.md");
+            std::fs::write(&readme_path, fresh).expect("write docs/guide/claims.md");
         }
     }
     let readme = std::fs::read_to_string(&readme_path).unwrap_or_default();
     assert!(
         readme.contains(&format!("{begin}{summary}{end}")),
-        "README.md's ledger summary is stale: regenerate with `STICKY_BLESS=1 cargo test --release --test claims_ledger`"
+        "docs/guide/claims.md's ledger summary is stale: regenerate with `STICKY_BLESS=1 cargo test --release --test claims_ledger`"
     );
     // Every correction holds: a claim found false is reported, and what we
     // state instead is itself checked.
