@@ -59,6 +59,7 @@ fn grows(r: &mut sticky::claims::macro_data::Row) {
         &mut r.tv_late,
         &mut r.u_sup,
         &mut r.uniform_x0,
+        &mut r.pn_gap,
         &mut r.c0_prime,
         &mut r.momentum,
     ] {
@@ -87,6 +88,7 @@ fn zeroed(r: &mut sticky::claims::macro_data::Row) {
         &mut r.tv_late,
         &mut r.u_sup,
         &mut r.uniform_x0,
+        &mut r.pn_gap,
         &mut r.c0_prime,
         &mut r.momentum,
     ] {

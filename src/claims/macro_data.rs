@@ -95,6 +95,10 @@ pub struct Row {
     /// `max |∫_0^1 (Λ_N(t) − Λ(t)) φ|` over the comparison times with a
     /// rational profile and `φ ∈ {1, w}`.
     pub cvg_lambda: Option<Q>,
+    /// `N · sup_t |∫_0^1 (Λ_N − Λ̃_N)(t,w) w dw|` over the probe times: the
+    /// factor of `‖∂_t Ψ‖` in `|⟨P_N − P̃_N, Ψ⟩| ≤ (C/N)‖∂_t Ψ‖` for
+    /// `Ψ = ψ(t)w` ([`lambda_gap_moment`]).
+    pub pn_gap: Q,
     /// `C'_0 = (x⁰_N − x⁰_0) + sup_i |u⁰_i|`, the smallest constant of
     /// `cond:Linfty` for the sample (artificial particle `x⁰_0 = x⁰_1 − 1/N − δ`,
     /// `δ = 1`, as in `prop:Linf-micro`).
@@ -343,6 +347,23 @@ fn uniform_x0(d: &MacroDatum, x: &[Q]) -> Q {
     sup
 }
 
+/// `∫_0^1 (Λ_N − Λ̃_N)(t,w) w dw` from `λ_1 … λ_N` (`λ_0 = 0`): on cell `i`,
+/// `w = (i−1)/N + s/N`, `Λ_N − Λ̃_N = d_i (1 − s)` with `d_i = λ_i − λ_{i−1}`,
+/// so the cell gives `d_i ((i−1)/(2N²) + 1/(6N²))`. (Against `Ψ = ψ(t)`
+/// alone the integral is `(λ_N − λ_0)/(2N) = 0`: `w` is the first test
+/// that sees the difference.)
+fn lambda_gap_moment(l: &[Q]) -> Q {
+    let n = l.len();
+    let nn = Q::from_usize(n);
+    let mut sum = Sum::default();
+    for i in 0..n {
+        let prev = if i == 0 { Q::zero() } else { l[i - 1].clone() };
+        let d = l[i].clone() - prev;
+        sum.add(d * (Q::from_usize(3 * i + 1)));
+    }
+    sum.total() / (Q::from_i64(6) * &nn * &nn)
+}
+
 /// `∫_{(i−1)/N}^{i/N} f²` for `f` affine from `a` to `b`: `(a² + ab + b²)/(3N)`
 /// (without the factor `1/N`, applied once by the caller).
 fn affine_sq(a: &Q, b: &Q) -> Q {
@@ -483,6 +504,7 @@ fn row_of(c: &MacroCase, traj: &Trajectory<Q>, id: &'static str) -> Result<Row, 
         (Q::zero(), Q::zero(), Q::zero(), Q::zero());
     let mut cvg_x: Option<Q> = None;
     let mut cvg_lambda: Option<Q> = None;
+    let mut pn_gap = Q::zero();
     // t = kT/4, k = 0 … 4: the comparison times and 0.
     let probes = std::iter::once((Q::zero(), None))
         .chain(c.profiles.iter().map(|(t, p)| (t.clone(), p.as_ref())));
@@ -502,6 +524,7 @@ fn row_of(c: &MacroCase, traj: &Trajectory<Q>, id: &'static str) -> Result<Row, 
             u_sup = max(u_sup, abs(v.clone()) * Q::from_i64(2));
         }
         l2 = max(l2, seven_norms(&s.positions, &s.velocities, &l));
+        pn_gap = max(pn_gap, abs(lambda_gap_moment(&l)) * &nn);
         if t >= alpha {
             let mut tv = Sum::default();
             for w in s.velocities.windows(2) {
@@ -550,6 +573,7 @@ fn row_of(c: &MacroCase, traj: &Trajectory<Q>, id: &'static str) -> Result<Row, 
         uniform_x0: uniform_x0(&c.datum, &qx),
         cvg_x,
         cvg_lambda,
+        pn_gap,
         c0_prime,
         momentum,
     })
@@ -584,6 +608,14 @@ pub fn table(max_n: usize, id: &'static str) -> Result<Arc<Vec<Series>>, Violati
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `∫(Λ_N − Λ̃_N) w dw` by hand: N = 2, λ = (1, 0): cell 1 (d = 1) gives
+    /// 1·(0 + 1/24), cell 2 (d = −1) gives −1·(1/8 + 1/24): total −1/8.
+    #[test]
+    fn lambda_gap_moment_by_hand() {
+        assert_eq!(lambda_gap_moment(&[q(1, 1), q(0, 1)]), q(-1, 8));
+        assert_eq!(lambda_gap_moment(&[q(0, 1), q(0, 1)]), q(0, 1));
+    }
 
     /// The seven norms on one particle by hand: x_1 = 0, u_1 = 1, λ_1 = 0,
     /// so x_0 = −2 (δ = 1, 1/N = 1), u_0 = 1, λ_0 = 0: constant parts

@@ -360,6 +360,19 @@ pub fn l2_bounds(budget: Budget) -> Result<Vec<ScalingReport>, Violation> {
     })
 }
 
+/// `prop:2ndorder-LagrPDE#PN-minus-tPN`: `|⟨P_N − P̃_N, Ψ⟩| ≤ (C/N)
+/// ‖∂_t Ψ‖_{L¹(0,T; L^∞(0,1))}`, for `Ψ = ψ(t)w`: `⟨P_N − P̃_N, Ψ⟩ =
+/// −∫ψ'(t) ∫(Λ_N − Λ̃_N) w dw dt`, so `C ≥ N sup_t |∫(Λ_N − Λ̃_N) w dw|`
+/// ([`Row::pn_gap`]) must stay bounded.
+pub fn pn_minus_tpn(budget: Budget) -> Result<Vec<ScalingReport>, Violation> {
+    run(
+        "prop:2ndorder-LagrPDE#PN-minus-tPN",
+        budget,
+        Verdict::Bounded,
+        |r| Some(r.pn_gap.clone()),
+    )
+}
+
 /// `pwUN-L1`: `sup_{t ∈ [α, T]} ‖∂_w Ũ_N(t)‖_{L¹} ≤ C_α`, at `α = T/2`
 /// (`= Σ|u_i − u_{i−1}|`, the total variation of `u`); only data on which
 /// it is not 0 count as non-trivial.
@@ -504,6 +517,7 @@ mod tests {
             uniform_x0: v.clone(),
             cvg_x: Some(v.clone()),
             cvg_lambda: Some(v.clone()),
+            pn_gap: v.clone(),
             c0_prime: v.clone(),
             momentum: v,
         }
