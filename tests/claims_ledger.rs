@@ -11,7 +11,7 @@ use sticky::claims::ledger::{self, Budget, Status};
 #[ignore = "campaign: the whole ledger (every checker, every case), ~3 min; CI runs it (cargo test --release -- --ignored)"]
 fn claims_md_is_current() {
     let budget = Budget::default();
-    let entries = ledger::run(budget, |_| {});
+    let entries = ledger::run(budget, &sticky::progress::Silent);
     let proofs = sticky::prove::record::ledger_proofs().expect("the committed proof record");
     let md = ledger::markdown(&entries, budget, &proofs);
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("CLAIMS.md");
@@ -23,8 +23,8 @@ fn claims_md_is_current() {
         committed == md,
         "CLAIMS.md is stale: regenerate it with `STICKY_BLESS=1 cargo test --release --test claims_ledger -- --ignored` (or `sticky claims --markdown > CLAIMS.md`)"
     );
-    // README carries the summary between markers.
-    let readme_path = Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md");
+    // The guide page of the ledger carries the summary between markers.
+    let readme_path = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/guide/claims.md");
     let readme = std::fs::read_to_string(&readme_path).unwrap_or_default();
     let (begin, end) = (
         "<!-- ledger-summary:begin -->\n",
@@ -34,13 +34,13 @@ fn claims_md_is_current() {
     if std::env::var("STICKY_BLESS").is_ok_and(|v| v == "1") {
         if let (Some(a), Some(b)) = (readme.find(begin), readme.find(end)) {
             let fresh = format!("{}{begin}{summary}{}", &readme[..a], &readme[b..]);
-            std::fs::write(&readme_path, fresh).expect("write README.md");
+            std::fs::write(&readme_path, fresh).expect("write docs/guide/claims.md");
         }
     }
     let readme = std::fs::read_to_string(&readme_path).unwrap_or_default();
     assert!(
         readme.contains(&format!("{begin}{summary}{end}")),
-        "README.md's ledger summary is stale: regenerate with `STICKY_BLESS=1 cargo test --release --test claims_ledger -- --ignored`"
+        "docs/guide/claims.md's ledger summary is stale: regenerate with `STICKY_BLESS=1 cargo test --release --test claims_ledger -- --ignored`"
     );
     // Every correction holds: a claim found false is reported, and what we
     // state instead is itself checked.

@@ -281,6 +281,102 @@ pub fn pressure_bound_exclusion_printed<S: Scalar>(case: &Case<S>) -> R {
     exclusion(case, "prop:pressure-bound#exclusion", true)
 }
 
+/// The pairings at one collision instant `t_k` (the pressure is a Dirac mass
+/// in time there, with the jumps `[λ_i]_{t_k}` as weights) against
+/// `(∂_w X̃_N − 1)Ψ` for `Ψ = 1` on `(0, 1)`: `(P̃_N, P_N)` with `P̃_N`
+/// affine from `p_{i−1}` to `p_i` on cell `i` (mean `(p_{i−1} + p_i)/2`) and
+/// the re-indexed `P_N := p_{i−1}`, the pressure of the pair `(i−1, i)`
+/// whose gap is that cell's.
+fn pairings<S: Scalar>(
+    case: &Case<S>,
+    imp: &crate::contact::Impulse<S>,
+    id: &'static str,
+) -> Result<(S, S), Violation> {
+    let n = S::from_usize(case.n());
+    let jumps = augmented_jumps(case.n(), imp);
+    let s = case
+        .state(&imp.t)
+        .map_err(|e| Violation::new(id, e.to_string()))?;
+    let a = augmented(case, &s);
+    let (mut affine, mut reindexed) = (S::zero(), S::zero());
+    for i in 1..=case.n() {
+        let excess = n.clone() * &(a.x[i].clone() - &a.x[i - 1]) - &S::one();
+        let mean = (jumps[i - 1].clone() + &jumps[i]) / &S::from_i64(2);
+        affine = affine + &(excess.clone() * &mean / &n);
+        reindexed = reindexed + &(excess * &jumps[i - 1] / &n);
+    }
+    Ok((affine, reindexed))
+}
+
+/// `prop:2ndorder-LagrPDE#exclusion-pairing`, as printed in the proof:
+/// `0 = ⟨P̃_N, (∂_w X̃_N − 1)Ψ⟩`, at every collision (a spread of 40 when
+/// more), for `Ψ = 1` (every term is `≥ 0`, so the sum is 0 iff every cell
+/// carrying pressure has slope 1).
+pub fn pairing_printed<S: Scalar>(case: &Case<S>) -> R {
+    const ID: &str = "prop:2ndorder-LagrPDE#exclusion-pairing";
+    for imp in case.impulse_spread() {
+        let (affine, _) = pairings(case, imp, ID)?;
+        if !affine.is_zero() {
+            return Err(Violation::new(
+                ID,
+                format!(
+                    "collision at t = {}: ⟨P̃_N, (∂_w X̃_N − 1)·1⟩ = {} ≠ 0 (Σ_i (N(x_i − x_{{i−1}}) − 1)([λ_{{i−1}}] + [λ_i])/(2N), artificial particle x_0 = x_1 − 1/N − 1)",
+                    imp.t.render(),
+                    affine.render()
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The corrected step: with the re-indexed `P_N := p_{i−1}` on cell `i`,
+/// `⟨P_N, (∂_w X̃_N − 1)Ψ⟩ = 0` exactly at every collision, so
+/// `⟨P̃_N, (∂_w X̃_N − 1)Ψ⟩ = ⟨(∂_w X̃_N − 1)(P̃_N − P_N), Ψ⟩ = −⟨R¹_N, Ψ⟩`
+/// (checked as an identity of the two computed pairings).
+pub fn pairing_reindexed<S: Scalar>(case: &Case<S>) -> R {
+    const ID: &str = "prop:2ndorder-LagrPDE#exclusion-pairing (corrected)";
+    let n = S::from_usize(case.n());
+    for imp in case.impulse_spread() {
+        let (affine, reindexed) = pairings(case, imp, ID)?;
+        if !reindexed.is_zero() {
+            return Err(Violation::new(
+                ID,
+                format!(
+                    "collision at t = {}: ⟨P_N, (∂_w X̃_N − 1)·1⟩ = {} ≠ 0 with P_N := p_{{i−1}}",
+                    imp.t.render(),
+                    reindexed.render()
+                ),
+            ));
+        }
+        // −⟨R¹_N, 1⟩ = Σ_i (N gap_i − 1)([λ_i] − [λ_{i−1}])/(2N), computed
+        // apart from the pairing.
+        let jumps = augmented_jumps(case.n(), imp);
+        let s = case
+            .state(&imp.t)
+            .map_err(|e| Violation::new(ID, e.to_string()))?;
+        let a = augmented(case, &s);
+        let mut r1 = S::zero();
+        for i in 1..=case.n() {
+            let excess = n.clone() * &(a.x[i].clone() - &a.x[i - 1]) - &S::one();
+            r1 = r1
+                + &(excess * &(jumps[i].clone() - &jumps[i - 1]) / &(n.clone() * &S::from_i64(2)));
+        }
+        if r1 != affine {
+            return Err(Violation::new(
+                ID,
+                format!(
+                    "collision at t = {}: ⟨P̃_N, (∂_w X̃_N − 1)⟩ = {} but −⟨R¹_N, 1⟩ = {}",
+                    imp.t.render(),
+                    affine.render(),
+                    r1.render()
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// `prop:pressure-bound#gap-delta`: `(x_N(t) − x_0(t)) − 1 ≥ δ`.
 pub fn gap_delta<S: Scalar>(case: &Case<S>) -> R {
     const ID: &str = "prop:pressure-bound#gap-delta";

@@ -16,6 +16,7 @@ use num_rational::BigRational;
 use super::{scaling, Case, Claim, Kind, Violation};
 use crate::fast::kernel;
 use crate::generate::{initial_data, Limits, SplitMix64};
+use crate::progress::Progress;
 use crate::scene::{self, particles_toml};
 
 /// The engines that call every [`Kind::Case`] checker of the registry
@@ -55,15 +56,19 @@ pub enum Status {
     Counterexample,
     /// Not checkable, with the reason.
     NotCheckable(String),
+    /// Its checker passed, but the claim holds for any path whatever the
+    /// dynamics (with the reason): not counted as "holds".
+    Identity(String),
 }
 
 impl Status {
-    /// `holds`, `counterexample` or `not checkable`.
+    /// `holds`, `counterexample`, `not checkable` or `identity`.
     pub fn label(&self) -> &'static str {
         match self {
             Status::Holds => "holds",
             Status::Counterexample => "counterexample",
             Status::NotCheckable(_) => "not checkable",
+            Status::Identity(_) => "identity",
         }
     }
 }
@@ -277,9 +282,7 @@ fn run_kind(
             CASE_ENGINES.to_vec(),
         ),
         Kind::Scaling(check) => {
-            let sb = scaling::Budget {
-                max_n: budget.scaling_max_n,
-            };
+            let sb = scaling::Budget::up_to(budget.scaling_max_n);
             let outcome = match check(sb) {
                 Ok(reports) => Outcome {
                     status: Status::Holds,
@@ -332,14 +335,19 @@ fn run_kind(
     }
 }
 
-/// Runs the whole registry.
-pub fn run(budget: Budget, mut progress: impl FnMut(&str)) -> Vec<Entry> {
+/// Runs the whole registry, telling `progress` of each claim as it starts
+/// (one stage, `claims`, with one step per claim).
+pub fn run(budget: Budget, progress: &dyn Progress) -> Vec<Entry> {
     let shipped = shipped_cases();
     let claims: Vec<Claim<BigRational>> = super::registry();
     let mut out = Vec::with_capacity(claims.len());
+    progress.stage("claims", Some(claims.len() as u64));
     for claim in &claims {
-        progress(claim.id);
-        let (outcome, engines) = run_kind(&claim.kind, claim.applies, budget, &shipped);
+        progress.note(claim.id);
+        let (mut outcome, engines) = run_kind(&claim.kind, claim.applies, budget, &shipped);
+        if let (Status::Holds, Some(why)) = (&outcome.status, claim.identity) {
+            outcome.status = Status::Identity(why.to_string());
+        }
         let correction = claim.correction.as_ref().map(|c| {
             let (o, _) = run_kind(&c.check, claim.applies, budget, &shipped);
             (c.statement, o, c.conclusion)
@@ -352,18 +360,50 @@ pub fn run(budget: Budget, mut progress: impl FnMut(&str)) -> Vec<Entry> {
             outcome,
             correction,
         });
+        progress.advance(1);
     }
+    progress.finish();
     out
 }
 
-/// Counts by status: `(holds, counterexample, not checkable)`.
-pub fn counts(entries: &[Entry]) -> (usize, usize, usize) {
-    let mut c = (0, 0, 0);
+/// The number of claims of each status.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Counts {
+    /// `holds`.
+    pub holds: usize,
+    /// `counterexample`.
+    pub counterexamples: usize,
+    /// `not checkable`.
+    pub not_checkable: usize,
+    /// `identity` (a checker that passes whatever the dynamics).
+    pub identities: usize,
+}
+
+impl std::fmt::Display for Counts {
+    /// `54 hold, 19 counterexamples, 0 not checkable, 1 identity`.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{} hold, {} counterexample{}, {} not checkable, {} identit{}",
+            self.holds,
+            self.counterexamples,
+            if self.counterexamples == 1 { "" } else { "s" },
+            self.not_checkable,
+            self.identities,
+            if self.identities == 1 { "y" } else { "ies" }
+        )
+    }
+}
+
+/// Counts by status.
+pub fn counts(entries: &[Entry]) -> Counts {
+    let mut c = Counts::default();
     for e in entries {
         match e.outcome.status {
-            Status::Holds => c.0 += 1,
-            Status::Counterexample => c.1 += 1,
-            Status::NotCheckable(_) => c.2 += 1,
+            Status::Holds => c.holds += 1,
+            Status::Counterexample => c.counterexamples += 1,
+            Status::NotCheckable(_) => c.not_checkable += 1,
+            Status::Identity(_) => c.identities += 1,
         }
     }
     c
@@ -376,11 +416,10 @@ fn first_line(s: &str) -> &str {
 /// The ledger as a plain-text table.
 pub fn table(entries: &[Entry]) -> String {
     let mut out = String::new();
-    let (h, c, n) = counts(entries);
     out.push_str(&format!(
-        "{} claims: {h} hold, {c} counterexample{}, {n} not checkable\n\n",
+        "{} claims: {}\n\n",
         entries.len(),
-        if c == 1 { "" } else { "s" }
+        counts(entries)
     ));
     let w = entries.iter().map(|e| e.id.len()).max().unwrap_or(10);
     for e in entries {
@@ -416,7 +455,7 @@ fn json_outcome(o: &Outcome) -> String {
             .as_deref()
             .map(s)
             .or_else(|| match &o.status {
-                Status::NotCheckable(r) => Some(s(r)),
+                Status::NotCheckable(r) | Status::Identity(r) => Some(s(r)),
                 _ => None,
             })
             .unwrap_or_else(|| "null".to_string())
@@ -460,7 +499,6 @@ pub fn json(entries: &[Entry]) -> String {
 /// `proofs` fills the column "proved for all real data" (empty: `—`).
 pub fn markdown(entries: &[Entry], budget: Budget, proofs: &Proofs) -> String {
     let mut out = String::new();
-    let (h, c, n) = counts(entries);
     out.push_str("# Claims ledger\n\n");
     out.push_str("Generated by `sticky claims --markdown` (do not edit: `tests/claims_ledger.rs` checks that this file is current).\n");
     out.push_str(&format!(
@@ -468,8 +506,9 @@ pub fn markdown(entries: &[Entry], budget: Budget, proofs: &Proofs) -> String {
         budget.cases, budget.max_n, budget.seed, budget.scaling_max_n
     ));
     out.push_str(&format!(
-        "**{} claims: {h} hold, {c} counterexamples, {n} not checkable.** Every status below is computed by running the checkers; \"holds\" means no counterexample in the cases run, not a proof.\n\n",
-        entries.len()
+        "**{} claims: {}.** Every status below is computed by running the checkers; \"holds\" means no counterexample in the cases run, not a proof; \"identity\" means the checker passed but cannot fail on any consistent path, whatever the dynamics.\n\n",
+        entries.len(),
+        counts(entries)
     ));
     out.push_str("\"Proved for all real data\" is the symbolic prover's record (`sticky prove`, committed in `docs/prove-n1-3.jsonl` and `docs/prove-n4.jsonl`, re-checked at N ≤ 3 by `tests/prove.rs`): for every real datum with that N satisfying the hypotheses printed with the claim, the checker passes.\n\n");
     let corrected = |id: &str| format!("{id} (corrected)");
@@ -526,6 +565,9 @@ pub fn markdown(entries: &[Entry], budget: Budget, proofs: &Proofs) -> String {
         if let Status::NotCheckable(r) = &e.outcome.status {
             out.push_str(&format!("Not checkable: {r}\n\n"));
         }
+        if let Status::Identity(r) = &e.outcome.status {
+            out.push_str(&format!("Identity (not counted as holding): {r}\n\n"));
+        }
         if let Some(note) = &e.outcome.note {
             out.push_str(&format!("Measured: {note}\n\n"));
         }
@@ -577,10 +619,10 @@ fn proof_line(p: &Proof) -> String {
 /// The README's summary of the ledger: counts by status and each
 /// counterexample in one line (kept current by `tests/claims_ledger.rs`).
 pub fn summary(entries: &[Entry]) -> String {
-    let (h, c, n) = counts(entries);
     let mut out = format!(
-        "{} claims: {h} hold, {c} counterexamples, {n} not checkable (the corrected statement of every counterexample holds).\n\n",
-        entries.len()
+        "{} claims: {} (the corrected statement of every counterexample holds).\n\n",
+        entries.len(),
+        counts(entries)
     );
     for e in entries {
         if e.outcome.status == Status::Counterexample {

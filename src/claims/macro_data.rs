@@ -74,7 +74,9 @@ pub struct Row {
     pub pressure_abs: Q,
     /// The same sum without absolute values.
     pub pressure_signed: Q,
-    /// `sup_t (‖X_N‖² + ‖U_N‖² + ‖Λ_N‖²)` (`‖·‖² = (1/N)Σ`).
+    /// `sup_t` of the sum of the squared `L²(0,1)` norms of the seven
+    /// functions of `prop:L2-micro`: `X_N, X̃_N, ∂_t X_N, ∂_t X̃_N, Λ_N, Λ̃_N,
+    /// ∂_w Λ̃_N` ([`seven_norms`]).
     pub l2: Q,
     /// `sup_{t ∈ [T/2, T]} Σ_i |u_i − u_{i−1}|`.
     pub tv_late: Q,
@@ -84,7 +86,8 @@ pub struct Row {
     pub disc_x: Option<Q>,
     /// `‖U⁰_N − U⁰‖²_{L²}` of the printed quantile sample.
     pub disc_u: Option<Q>,
-    /// `sup_w |X̃_N(0, w) − X⁰(w)|` over `w ∈ [1/N, 1]`.
+    /// `sup_w |X̃_N(0, w) − X⁰(w)|` over `w ∈ [0, 1]` (the artificial
+    /// particle's cell included).
     pub uniform_x0: Q,
     /// `max ‖X_N(t) − X(t)‖²_{L²}` over the comparison times with a
     /// rational profile.
@@ -92,6 +95,10 @@ pub struct Row {
     /// `max |∫_0^1 (Λ_N(t) − Λ(t)) φ|` over the comparison times with a
     /// rational profile and `φ ∈ {1, w}`.
     pub cvg_lambda: Option<Q>,
+    /// `N · sup_t |∫_0^1 (Λ_N − Λ̃_N)(t,w) w dw|` over the probe times: the
+    /// factor of `‖∂_t Ψ‖` in `|⟨P_N − P̃_N, Ψ⟩| ≤ (C/N)‖∂_t Ψ‖` for
+    /// `Ψ = ψ(t)w` ([`lambda_gap_moment`]).
+    pub pn_gap: Q,
     /// `C'_0 = (x⁰_N − x⁰_0) + sup_i |u⁰_i|`, the smallest constant of
     /// `cond:Linfty` for the sample (artificial particle `x⁰_0 = x⁰_1 − 1/N − δ`,
     /// `δ = 1`, as in `prop:Linf-micro`).
@@ -297,26 +304,34 @@ fn lambda_n_moment(lambda: &[Q], k: i32) -> Q {
     }
 }
 
-/// `sup_{w ∈ [1/N, 1]} |X̃_N(0, w) − X⁰(w)|`: both are affine between
-/// consecutive points of `{i/N} ∪ {mass breakpoints}`, so the sup is over
-/// their one-sided values there.
+/// `sup_{w ∈ [0, 1]} |X̃_N(0, w) − X⁰(w)|`, the artificial particle's cell
+/// `[0, 1/N]` included (`df:x0`: `x_0 = x_1 − 1/N − δ`, `δ = 1`, so that
+/// `X̃_N(0, 0) = x_0`): both are affine between consecutive points of
+/// `{i/N} ∪ {mass breakpoints}`, so the sup is over their one-sided values
+/// there.
 fn uniform_x0(d: &MacroDatum, x: &[Q]) -> Q {
     let n = x.len();
     let nn = Q::from_usize(n);
+    // x_0, x_1, …, x_N: the artificial particle first.
+    let mut full = Vec::with_capacity(n + 1);
+    full.push(x[0].clone() - nn.recip() - Q::one());
+    full.extend_from_slice(x);
     let breaks = d.mass_breakpoints();
     let mut sup = Q::zero();
-    for i in 1..n {
-        let (a, b) = (Q::from_usize(i) / &nn, Q::from_usize(i + 1) / &nn);
+    for i in 1..=n {
+        let (a, b) = (Q::from_usize(i - 1) / &nn, Q::from_usize(i) / &nn);
         // Without a mass breakpoint in [a, b], X⁰ is affine on the cell and
-        // X̃_N(0) interpolates it at both ends (x_i = X⁰(i/N)): equal.
-        if !breaks.iter().any(|m| *m >= a && *m <= b) {
+        // X̃_N(0) interpolates it at both ends (x_i = X⁰(i/N)): equal —
+        // except on the first cell, whose left end is the artificial x_0.
+        if i > 1 && !breaks.iter().any(|m| *m >= a && *m <= b) {
             continue;
         }
         let mut cuts = vec![a.clone()];
         cuts.extend(breaks.iter().filter(|m| **m > a && **m < b).cloned());
         cuts.push(b);
-        // X̃_N on [a, b]: x[i−1] + N (w − a)(x[i] − x[i−1]).
-        let tilde = |w: &Q| x[i - 1].clone() + (w.clone() - &a) * &nn * (x[i].clone() - &x[i - 1]);
+        // X̃_N on [a, b]: x_{i−1} + N (w − a)(x_i − x_{i−1}).
+        let tilde =
+            |w: &Q| full[i - 1].clone() + (w.clone() - &a) * &nn * (full[i].clone() - &full[i - 1]);
         for w in cuts.windows(2) {
             let h = w[1].clone() - &w[0];
             let eps = h.clone() / Q::from_i64(4);
@@ -330,6 +345,58 @@ fn uniform_x0(d: &MacroDatum, x: &[Q]) -> Q {
         }
     }
     sup
+}
+
+/// `∫_0^1 (Λ_N − Λ̃_N)(t,w) w dw` from `λ_1 … λ_N` (`λ_0 = 0`): on cell `i`,
+/// `w = (i−1)/N + s/N`, `Λ_N − Λ̃_N = d_i (1 − s)` with `d_i = λ_i − λ_{i−1}`,
+/// so the cell gives `d_i ((i−1)/(2N²) + 1/(6N²))`. (Against `Ψ = ψ(t)`
+/// alone the integral is `(λ_N − λ_0)/(2N) = 0`: `w` is the first test
+/// that sees the difference.)
+fn lambda_gap_moment(l: &[Q]) -> Q {
+    let n = l.len();
+    let nn = Q::from_usize(n);
+    let mut sum = Sum::default();
+    for i in 0..n {
+        let prev = if i == 0 { Q::zero() } else { l[i - 1].clone() };
+        let d = l[i].clone() - prev;
+        sum.add(d * (Q::from_usize(3 * i + 1)));
+    }
+    sum.total() / (Q::from_i64(6) * &nn * &nn)
+}
+
+/// `∫_{(i−1)/N}^{i/N} f²` for `f` affine from `a` to `b`: `(a² + ab + b²)/(3N)`
+/// (without the factor `1/N`, applied once by the caller).
+fn affine_sq(a: &Q, b: &Q) -> Q {
+    (a.clone() * a + a.clone() * b + b.clone() * b) / Q::from_i64(3)
+}
+
+/// The sum of the squared `L²(0,1)` norms of the seven functions of
+/// `prop:L2-micro` at one instant, from the positions `x_1 … x_N`, the
+/// velocities `u_1 … u_N` and the multipliers `λ_1 … λ_N`: the constant
+/// interpolations `X_N, ∂_t X_N = U_N, Λ_N` (value `x_i, u_i, λ_i` on
+/// `((i−1)/N, i/N]`), the affine ones `X̃_N, ∂_t X̃_N = Ũ_N, Λ̃_N` (from
+/// `x_0 = x_1 − 1/N − δ` with `δ = 1`, `u_0 = u_1` — the artificial particle
+/// moves with particle 1 — and `λ_0 = 0`, `df:x0`), and `∂_w Λ̃_N = N(λ_i −
+/// λ_{i−1})` on each cell.
+fn seven_norms(x: &[Q], u: &[Q], l: &[Q]) -> Q {
+    let n = x.len();
+    debug_assert!(u.len() == n && l.len() == n, "one x, u and λ per particle");
+    let nn = Q::from_usize(n);
+    let x0 = x[0].clone() - nn.recip() - Q::one();
+    let (mut constant, mut affine, mut slope) = (Sum::default(), Sum::default(), Sum::default());
+    for i in 0..n {
+        let (xp, up, lp) = if i == 0 {
+            (&x0, &u[0], &Q::zero())
+        } else {
+            (&x[i - 1], &u[i - 1], &l[i - 1])
+        };
+        constant.add(x[i].clone() * &x[i] + u[i].clone() * &u[i] + l[i].clone() * &l[i]);
+        affine.add(affine_sq(xp, &x[i]) + affine_sq(up, &u[i]) + affine_sq(lp, &l[i]));
+        let d = l[i].clone() - lp;
+        slope.add(d.clone() * d);
+    }
+    // (1/N) Σ per cell, and ‖∂_w Λ̃_N‖² = (1/N) Σ N²(λ_i − λ_{i−1})².
+    (constant.total() + affine.total()) / &nn + slope.total() * nn
 }
 
 /// An exact sum that adds numerators over equal denominators first (the
@@ -352,14 +419,6 @@ impl Sum {
             .into_iter()
             .fold(Q::zero(), |a, (d, n)| a + Q::new(n, d))
     }
-}
-
-fn sum_sq(v: &[Q]) -> Q {
-    let mut s = Sum::default();
-    for x in v {
-        s.add_square(x);
-    }
-    s.total()
 }
 
 /// `∫_0^1 (V_N − V)²` for `V_N = v_i` on `(i/N, (i+1)/N)` (0-based) and `V`
@@ -445,6 +504,7 @@ fn row_of(c: &MacroCase, traj: &Trajectory<Q>, id: &'static str) -> Result<Row, 
         (Q::zero(), Q::zero(), Q::zero(), Q::zero());
     let mut cvg_x: Option<Q> = None;
     let mut cvg_lambda: Option<Q> = None;
+    let mut pn_gap = Q::zero();
     // t = kT/4, k = 0 … 4: the comparison times and 0.
     let probes = std::iter::once((Q::zero(), None))
         .chain(c.profiles.iter().map(|(t, p)| (t.clone(), p.as_ref())));
@@ -463,10 +523,8 @@ fn row_of(c: &MacroCase, traj: &Trajectory<Q>, id: &'static str) -> Result<Row, 
         for v in &s.velocities {
             u_sup = max(u_sup, abs(v.clone()) * Q::from_i64(2));
         }
-        l2 = max(
-            l2,
-            (sum_sq(&s.positions) + sum_sq(&s.velocities) + sum_sq(&l)) / &nn,
-        );
+        l2 = max(l2, seven_norms(&s.positions, &s.velocities, &l));
+        pn_gap = max(pn_gap, abs(lambda_gap_moment(&l)) * &nn);
         if t >= alpha {
             let mut tv = Sum::default();
             for w in s.velocities.windows(2) {
@@ -515,6 +573,7 @@ fn row_of(c: &MacroCase, traj: &Trajectory<Q>, id: &'static str) -> Result<Row, 
         uniform_x0: uniform_x0(&c.datum, &qx),
         cvg_x,
         cvg_lambda,
+        pn_gap,
         c0_prime,
         momentum,
     })
@@ -549,6 +608,35 @@ pub fn table(max_n: usize, id: &'static str) -> Result<Arc<Vec<Series>>, Violati
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `∫(Λ_N − Λ̃_N) w dw` by hand: N = 2, λ = (1, 0): cell 1 (d = 1) gives
+    /// 1·(0 + 1/24), cell 2 (d = −1) gives −1·(1/8 + 1/24): total −1/8.
+    #[test]
+    fn lambda_gap_moment_by_hand() {
+        assert_eq!(lambda_gap_moment(&[q(1, 1), q(0, 1)]), q(-1, 8));
+        assert_eq!(lambda_gap_moment(&[q(0, 1), q(0, 1)]), q(0, 1));
+    }
+
+    /// The seven norms on one particle by hand: x_1 = 0, u_1 = 1, λ_1 = 0,
+    /// so x_0 = −2 (δ = 1, 1/N = 1), u_0 = 1, λ_0 = 0: constant parts
+    /// 0 + 1 + 0, affine parts (4 + 0 + 0)/3 + (1 + 1 + 1)/3 + 0, slope 0.
+    #[test]
+    fn seven_norms_by_hand() {
+        let z = Q::zero();
+        let one = Q::one();
+        assert_eq!(
+            seven_norms(&[Q::zero()], &[one], &[z]),
+            q(10, 3),
+            "‖X_N‖² + ‖X̃_N‖² + ‖U_N‖² + ‖Ũ_N‖² + ‖Λ_N‖² + ‖Λ̃_N‖² + ‖∂_wΛ̃_N‖²"
+        );
+        // Two particles, λ = (1, 0): ‖∂_w Λ̃_N‖² = (1/2)·4·(1 + 1) = 4 of it.
+        let x = [q(0, 1), q(1, 2)];
+        let u = [q(0, 1), q(0, 1)];
+        let with = seven_norms(&x, &u, &[q(1, 1), q(0, 1)]);
+        let without = seven_norms(&x, &u, &[q(0, 1), q(0, 1)]);
+        // Λ_N: (1/2)(1); Λ̃_N: (1/2)(1/3 + 1/3); ∂_w Λ̃_N: 2(1 + 1).
+        assert_eq!(with - without, q(1, 2) + q(1, 3) + q(4, 1));
+    }
 
     #[test]
     fn progression_sums_match_the_terms() {

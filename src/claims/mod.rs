@@ -196,6 +196,10 @@ pub struct Claim<S> {
     pub applies: fn(&Case<S>) -> bool,
     /// For a claim known to fail as printed: the corrected statement.
     pub correction: Option<Correction<S>>,
+    /// For a claim that holds for any path whatever the dynamics (its
+    /// checker cannot fail on a consistent trajectory): why. The ledger
+    /// reports it as an identity, outside the "holds" count.
+    pub identity: Option<&'static str>,
 }
 
 /// `applies` for claims valid for every admissible datum.

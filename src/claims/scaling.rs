@@ -36,6 +36,42 @@ type Q = BigRational;
 pub struct Budget {
     /// Largest N (a power of two ≥ 8).
     pub max_n: usize,
+    /// A deliberate corruption of every measured [`Row`] before the verdict
+    /// (`tests/claims_selfcheck.rs` shows with it that every scaling checker
+    /// can fail); `None` in every real run.
+    #[doc(hidden)]
+    pub tamper: Option<RowTamper>,
+}
+
+impl Budget {
+    /// The budget up to `max_n`, untampered.
+    pub fn up_to(max_n: usize) -> Self {
+        Budget {
+            max_n,
+            tamper: None,
+        }
+    }
+}
+
+/// A hand-written mutant of the measured table: changes one [`Row`] (a
+/// factor `1/N` forgotten, a norm left out, a sign lost).
+#[doc(hidden)]
+pub type RowTamper = fn(&mut Row);
+
+/// The measured table of [`macro_data::table`], with the budget's
+/// [`RowTamper`] applied to every row when there is one.
+fn table(budget: Budget, id: &'static str) -> Result<std::sync::Arc<Vec<Series>>, Violation> {
+    let t = macro_data::table(budget.max_n, id)?;
+    let Some(f) = budget.tamper else {
+        return Ok(t);
+    };
+    let mut t = (*t).clone();
+    for s in &mut t {
+        for r in &mut s.rows {
+            f(r);
+        }
+    }
+    Ok(std::sync::Arc::new(t))
 }
 
 /// What a scaling check measured on one datum (or on the random data as a
@@ -184,7 +220,7 @@ fn run(
     verdict: Verdict,
     pick: impl Fn(&Row) -> Option<Q>,
 ) -> Result<Vec<ScalingReport>, Violation> {
-    let table = macro_data::table(budget.max_n, id)?;
+    let table = table(budget, id)?;
     judge_all(id, &table, verdict, pick)
 }
 
@@ -288,7 +324,7 @@ pub fn lambda_sup(budget: Budget) -> Result<Vec<ScalingReport>, Violation> {
 /// from the norm, and the checker reports it.
 pub fn pressure_mass(budget: Budget) -> Result<Vec<ScalingReport>, Violation> {
     const ID: &str = "prop:pressure-bound";
-    let table = macro_data::table(budget.max_n, ID)?;
+    let table = table(budget, ID)?;
     pressure_on(&table)
 }
 
@@ -314,12 +350,27 @@ pub fn pressure_on(table: &[Series]) -> Result<Vec<ScalingReport>, Violation> {
     })
 }
 
-/// `prop:L2-micro`: `sup_t (‖X_N‖² + ‖U_N‖² + ‖Λ_N‖²) ≤ C` (squared norms
-/// of the piecewise-constant interpolations, `= (1/N)(|x|² + |u|² + |λ|²)`).
+/// `prop:L2-micro`: the seven norms of the statement, `sup_t` of the sum of
+/// their squares `‖X_N‖² + ‖X̃_N‖² + ‖∂_t X_N‖² + ‖∂_t X̃_N‖² + ‖Λ_N‖² +
+/// ‖Λ̃_N‖² + ‖∂_w Λ̃_N‖²` in `L²(0,1)` ([`Row::l2`]; bounded iff the sum of
+/// the norms is, within a factor √7).
 pub fn l2_bounds(budget: Budget) -> Result<Vec<ScalingReport>, Violation> {
     run("prop:L2-micro", budget, Verdict::Bounded, |r| {
         Some(r.l2.clone())
     })
+}
+
+/// `prop:2ndorder-LagrPDE#PN-minus-tPN`: `|⟨P_N − P̃_N, Ψ⟩| ≤ (C/N)
+/// ‖∂_t Ψ‖_{L¹(0,T; L^∞(0,1))}`, for `Ψ = ψ(t)w`: `⟨P_N − P̃_N, Ψ⟩ =
+/// −∫ψ'(t) ∫(Λ_N − Λ̃_N) w dw dt`, so `C ≥ N sup_t |∫(Λ_N − Λ̃_N) w dw|`
+/// ([`Row::pn_gap`]) must stay bounded.
+pub fn pn_minus_tpn(budget: Budget) -> Result<Vec<ScalingReport>, Violation> {
+    run(
+        "prop:2ndorder-LagrPDE#PN-minus-tPN",
+        budget,
+        Verdict::Bounded,
+        |r| Some(r.pn_gap.clone()),
+    )
 }
 
 /// `pwUN-L1`: `sup_{t ∈ [α, T]} ‖∂_w Ũ_N(t)‖_{L¹} ≤ C_α`, at `α = T/2`
@@ -360,7 +411,7 @@ pub fn discretisation_u(budget: Budget) -> Result<Vec<ScalingReport>, Violation>
 /// independent of N, for the quantile sample (the smallest such constant at
 /// each N, with the artificial particle `x⁰_0 = x⁰_1 − 1/N − δ`, `δ = 1`).
 pub fn cond_linfty(budget: Budget) -> Result<Vec<ScalingReport>, Violation> {
-    cond_linfty_on(&macro_data::table(budget.max_n, "cond:Linfty")?)
+    cond_linfty_on(&table(budget, "cond:Linfty")?)
 }
 
 /// [`cond_linfty`] on a given table.
@@ -376,7 +427,7 @@ pub fn cond_linfty_on(table: &[Series]) -> Result<Vec<ScalingReport>, Violation>
 /// `T`.
 pub fn eulerian_momentum(budget: Budget) -> Result<Vec<ScalingReport>, Violation> {
     const ID: &str = "prop:eulerian-formulation#momentum";
-    eulerian_momentum_on(&macro_data::table(budget.max_n, ID)?)
+    eulerian_momentum_on(&table(budget, ID)?)
 }
 
 /// [`eulerian_momentum`] on a given table.
@@ -390,7 +441,8 @@ pub fn eulerian_momentum_on(table: &[Series]) -> Result<Vec<ScalingReport>, Viol
 }
 
 /// `prop:cvg1` as printed: `X̃_N → X` in `C([0,T] × [0,1])`, measured at
-/// `t = 0`: `sup_{w ∈ [1/N,1]} |X̃_N(0,w) − X⁰(w)|`.
+/// `t = 0` on the whole `[0, 1]`: `sup_{w ∈ [0,1]} |X̃_N(0,w) − X⁰(w)|`
+/// (the artificial particle's cell `[0, 1/N]` included).
 pub fn cvg1_uniform(budget: Budget) -> Result<Vec<ScalingReport>, Violation> {
     run("prop:cvg1", budget, Verdict::ToZero, |r| {
         Some(r.uniform_x0.clone())
@@ -465,6 +517,7 @@ mod tests {
             uniform_x0: v.clone(),
             cvg_x: Some(v.clone()),
             cvg_lambda: Some(v.clone()),
+            pn_gap: v.clone(),
             c0_prime: v.clone(),
             momentum: v,
         }

@@ -1,8 +1,9 @@
 //! `sticky claims [--json|--markdown]`: the claims ledger.
 
-use std::io::{self, Write};
+use std::io::Write;
 
 use sticky::claims::ledger::{self, Budget};
+use sticky::report::progress::Bar;
 
 use crate::{io_err, Failure};
 
@@ -44,15 +45,10 @@ fn claims(
     as_json: bool,
     as_markdown: bool,
 ) -> Result<(), Failure> {
-    let tty = io::IsTerminal::is_terminal(&io::stderr());
-    let entries = ledger::run(budget, |id| {
-        if tty {
-            eprint!("\r\x1b[2Kchecking {id}");
-        }
-    });
-    if tty {
-        eprint!("\r\x1b[2K");
-    }
+    // The claim being checked, the count and the time left, on a terminal
+    // only (the bar is hidden when stderr is piped or redirected).
+    let bar = Bar::for_command("claims");
+    let entries = ledger::run(budget, &bar);
     let text = if as_json {
         ledger::json(&entries)
     } else if as_markdown {
