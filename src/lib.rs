@@ -75,6 +75,7 @@ pub mod cluster;
 pub mod columns;
 pub mod contact;
 pub mod error;
+pub mod gcd;
 pub mod generate;
 pub mod initial;
 pub mod progress;

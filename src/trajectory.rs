@@ -29,6 +29,7 @@
 
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
+use std::sync::OnceLock;
 
 use crate::cluster::{runs, Cluster};
 use crate::contact::{multipliers, Impulse};
@@ -99,10 +100,22 @@ impl<S: Scalar> Ord for Candidate<S> {
 #[derive(Debug, Clone)]
 pub struct Trajectory<S> {
     data: InitialData<S>,
-    prefix_x: Vec<S>,
-    prefix_u: Vec<S>,
+    /// The prefix sums of `x̃⁰` and `u⁰` that [`Trajectory::at`] and
+    /// [`Trajectory::position_in`] read, computed on first use: over
+    /// BigRational their denominators grow to the common denominator of
+    /// the whole datum (`lcm(1, …, 20001)`, ~28,800 bits, for velocities
+    /// `1/(i+1)`), so the event merge itself never builds them.
+    prefix: OnceLock<Prefix<S>>,
     join_time: Vec<Option<S>>,
     impulses: Vec<Impulse<S>>,
+}
+
+/// The prefix sums `Σ_{j<i} x̃⁰_j` and `Σ_{j<i} u⁰_j` (N + 1 entries each):
+/// cluster sums are differences of them.
+#[derive(Debug, Clone)]
+struct Prefix<S> {
+    x: Vec<S>,
+    u: Vec<S>,
 }
 
 /// The collision time of adjacent clusters, if they approach.
@@ -118,10 +131,24 @@ fn meeting_time<S: Scalar>(l: &Node<S>, r: &Node<S>) -> Option<S> {
 }
 
 /// The prefix sums of the translated positions `x̃⁰` and of the velocities
-/// `u⁰` (`Σ_{j<i}`, N + 1 entries each): cluster sums are differences of
-/// them.
-fn prefix_sums<S: Scalar>(shifted: &[S], u0: &[S]) -> (Vec<S>, Vec<S>) {
-    (prefix(shifted), prefix(u0))
+/// `u⁰` of `data`.
+fn prefix_sums<S: Scalar>(data: &InitialData<S>) -> Prefix<S> {
+    Prefix {
+        x: prefix(&data.shifted_positions()),
+        u: prefix(data.velocities()),
+    }
+}
+
+/// `Σ_{i∈c} v_i`, summed as a balanced tree: over BigRational the partial
+/// sums of a run keep the denominators of that run only, and the big
+/// additions are few (a left-to-right sum would reduce every partial sum
+/// over the growing common denominator).
+fn tree_sum<S: Scalar>(v: &[S]) -> S {
+    match v.len() {
+        0 => S::zero(),
+        1 => v[0].clone(),
+        len => tree_sum(&v[..len / 2]) + &tree_sum(&v[len / 2..]),
+    }
 }
 
 fn prefix<S: Scalar>(v: &[S]) -> Vec<S> {
@@ -141,7 +168,6 @@ impl<S: Scalar> Trajectory<S> {
         let n = data.n();
         let shifted = data.shifted_positions();
         let u0 = data.velocities();
-        let (prefix_x, prefix_u) = prefix_sums(&shifted, u0);
         let mut join_time: Vec<Option<S>> = vec![None; n.saturating_sub(1)];
 
         // Initial clusters: contacts with equal velocities.
@@ -154,8 +180,8 @@ impl<S: Scalar> Trajectory<S> {
             nodes.push(Node {
                 first: c.first,
                 size: c.size,
-                sum_x: prefix_x[c.end()].clone() - &prefix_x[c.first],
-                sum_u: prefix_u[c.end()].clone() - &prefix_u[c.first],
+                sum_x: tree_sum(&shifted[c.first..c.end()]),
+                sum_u: tree_sum(&u0[c.first..c.end()]),
                 alive: true,
                 prev: k.checked_sub(1),
                 next: (k + 1 < initial.len()).then_some(k + 1),
@@ -250,16 +276,13 @@ impl<S: Scalar> Trajectory<S> {
                 });
             }
         }
-        Self::assemble(data, prefix_x, prefix_u, join_time, impulses)
+        Self::assemble(data, join_time, impulses)
     }
 
     /// A trajectory from a history computed elsewhere (the integer engine
     /// [`crate::fast::merge`]): `join_time` and `impulses` exactly as
-    /// [`Trajectory::new`] records them. The prefix sums that
-    /// [`Trajectory::at`] reads are computed by the same [`prefix_sums`] as
-    /// in `new` (which keeps its own, already needed for the initial
-    /// clusters, rather than computing them twice), and both constructors
-    /// end in [`Trajectory::assemble`]. Public but hidden for one more
+    /// [`Trajectory::new`] records them. Both constructors end in
+    /// [`Trajectory::assemble`]. Public but hidden for one more
     /// caller: `tests/claims_mutants.rs` builds histories tampered on
     /// purpose with it; nothing checks that the parts are consistent.
     #[doc(hidden)]
@@ -268,24 +291,19 @@ impl<S: Scalar> Trajectory<S> {
         join_time: Vec<Option<S>>,
         impulses: Vec<Impulse<S>>,
     ) -> Self {
-        let (prefix_x, prefix_u) = prefix_sums(&data.shifted_positions(), data.velocities());
-        Self::assemble(data, prefix_x, prefix_u, join_time, impulses)
+        Self::assemble(data, join_time, impulses)
     }
 
     /// The one place a trajectory is put together.
     fn assemble(
         data: InitialData<S>,
-        prefix_x: Vec<S>,
-        prefix_u: Vec<S>,
         join_time: Vec<Option<S>>,
         impulses: Vec<Impulse<S>>,
     ) -> Self {
-        debug_assert_eq!(prefix_x.len(), data.n() + 1);
         debug_assert_eq!(join_time.len(), data.n().saturating_sub(1));
         Trajectory {
             data,
-            prefix_x,
-            prefix_u,
+            prefix: OnceLock::new(),
             join_time,
             impulses,
         }
@@ -303,8 +321,10 @@ impl<S: Scalar> Trajectory<S> {
         let f = |v: &S| v.to_f64_lossy();
         Trajectory {
             data: self.data.to_f64_lossy(),
-            prefix_x: self.prefix_x.iter().map(f).collect(),
-            prefix_u: self.prefix_u.iter().map(f).collect(),
+            prefix: OnceLock::from(Prefix {
+                x: self.prefix().x.iter().map(f).collect(),
+                u: self.prefix().u.iter().map(f).collect(),
+            }),
             join_time: self.join_time.iter().map(|j| j.as_ref().map(f)).collect(),
             impulses: self
                 .impulses
@@ -319,6 +339,11 @@ impl<S: Scalar> Trajectory<S> {
                 })
                 .collect(),
         }
+    }
+
+    /// The prefix sums, computed on the first call.
+    fn prefix(&self) -> &Prefix<S> {
+        self.prefix.get_or_init(|| prefix_sums(&self.data))
     }
 
     /// The initial data.
@@ -357,8 +382,9 @@ impl<S: Scalar> Trajectory<S> {
     /// from the recorded prefix sums, without building the state at `t`.
     pub fn position_in(&self, c: &Cluster, i: usize, t: &S) -> S {
         let k = S::from_usize(c.size.max(1));
-        let sum_x = self.prefix_x[c.end()].clone() - &self.prefix_x[c.first];
-        let sum_u = self.prefix_u[c.end()].clone() - &self.prefix_u[c.first];
+        let p = self.prefix();
+        let sum_x = p.x[c.end()].clone() - &p.x[c.first];
+        let sum_u = p.u[c.end()].clone() - &p.u[c.first];
         (sum_x + &(t.clone() * &sum_u)) / &k + &(self.data.two_r() * &S::from_usize(i))
     }
 
@@ -369,12 +395,27 @@ impl<S: Scalar> Trajectory<S> {
             return Err(Error::NegativeTime { t: t.render() });
         }
         let n = self.data.n();
+        let shifted0 = if self.prefix.get().is_some() {
+            Vec::new()
+        } else {
+            self.data.shifted_positions()
+        };
         let mut shifted = Vec::with_capacity(n);
         let mut velocities = Vec::with_capacity(n);
         for c in self.clusters_after(t) {
             let k = S::from_usize(c.size);
-            let sum_x = self.prefix_x[c.end()].clone() - &self.prefix_x[c.first];
-            let sum_u = self.prefix_u[c.end()].clone() - &self.prefix_u[c.first];
+            // The prefix sums when they are at hand (always for the f64
+            // copy, whose rounding they fix); else each cluster's own sum.
+            let (sum_x, sum_u) = match self.prefix.get() {
+                Some(p) => (
+                    p.x[c.end()].clone() - &p.x[c.first],
+                    p.u[c.end()].clone() - &p.u[c.first],
+                ),
+                None => (
+                    tree_sum(&shifted0[c.first..c.end()]),
+                    tree_sum(&self.data.velocities()[c.first..c.end()]),
+                ),
+            };
             let x = (sum_x + &(t.clone() * &sum_u)) / &k;
             let v = sum_u / &k;
             shifted.extend(std::iter::repeat_n(x, c.size));

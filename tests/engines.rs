@@ -397,3 +397,42 @@ fn the_ranges_reach_every_width() {
     assert_eq!(width(0, 320), Width::I512);
     assert_eq!(width(0, 600), Width::Big);
 }
+
+/// The hostile shape of issue 29 at small N: velocities `(-1)^i/(i+1)`, so
+/// every denominator is small and their common denominator
+/// `lcm(1, …, N)` is not; the particles 3 apart (r = 1/2) collide in
+/// cascade. Every engine equals the oracle, and `auto` leaves the
+/// common-denominator kernel for the generic projection on this shape at
+/// N = 400 (lcm(1..400): 574 bits) but keeps the kernel at N = 8.
+#[test]
+fn hostile_common_denominators() {
+    use sticky::fast::engine::{auto, Bits, Cost};
+    let hostile = |n: i64| {
+        InitialData::new(
+            q(1, 2),
+            (0..n).map(|i| q(3 * i, 1)).collect(),
+            (0..n)
+                .map(|i| q(if i % 2 == 0 { 1 } else { -1 }, i + 1))
+                .collect(),
+        )
+        .unwrap()
+    };
+    for n in [2, 5, 12, 30] {
+        let (_, t) = agree(&hostile(n));
+        assert!(t.impulses().len() as i64 >= n / 2, "N = {n}");
+    }
+    let small = Cost::of(&hostile(8));
+    assert_eq!(small.common_denominator, Bits::Exact(10)); // lcm(1..8) = 840
+    assert_eq!(auto(&hostile(8)).name(), "kernel");
+    let big = Cost::of(&hostile(400));
+    assert_eq!(big.common_denominator, Bits::Exact(574));
+    assert_eq!(big.largest_denominator_bits, 9);
+    assert_eq!(auto(&hostile(400)).name(), "generic-projection");
+    let line = big.explain(auto(&hostile(400)));
+    assert!(
+        line.contains("generic-projection")
+            && line.contains("574 bits")
+            && line.contains("N = 400"),
+        "{line}"
+    );
+}

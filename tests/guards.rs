@@ -133,16 +133,20 @@ fn huge_common_denominators_are_refused_up_front() {
     let scene = d.join("w.toml");
     std::fs::write(&scene, "[particles]\nradius = \"1/4\"\ndata = \"w.csv\"\n").unwrap();
     let s = scene.to_str().unwrap();
-    // 200 particles, denominators of 2 or 3 words: 200 · 9 = 1800.
+    // 200 particles, denominators of 2 or 3 words each, but their common
+    // denominator lcm(2, …, 201) · 10^40 has 431 bits (7 words), which the
+    // integer engines scale to: 200 · 49 = 9800.
     for args in [vec!["events", s], vec!["run", s, "--at", "1", "--json"]] {
-        let o = sticky(&args, &[("STICKY_MAX_WORK", "1799")]);
+        let o = sticky(&args, &[("STICKY_MAX_WORK", "9799")]);
         let err = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(1), "{err}");
         assert!(
-            err.contains("N = 200") && err.contains("STICKY_MAX_WORK"),
+            err.contains("N = 200")
+                && err.contains("common denominator of 431 bits")
+                && err.contains("STICKY_MAX_WORK"),
             "{err}"
         );
-        let o = sticky(&args, &[("STICKY_MAX_WORK", "1800")]);
+        let o = sticky(&args, &[("STICKY_MAX_WORK", "9800")]);
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     }
     std::fs::remove_dir_all(&d).unwrap();

@@ -90,11 +90,164 @@ pub fn by_name(name: &str) -> Option<&'static dyn ExactEngine> {
         .find(|e| e.name() == name || e.aliases().contains(&name))
 }
 
-/// The cheapest exact engine for one-shot states of `data`: the integer
-/// kernel, which runs on the narrowest integer width the data allow at each
-/// time (`i128`, 256-bit, `BigInt`).
-pub fn auto(_data: &InitialData<BigRational>) -> &'static dyn ExactEngine {
-    &Kernel
+/// Beyond this many bits the running lcm of [`Cost::of`] stops: the common
+/// denominator is then known to be at least this large (2^16 bits, 1,024
+/// words: past it the common-denominator engines are out of the question).
+pub const LCM_BITS_LIMIT: u64 = 1 << 16;
+
+/// The size of a common denominator: exact, or a lower bound when the
+/// running lcm stopped at [`LCM_BITS_LIMIT`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Bits {
+    /// The common denominator has exactly this many bits.
+    Exact(u64),
+    /// The common denominator has at least this many bits.
+    AtLeast(u64),
+}
+
+impl Bits {
+    /// The bits known (exact, or the lower bound).
+    pub fn bits(self) -> u64 {
+        match self {
+            Bits::Exact(b) | Bits::AtLeast(b) => b,
+        }
+    }
+}
+
+impl std::fmt::Display for Bits {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Bits::Exact(b) => write!(f, "{b} bits"),
+            Bits::AtLeast(b) => write!(f, "more than {b} bits"),
+        }
+    }
+}
+
+/// What the choice of an engine rests on: `N`, the size of the common
+/// denominators the integer engines scale to (`df:translat-x`), of the
+/// largest single denominator and numerator, and the estimated word
+/// operations of each kind of engine.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Cost {
+    /// The number of particles.
+    pub n: usize,
+    /// The common denominator of the translated positions or of the
+    /// velocities (the larger), radius included.
+    pub common_denominator: Bits,
+    /// Bits of the largest single denominator of the data.
+    pub largest_denominator_bits: u64,
+    /// Bits of the largest numerator of the data.
+    pub largest_numerator_bits: u64,
+    /// Word operations of the common-denominator engines (kernel, adaptive,
+    /// merge): `N · w²`, `w` the words of a scaled value (common
+    /// denominator plus numerator), each answer reduced by a gcd on them.
+    pub common: u64,
+    /// Word operations of the generic engines on local denominators:
+    /// `N · w²` on the largest single value, times [`GENERIC_OVERHEAD`].
+    pub local: u64,
+}
+
+/// The generic `BigRational` engines reduce after every operation: a
+/// handful of gcds per particle where the integer kernels run one. Measured
+/// on the hostile scene at `t = 100` (0.9 s generic, 3.5 s kernel with
+/// 450-word common denominators) and on word-sized data (the kernel tens of
+/// times faster), 32 puts the switch between the two.
+pub const GENERIC_OVERHEAD: u64 = 32;
+
+/// Past this many words of a scaled value the common-denominator engines
+/// leave their fixed widths (`i128`, 256 bits) for `BigInt`.
+const FIXED_WIDTH_WORDS: u64 = 4;
+
+impl Cost {
+    /// The cost model of `data`: a running lcm of the denominators (with a
+    /// remainder by each small denominator, [`crate::gcd`]), stopped once
+    /// past [`LCM_BITS_LIMIT`].
+    pub fn of(data: &InitialData<BigRational>) -> Cost {
+        use num_bigint::BigUint;
+        let radius = data.radius().denom().magnitude();
+        let running = |values: &mut dyn Iterator<Item = &BigRational>| -> Bits {
+            let mut lcm: BigUint = radius.clone();
+            for q in values {
+                lcm = crate::gcd::lcm(&lcm, q.denom().magnitude());
+                if lcm.bits() > LCM_BITS_LIMIT {
+                    return Bits::AtLeast(lcm.bits());
+                }
+            }
+            Bits::Exact(lcm.bits())
+        };
+        let x = running(&mut data.positions().iter());
+        let u = running(&mut data.velocities().iter());
+        let largest_denominator_bits = largest_denominator_bits(data);
+        // Stopped early, the lcm is at least the bits reached and at least
+        // every single denominator.
+        let common_denominator = match (x, u) {
+            (Bits::AtLeast(b), _) | (_, Bits::AtLeast(b)) => {
+                Bits::AtLeast(b.max(largest_denominator_bits))
+            }
+            (Bits::Exact(a), Bits::Exact(b)) => Bits::Exact(a.max(b)),
+        };
+        let largest_numerator_bits = std::iter::once(data.radius())
+            .chain(data.positions())
+            .chain(data.velocities())
+            .map(|q| q.numer().bits())
+            .max()
+            .unwrap_or(0);
+        let n = data.n() as u64;
+        let square = |bits: u64| {
+            let w = bits.div_ceil(64).max(1);
+            n.saturating_mul(w.saturating_mul(w))
+        };
+        Cost {
+            n: data.n(),
+            common_denominator,
+            largest_denominator_bits,
+            largest_numerator_bits,
+            common: square(common_denominator.bits() + largest_numerator_bits),
+            local: square(largest_denominator_bits + largest_numerator_bits)
+                .saturating_mul(GENERIC_OVERHEAD),
+        }
+    }
+
+    /// Whether the common-denominator engines are the cheaper: their values
+    /// fit fixed widths, or their estimate is below the generic one.
+    pub fn common_is_cheaper(&self) -> bool {
+        (self.common_denominator.bits() + self.largest_numerator_bits).div_ceil(64)
+            <= FIXED_WIDTH_WORDS
+            || self.common <= self.local
+    }
+
+    /// One line for `--explain`: the engine chosen, `N`, the common
+    /// denominator and each candidate's estimate.
+    pub fn explain(&self, chosen: &dyn ExactEngine) -> String {
+        format!(
+            "engine: {} (N = {}, common denominator {}, largest single denominator {} bits, largest numerator {} bits; estimated word operations: common-denominator integer engines ~{:.2e}, generic BigRational on local denominators ~{:.2e})",
+            chosen.name(),
+            self.n,
+            self.common_denominator,
+            self.largest_denominator_bits,
+            self.largest_numerator_bits,
+            self.common as f64,
+            self.local as f64,
+        )
+    }
+}
+
+/// The cheapest exact engine for one-shot states of `data`, by the cost
+/// model [`Cost::of`]: the integer kernel, which runs on the narrowest
+/// integer width the data allow at each time (`i128`, 256-bit, `BigInt`),
+/// when the common denominator is small enough; else the generic
+/// projection on local denominators.
+pub fn auto(data: &InitialData<BigRational>) -> &'static dyn ExactEngine {
+    auto_for(&Cost::of(data))
+}
+
+/// [`auto`]'s choice for a cost already computed.
+pub fn auto_for(cost: &Cost) -> &'static dyn ExactEngine {
+    if cost.common_is_cheaper() {
+        &Kernel
+    } else {
+        &GenericProjection
+    }
 }
 
 /// The default cap of [`check_work`], in 64-bit word operations: `2^29`
@@ -115,37 +268,64 @@ fn largest_denominator_bits(data: &InitialData<BigRational>) -> u64 {
         .unwrap_or(0)
 }
 
-/// A lower bound on the word operations of the exact engines on `data`:
-/// `N · ⌈b/64⌉²`, `b` the bits of the largest denominator of the data
-/// (radius, positions, velocities). Both fast engines scale the data to
-/// common denominators (`df:translat-x`), which are at least that large, and
-/// reduce each answer to lowest terms (a gcd on numbers of that size, quadratic
-/// in their length): 20,000 velocities with denominators of 4,000 digits
-/// cost at least ~10⁹ word operations.
+/// A lower bound on the word operations of the common-denominator engines
+/// on `data`: `N · ⌈b/64⌉²`, `b` the bits of the common denominator of the
+/// data (radius, positions, velocities: [`Cost::of`]), at least the largest
+/// single one. Both fast engines scale the data to common denominators
+/// (`df:translat-x`) and reduce each answer to lowest terms (a gcd on
+/// numbers of that size, quadratic in their length): 20,000 velocities
+/// `1/(i+1)` have a common denominator of ~28,800 bits (~4·10⁹ word
+/// operations).
 pub fn work_estimate(data: &InitialData<BigRational>) -> u64 {
-    let words = largest_denominator_bits(data).div_ceil(64);
+    let words = Cost::of(data).common_denominator.bits().div_ceil(64);
     (data.n() as u64).saturating_mul(words.saturating_mul(words))
 }
 
-/// Refuses, up front, data whose exact answer needs more than the cap of
-/// word operations ([`work_estimate`] against `$STICKY_MAX_WORK`, default
-/// [`MAX_WORK`]) with a message that says why and what to do, instead of
-/// a run that does not end in any reasonable time.
+/// Refuses, up front, data whose exact answer by the common-denominator
+/// engines needs more than the cap of word operations ([`work_estimate`]
+/// against `$STICKY_MAX_WORK`, default [`MAX_WORK`]) with a message that
+/// says why and what to do, instead of a run that does not end in any
+/// reasonable time.
 pub fn check_work(data: &InitialData<BigRational>) -> Result<(), Error> {
+    check_work_for(data, &Kernel)
+}
+
+/// [`check_work`] for the engine that will run: the generic projection
+/// works on local denominators ([`Cost::local`]), the others on the common
+/// denominator.
+pub fn check_work_for(
+    data: &InitialData<BigRational>,
+    engine: &dyn ExactEngine,
+) -> Result<(), Error> {
     let cap = std::env::var(WORK_VAR)
         .ok()
         .and_then(|v| v.trim().parse::<u64>().ok())
         .unwrap_or(MAX_WORK);
-    let work = work_estimate(data);
+    let cost = Cost::of(data);
+    let local = engine.name() == GenericProjection.name();
+    let words = if local {
+        cost.largest_denominator_bits
+    } else {
+        cost.common_denominator.bits()
+    }
+    .div_ceil(64);
+    let work = (data.n() as u64).saturating_mul(words.saturating_mul(words));
     if work <= cap {
         return Ok(());
     }
-    let b = largest_denominator_bits(data);
+    let what = if local {
+        format!(
+            "a largest single denominator of {} bits",
+            cost.largest_denominator_bits
+        )
+    } else {
+        format!("a common denominator of {}", cost.common_denominator)
+    };
     Err(Error::Unsupported {
         message: format!(
-            "the exact answer needs at least ~{work:.3e} word operations (N = {} particles over a common denominator of at least {} digits, N·(its 64-bit words)²), more than the cap of {cap:.3e}: this would run for a very long time. Use data with smaller or fewer distinct denominators, or set the environment variable {WORK_VAR} to a larger number of operations to run it anyway",
+            "the exact answer by the engine {} needs at least ~{work:.3e} word operations (N = {} particles over {what}, N·(its 64-bit words)²), more than the cap of {cap:.3e}: this would run for a very long time. Use data with smaller or fewer distinct denominators, or set the environment variable {WORK_VAR} to a larger number of operations to run it anyway",
+            engine.name(),
             data.n(),
-            (b as f64 * std::f64::consts::LOG10_2).ceil() as u64,
             work = work as f64,
             cap = cap as f64,
         ),

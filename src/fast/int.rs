@@ -36,7 +36,7 @@ pub(crate) fn ratio(num: i128, den: i128) -> BigRational {
 pub(crate) fn ratio_over(num: i128, k: i128, d: &BigInt, d_small: Option<i128>) -> BigRational {
     match d_small.and_then(|d| d.checked_mul(k)) {
         Some(den) => ratio(num, den),
-        None => BigRational::new(BigInt::from(num), d * BigInt::from(k)),
+        None => crate::gcd::ratio(BigInt::from(num), d * BigInt::from(k)),
     }
 }
 

@@ -10,8 +10,7 @@
 //! `BigInt`. [`scale_big`] is the `BigInt` path, for data whose scaled
 //! values do not fit `i128`.
 
-use num_bigint::BigInt;
-use num_integer::Integer;
+use num_bigint::{BigInt, BigUint};
 use num_rational::BigRational;
 use num_traits::ToPrimitive;
 
@@ -395,7 +394,12 @@ fn divided_range(r: Range, g: u128) -> Range {
 pub(crate) fn scale_big(
     data: &InitialData<BigRational>,
 ) -> (Vec<BigInt>, Vec<BigInt>, BigInt, BigInt) {
-    let lcm = |v: &[BigRational]| v.iter().fold(BigInt::from(1), |acc, q| acc.lcm(q.denom()));
+    let lcm = |v: &[BigRational]| {
+        let d = v.iter().fold(BigUint::from(1u32), |acc, q| {
+            crate::gcd::lcm(&acc, q.denom().magnitude())
+        });
+        BigInt::from(d)
+    };
     let scale = |v: &[BigRational], d: &BigInt| -> Vec<BigInt> {
         v.iter().map(|q| q.numer() * (d / q.denom())).collect()
     };
@@ -429,6 +433,7 @@ pub(crate) fn scale_i128(data: &InitialData<BigRational>) -> Option<Scaled> {
 mod tests {
     use super::*;
     use crate::generate::{initial_data, Limits, SplitMix64};
+    use num_integer::Integer;
     use num_traits::{One, Zero};
 
     /// `s` is the data on their least common denominators: `x[i] / dx` are

@@ -16,6 +16,10 @@ pub struct Args {
     /// `{"events": [...]}` (the interop contract: docs/guide/json.md).
     #[arg(long)]
     json: bool,
+    /// Print on stderr which engine answers and why (N, the common
+    /// denominator's bits, the estimated cost).
+    #[arg(long)]
+    explain: bool,
 }
 
 /// Runs `sticky events`.
@@ -28,7 +32,13 @@ pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
         }
     }
     let scene = load(&args.scene)?;
-    sticky::fast::engine::check_work(&scene.data)
+    if args.explain {
+        // The history always comes from the integer event merge (which
+        // falls back to the generic merge when its widths do not suffice).
+        let cost = sticky::fast::engine::Cost::of(&scene.data);
+        eprintln!("{}", cost.explain(&sticky::fast::engine::Merge));
+    }
+    sticky::fast::engine::check_work_for(&scene.data, &sticky::fast::engine::Merge)
         .map_err(|e| Failure(format!("{}: {e}", args.scene.display())))?;
     let traj = sticky::fast::merge::trajectory(&scene.data);
     if args.json {

@@ -51,6 +51,10 @@ pub struct Args {
     /// block by block, whose cost does not grow with N.
     #[arg(long, value_enum, default_value_t = Model::Particles)]
     model: Model,
+    /// Print on stderr which engine answers and why (N, the common
+    /// denominator's bits, each candidate's estimated cost).
+    #[arg(long)]
+    explain: bool,
 }
 
 /// The output formats of `--format`.
@@ -112,7 +116,7 @@ pub fn exec(mut args: Args, out: &mut impl Write) -> Result<(), Failure> {
         }
         return columns(out, &args);
     }
-    if args.json && args.engine == "auto" && args.model == Model::Particles {
+    if args.json && args.engine == "auto" && args.model == Model::Particles && !args.explain {
         // The streaming path for a column file on machine words
         // (`fast::stream`): the same bytes; anything it does not cover
         // (another scene, a value off words, a time beyond its bound)
@@ -136,14 +140,41 @@ pub fn exec(mut args: Args, out: &mut impl Write) -> Result<(), Failure> {
         }
     }
     let scene = load(&args.scene)?;
-    if args.model == Model::Particles {
-        sticky::fast::engine::check_work(&scene.data)
+    let chosen = if args.model == Model::Particles {
+        let e = choose(&scene, &args.engine, args.explain)?;
+        engine::check_work_for(&scene.data, e)
             .map_err(|e| Failure(format!("{}: {e}", args.scene.display())))?;
-    }
+        e.name()
+    } else {
+        "auto"
+    };
     match args.model {
-        Model::Particles => run(out, &scene, &args.at, args.json, &args.engine),
+        Model::Particles => run(out, &scene, &args.at, args.json, chosen),
         Model::Continuum => run_continuum(out, &scene, &args.scene, &args.at, args.json),
     }
+}
+
+/// The engine named `name`, or for `auto` the one the cost model chooses
+/// ([`engine::Cost`]); with `explain`, the choice and why on stderr.
+fn choose(
+    scene: &Scene,
+    name: &str,
+    explain: bool,
+) -> Result<&'static dyn engine::ExactEngine, Failure> {
+    let cost = engine::Cost::of(&scene.data);
+    let e = match name {
+        "auto" => engine::auto_for(&cost),
+        name => engine::by_name(name).ok_or_else(|| Failure(format!("unknown engine {name:?}")))?,
+    };
+    if explain {
+        let how = if name == "auto" {
+            "chosen by the cost model"
+        } else {
+            "named by --engine"
+        };
+        eprintln!("{} ({how})", cost.explain(e));
+    }
+    Ok(e)
 }
 
 fn run(
@@ -248,13 +279,9 @@ fn columns(out: &mut impl Write, args: &Args) -> Result<(), Failure> {
         }
         if general.is_none() {
             let scene = load(&args.scene)?;
-            sticky::fast::engine::check_work(&scene.data)
+            let e = choose(&scene, &args.engine, args.explain)?;
+            engine::check_work_for(&scene.data, e)
                 .map_err(|e| Failure(format!("{}: {e}", args.scene.display())))?;
-            let e = match args.engine.as_str() {
-                "auto" => engine::auto(&scene.data),
-                name => engine::by_name(name)
-                    .ok_or_else(|| Failure(format!("unknown engine {name:?}")))?,
-            };
             let prepared = e.prepare(&scene.data);
             general = Some((scene, prepared));
         }

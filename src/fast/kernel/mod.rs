@@ -320,12 +320,12 @@ impl Blocks {
             ),
             Sums::I256(v) => {
                 let s = if y { v[j].sy } else { v[j].su };
-                BigRational::new(s.to_bigint(), d * BigInt::from(v[j].k))
+                crate::gcd::ratio(s.to_bigint(), d * BigInt::from(v[j].k))
             }
             Sums::I512(v) => {
                 let r = v.run(j);
                 let s = if y { r.sy } else { r.su };
-                BigRational::new(s.to_bigint(), d * BigInt::from(r.k))
+                crate::gcd::ratio(s.to_bigint(), d * BigInt::from(r.k))
             }
             Sums::I512U128(v) => {
                 let r = v.run(j);
@@ -334,9 +334,9 @@ impl Blocks {
                 } else {
                     BigInt::from(r.su)
                 };
-                BigRational::new(s, d * BigInt::from(r.k))
+                crate::gcd::ratio(s, d * BigInt::from(r.k))
             }
-            Sums::Big(v) => BigRational::new(pick(&v[j]), d * BigInt::from(v[j].k)),
+            Sums::Big(v) => crate::gcd::ratio(pick(&v[j]), d * BigInt::from(v[j].k)),
         }
     }
 }
@@ -700,7 +700,7 @@ pub fn state_of_blocks(d: &IntegerData, b: &Blocks, t: &BigRational) -> State<Bi
             // x_i = x̃ + 2r·i as one fraction (a single reduction).
             let (yn, yd) = (mean_y.numer(), mean_y.denom());
             let (rn, rd) = (d.two_r.numer(), d.two_r.denom());
-            positions.push(BigRational::new(
+            positions.push(crate::gcd::ratio(
                 yn * rd + rn * yd * BigInt::from(i),
                 yd * rd,
             ));
@@ -709,7 +709,7 @@ pub fn state_of_blocks(d: &IntegerData, b: &Blocks, t: &BigRational) -> State<Bi
                 multipliers.push(if num.sign() == Sign::NoSign {
                     BigRational::zero()
                 } else {
-                    BigRational::new(num, den.clone())
+                    crate::gcd::ratio(num, den.clone())
                 });
             }
         }
