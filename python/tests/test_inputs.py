@@ -84,17 +84,17 @@ def test_load_toml_csv_npy_and_macro(tmp_path):
 
 
 def test_overlap():
-    with pytest.raises(ValueError, match=r"^positions 2 and 3 overlap: gap 1/10 < 2r = 1/5$"):
+    with pytest.raises(ValueError, match=r"^positions\[1\] and positions\[2\] overlap: gap 1/10 < 2r = 1/5$"):
         sticky.Scene([0, 1, "11/10"], [0, 0, 0], R)
 
 
 def test_overlap_of_doubles():
-    with pytest.raises(ValueError, match=r"^positions 1 and 2 overlap: gap 1/8 < 2r = 1/4$"):
+    with pytest.raises(ValueError, match=r"^positions\[0\] and positions\[1\] overlap: gap 1/8 < 2r = 1/4$"):
         sticky.Scene(np.array([0.0, 0.125]), np.array([0.0, 0.0]), 0.125)
 
 
 def test_velocity_cone():
-    with pytest.raises(ValueError, match=r"^velocities 1 and 2 leave the velocity cone: particles 1 and 2 are in contact and approach each other \(u_1 = 1 > u_2 = 0\)$"):
+    with pytest.raises(ValueError, match=r"^particles 0 and 1 \(indices from 0\) are in contact and approach each other: velocities\[0\] = 1 > velocities\[1\] = 0 \(u⁰ outside the velocity cone\)$"):
         sticky.Scene([0, "1/5"], [1, 0], R)
 
 
