@@ -76,7 +76,7 @@ pub struct Row {
     pub pressure_signed: Q,
     /// `sup_t` of the sum of the squared `L²(0,1)` norms of the seven
     /// functions of `prop:L2-micro`: `X_N, X̃_N, ∂_t X_N, ∂_t X̃_N, Λ_N, Λ̃_N,
-    /// ∂_w Λ̃_N` ([`seven_norms`]).
+    /// ∂_w Λ̃_N` (`seven_norms`).
     pub l2: Q,
     /// `sup_{t ∈ [T/2, T]} Σ_i |u_i − u_{i−1}|`.
     pub tv_late: Q,
@@ -97,7 +97,7 @@ pub struct Row {
     pub cvg_lambda: Option<Q>,
     /// `N · sup_t |∫_0^1 (Λ_N − Λ̃_N)(t,w) w dw|` over the probe times: the
     /// factor of `‖∂_t Ψ‖` in `|⟨P_N − P̃_N, Ψ⟩| ≤ (C/N)‖∂_t Ψ‖` for
-    /// `Ψ = ψ(t)w` ([`lambda_gap_moment`]).
+    /// `Ψ = ψ(t)w` (`lambda_gap_moment`).
     pub pn_gap: Q,
     /// `C'_0 = (x⁰_N − x⁰_0) + sup_i |u⁰_i|`, the smallest constant of
     /// `cond:Linfty` for the sample (artificial particle `x⁰_0 = x⁰_1 − 1/N − δ`,

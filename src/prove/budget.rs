@@ -98,7 +98,7 @@ fn abandon(why: Overrun) -> ! {
     std::panic::resume_unwind(Box::new(why))
 }
 
-/// One unit of symbolic work: every [`TICKS_PER_CLOCK_READ`]-th call reads
+/// One unit of symbolic work: every `TICKS_PER_CLOCK_READ`-th call reads
 /// the clock and abandons the path once the deadline has passed.
 pub fn tick() {
     let Some(active) = ACTIVE.with(Cell::get) else {

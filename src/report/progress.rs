@@ -1,5 +1,5 @@
 //! The progress bar of the command line: [`Bar`] shows a
-//! [`Progress`](crate::progress::Progress) on stderr when stderr is a
+//! [`Progress`] on stderr when stderr is a
 //! terminal, and nothing otherwise (piped or redirected output stays clean).
 
 use crate::progress::Progress;
