@@ -47,7 +47,9 @@ fn claims<'py>(
         scaling_max_n: scaling_max_n.unwrap_or(d.scaling_max_n).max(8),
         seed: seed.unwrap_or(d.seed),
     };
-    let text = interrupt::run(py, move |_| ledger::json(&ledger::run(budget, |_| {})))?;
+    let text = interrupt::run(py, move |_| {
+        ledger::json(&ledger::run(budget, &sticky::progress::Silent))
+    })?;
     json_loads(py, &text)
 }
 
