@@ -23,50 +23,14 @@
 
 use num_bigint::BigInt;
 use num_rational::BigRational;
-use num_traits::{Signed, ToPrimitive};
+use num_traits::Signed;
 
 use crate::rational::render_exact;
 use crate::scalar::Scalar;
 use crate::scene::Scene;
 use crate::text::string;
 
-/// The nearest double of `q` (round to nearest, ties to even), or `None`
-/// when `q` is beyond the largest finite double (it would round to an
-/// infinity). Checked exactly against both neighbours, so the answer does
-/// not rest on any library's rounding.
-pub fn nearest_f64(q: &BigRational) -> Option<f64> {
-    let f = q.to_f64()?;
-    if !f.is_finite() {
-        return None;
-    }
-    let dist = |g: f64| g.to_big_rational().map(|r| (&r - q).abs());
-    let mut best = f;
-    let mut best_d = dist(f)?;
-    for g in [
-        next_toward(f, f64::INFINITY),
-        next_toward(f, f64::NEG_INFINITY),
-    ] {
-        if let Some(d) = dist(g) {
-            let even = g.to_bits() & 1 == 0;
-            if d < best_d || (d == best_d && even) {
-                best = g;
-                best_d = d;
-            }
-        }
-    }
-    Some(best)
-}
-
-/// The next double after `f` toward `dir` (finite `f`).
-fn next_toward(f: f64, dir: f64) -> f64 {
-    if f == 0.0 {
-        let tiny = f64::from_bits(1);
-        return if dir > 0.0 { tiny } else { -tiny };
-    }
-    let bits = f.to_bits();
-    let up = (dir > f) == (f > 0.0);
-    f64::from_bits(if up { bits + 1 } else { bits - 1 })
-}
+pub use crate::rational::nearest_f64;
 
 /// A value of the scene as the peer gets it.
 #[derive(Debug, Clone, PartialEq)]

@@ -407,7 +407,7 @@ fn doubles_are_read_exactly() {
 /// exactly): small and 128-bit terms, exact ties, signs.
 #[test]
 fn nearest_ratio_rounds_to_nearest_even() {
-    use crate::report::export::nearest_f64;
+    use crate::rational::nearest_f64;
     let mut rng = SplitMix64::new(7);
     let mut cases: Vec<(i128, i128)> = vec![
         (1, 3),
@@ -463,7 +463,7 @@ fn nearest_is_the_rounded_exact_state() {
             let exact = state_at(&IntegerData::new(&data), &t).unwrap();
             let round = |v: &[BigRational]| -> Vec<u64> {
                 v.iter()
-                    .map(|q| crate::report::export::nearest_f64(q).unwrap().to_bits())
+                    .map(|q| crate::rational::nearest_f64(q).unwrap().to_bits())
                     .collect()
             };
             let got = b.nearest();
