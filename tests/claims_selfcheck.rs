@@ -47,64 +47,46 @@ const NO_MUTANT: &[(&str, &str)] = &[
 /// path, whatever the dynamics).
 const IDENTITIES: &[&str] = &["prop:eulerian-formulation#mass"];
 
+/// Every measured value of a row set to `value` (the list of a row's
+/// measured fields, written once for every tamper below).
+fn set_every_value(r: &mut sticky::claims::macro_data::Row, value: &Q) {
+    for v in [
+        &mut r.lambda_sup,
+        &mut r.pressure_abs,
+        &mut r.pressure_signed,
+        &mut r.l2,
+        &mut r.tv_late,
+        &mut r.u_sup,
+        &mut r.uniform_x0,
+        &mut r.pn_gap,
+        &mut r.c0_prime,
+        &mut r.momentum,
+    ] {
+        *v = value.clone();
+    }
+    for v in [
+        &mut r.disc_x,
+        &mut r.disc_u,
+        &mut r.cvg_x,
+        &mut r.cvg_lambda,
+    ]
+    .into_iter()
+    .flatten()
+    {
+        *v = value.clone();
+    }
+}
+
 /// Every measured value replaced by N: a quantity that grows (as when a
 /// factor 1/N is forgotten), whatever the claim's verdict expects.
 fn grows(r: &mut sticky::claims::macro_data::Row) {
     let n = Q::from_usize(r.n);
-    for v in [
-        &mut r.lambda_sup,
-        &mut r.pressure_abs,
-        &mut r.pressure_signed,
-        &mut r.l2,
-        &mut r.tv_late,
-        &mut r.u_sup,
-        &mut r.uniform_x0,
-        &mut r.pn_gap,
-        &mut r.c0_prime,
-        &mut r.momentum,
-    ] {
-        *v = n.clone();
-    }
-    for v in [
-        &mut r.disc_x,
-        &mut r.disc_u,
-        &mut r.cvg_x,
-        &mut r.cvg_lambda,
-    ]
-    .into_iter()
-    .flatten()
-    {
-        *v = n.clone();
-    }
+    set_every_value(r, &n);
 }
 
 /// Every measured value set to 0.
 fn zeroed(r: &mut sticky::claims::macro_data::Row) {
-    for v in [
-        &mut r.lambda_sup,
-        &mut r.pressure_abs,
-        &mut r.pressure_signed,
-        &mut r.l2,
-        &mut r.tv_late,
-        &mut r.u_sup,
-        &mut r.uniform_x0,
-        &mut r.pn_gap,
-        &mut r.c0_prime,
-        &mut r.momentum,
-    ] {
-        *v = Q::zero();
-    }
-    for v in [
-        &mut r.disc_x,
-        &mut r.disc_u,
-        &mut r.cvg_x,
-        &mut r.cvg_lambda,
-    ]
-    .into_iter()
-    .flatten()
-    {
-        *v = Q::zero();
-    }
+    set_every_value(r, &Q::zero());
 }
 
 const ROW_TAMPERS: &[(&str, RowTamper)] = &[
