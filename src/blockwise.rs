@@ -295,7 +295,29 @@ mod tests {
                 let want = crate::projection::state_at(&data, &t).unwrap();
                 let got = state_at(&data, &t, &Silent).unwrap();
                 assert_eq!(got, want, "n = {n}, t = {t}");
+                lowest_terms(&got);
             }
+        }
+    }
+
+    /// Every value is in lowest terms with a positive denominator, as
+    /// `BigRational::new` leaves it (equality of ratios compares values, so
+    /// `assert_eq!` alone would let a fraction left unreduced through, and
+    /// it would print unreduced).
+    fn lowest_terms(s: &State<BigRational>) {
+        for v in s
+            .positions
+            .iter()
+            .chain(&s.velocities)
+            .chain(&s.multipliers)
+        {
+            assert!(v.denom() > &BigInt::zero(), "{v}");
+            assert!(
+                gcd::gcd(v.numer().magnitude(), v.denom().magnitude()).is_one(),
+                "{}/{} is not reduced",
+                v.numer(),
+                v.denom()
+            );
         }
     }
 
