@@ -136,6 +136,12 @@ pub enum Error {
         /// What was asked.
         message: String,
     },
+    /// Long work stopped early because its watcher asked it to (Ctrl-C:
+    /// [`crate::progress::Progress::cancelled`]); there is no answer.
+    Interrupted {
+        /// The work that was stopped (`the projection`, `the event merge`).
+        during: &'static str,
+    },
 }
 
 impl fmt::Display for Error {
@@ -190,6 +196,7 @@ impl fmt::Display for Error {
             }
             Error::NegativeTime { t } => write!(f, "time {t} is negative"),
             Error::Unsupported { message } => write!(f, "{message}"),
+            Error::Interrupted { during } => write!(f, "interrupted during {during}"),
         }
     }
 }

@@ -71,6 +71,7 @@
 #![deny(missing_docs)]
 
 // 1. The model core.
+pub mod blockwise;
 pub mod cluster;
 pub mod columns;
 pub mod contact;

@@ -35,6 +35,7 @@ use crate::cluster::{runs, Cluster};
 use crate::contact::{multipliers, Impulse};
 use crate::error::Error;
 use crate::initial::{unshift, InitialData};
+use crate::progress::{Progress, Silent};
 use crate::scalar::Scalar;
 use crate::state::State;
 
@@ -165,6 +166,16 @@ fn prefix<S: Scalar>(v: &[S]) -> Vec<S> {
 impl<S: Scalar> Trajectory<S> {
     /// Computes every collision of the sticky dynamics started from `data`.
     pub fn new(data: InitialData<S>) -> Self {
+        match Self::new_with_progress(data, &Silent) {
+            Ok(t) => t,
+            Err(_) => unreachable!("`Silent` never cancels"),
+        }
+    }
+
+    /// [`Trajectory::new`], telling `progress` of the merges as they are
+    /// done (one stage of at most `N − 1` steps) and stopping with
+    /// [`Error::Interrupted`] when it asks, between two collision instants.
+    pub fn new_with_progress(data: InitialData<S>, progress: &dyn Progress) -> Result<Self, Error> {
         let n = data.n();
         let shifted = data.shifted_positions();
         let u0 = data.velocities();
@@ -204,9 +215,18 @@ impl<S: Scalar> Trajectory<S> {
         }
 
         let mut impulses = Vec::new();
+        progress.stage(
+            "the event merge: clusters merged",
+            Some(n.saturating_sub(1) as u64),
+        );
         while let Some(head) = heap.pop() {
             if !(nodes[head.left].alive && nodes[head.right].alive) {
                 continue;
+            }
+            if progress.cancelled() {
+                return Err(Error::Interrupted {
+                    during: "the event merge",
+                });
             }
             let t = head.t.clone();
             let mut pending = vec![head];
@@ -245,6 +265,7 @@ impl<S: Scalar> Trajectory<S> {
                         continue;
                     }
                     let id = merge(&mut nodes, l, c.right, &t, &mut join_time);
+                    progress.advance(1);
                     last_new = Some(id);
                     fresh.push(id);
                 }
@@ -276,7 +297,7 @@ impl<S: Scalar> Trajectory<S> {
                 });
             }
         }
-        Self::assemble(data, join_time, impulses)
+        Ok(Self::assemble(data, join_time, impulses))
     }
 
     /// A trajectory from a history computed elsewhere (the integer engine

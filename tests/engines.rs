@@ -402,7 +402,8 @@ fn the_ranges_reach_every_width() {
 /// every denominator is small and their common denominator
 /// `lcm(1, …, N)` is not; the particles 3 apart (r = 1/2) collide in
 /// cascade. Every engine equals the oracle, and `auto` leaves the
-/// common-denominator kernel for the generic projection on this shape at
+/// common-denominator kernel for the blockwise projection (one common
+/// denominator per block, `sticky::blockwise`) on this shape at
 /// N = 400 (lcm(1..400): 574 bits) but keeps the kernel at N = 8.
 #[test]
 fn hostile_common_denominators() {
@@ -427,12 +428,10 @@ fn hostile_common_denominators() {
     let big = Cost::of(&hostile(400));
     assert_eq!(big.common_denominator, Bits::Exact(574));
     assert_eq!(big.largest_denominator_bits, 9);
-    assert_eq!(auto(&hostile(400)).name(), "generic-projection");
+    assert_eq!(auto(&hostile(400)).name(), "blockwise");
     let line = big.explain(auto(&hostile(400)));
     assert!(
-        line.contains("generic-projection")
-            && line.contains("574 bits")
-            && line.contains("N = 400"),
+        line.contains("blockwise") && line.contains("574 bits") && line.contains("N = 400"),
         "{line}"
     );
 }

@@ -47,9 +47,9 @@ fn claims<'py>(
         scaling_max_n: scaling_max_n.unwrap_or(d.scaling_max_n).max(8),
         seed: seed.unwrap_or(d.seed),
     };
-    let text = interrupt::run(py, move |_| {
-        ledger::json(&ledger::run(budget, &sticky::progress::Silent))
-    })?;
+    // The ledger stops between claims once Ctrl-C is pressed (its partial
+    // answer is dropped: the caller already has KeyboardInterrupt).
+    let text = interrupt::run(py, move |stop| ledger::json(&ledger::run(budget, stop)))?;
     json_loads(py, &text)
 }
 

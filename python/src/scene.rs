@@ -370,10 +370,12 @@ impl Scene {
     /// of the clusters that merged into it (the data of `sticky events`).
     fn events(&self, py: Python<'_>) -> PyResult<Vec<Event>> {
         let inner = Arc::clone(&self.inner);
-        let impulses = interrupt::run(py, move |_| -> Result<_, Error> {
+        let impulses = interrupt::run(py, move |stop| -> Result<_, Error> {
             let data = &inner.scene()?.data;
-            engine::check_work(data)?;
-            Ok(sticky::fast::merge::trajectory(data).impulses().to_vec())
+            engine::check_work_watched(data, &engine::Merge)?;
+            Ok(sticky::fast::merge::trajectory_with_progress(data, stop)?
+                .impulses()
+                .to_vec())
         })?
         .map_err(py_error)?;
         Ok(impulses.iter().map(Event::from_impulse).collect())

@@ -2,7 +2,7 @@
 
 from fractions import Fraction
 from os import PathLike
-from typing import Any, Iterable, List, Optional, Sequence, Tuple, Union
+from typing import Any, Iterable, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -75,6 +75,18 @@ class Scene:
     @staticmethod
     def from_toml(text: str) -> Scene:
         """A scene from the text of a TOML scene file."""
+    @staticmethod
+    def from_macro(
+        particles: int,
+        blocks: Sequence[Union[Tuple[Any, Any, Any, Any], Mapping[str, Any]]],
+        *,
+        name: Optional[str] = None,
+        t_end: Any = None,
+    ) -> Scene:
+        """A [macro] scene: blocks (from, to, density, velocity) of a piecewise
+        constant density, velocity a number or a pair (a, b) (affine), sampled
+        with N = particles at the quantiles (thm:main); the same validation as
+        a TOML [macro] section."""
     @property
     def n(self) -> int:
         """The number of particles N."""

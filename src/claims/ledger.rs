@@ -336,13 +336,18 @@ fn run_kind(
 }
 
 /// Runs the whole registry, telling `progress` of each claim as it starts
-/// (one stage, `claims`, with one step per claim).
+/// (one stage, `claims`, with one step per claim). When `progress` asks to
+/// stop ([`Progress::cancelled`], Ctrl-C in Python) the run ends between two
+/// claims and the entries so far are returned.
 pub fn run(budget: Budget, progress: &dyn Progress) -> Vec<Entry> {
     let shipped = shipped_cases();
     let claims: Vec<Claim<BigRational>> = super::registry();
     let mut out = Vec::with_capacity(claims.len());
     progress.stage("claims", Some(claims.len() as u64));
     for claim in &claims {
+        if progress.cancelled() {
+            break;
+        }
         progress.note(claim.id);
         let (mut outcome, engines) = run_kind(&claim.kind, claim.applies, budget, &shipped);
         if let (Status::Holds, Some(why)) = (&outcome.status, claim.identity) {

@@ -21,6 +21,7 @@ use num_rational::BigRational;
 use crate::error::Error;
 use crate::fast::{adaptive, kernel, merge};
 use crate::initial::InitialData;
+use crate::progress::{Progress, Silent};
 use crate::projection;
 use crate::state::State;
 use crate::trajectory::Trajectory;
@@ -43,6 +44,17 @@ pub trait ExactEngine: Sync {
 pub trait Prepared {
     /// The exact state at `t` (an error for `t < 0`).
     fn state_at(&self, t: &BigRational) -> Result<State<BigRational>, Error>;
+    /// [`Prepared::state_at`], telling `progress` of the work and stopping
+    /// with [`Error::Interrupted`] when it asks (engines whose one state is
+    /// quick ignore it).
+    fn state_at_with_progress(
+        &self,
+        t: &BigRational,
+        progress: &dyn Progress,
+    ) -> Result<State<BigRational>, Error> {
+        let _ = progress;
+        self.state_at(t)
+    }
     /// The whole history (impulses, join times), for a history engine;
     /// `None` for a one-shot projection.
     fn trajectory(&self) -> Option<&Trajectory<BigRational>> {
@@ -54,6 +66,12 @@ pub trait Prepared {
 /// oracle.
 #[derive(Debug, Clone, Copy)]
 pub struct GenericProjection;
+
+/// The projection on `BigRational` with one common denominator per block
+/// ([`crate::blockwise`]): for data whose denominators are small one by one
+/// and large together.
+#[derive(Debug, Clone, Copy)]
+pub struct Blockwise;
 
 /// The generic event-driven cluster merge on `BigRational`
 /// ([`Trajectory::new`]): the history oracle.
@@ -80,6 +98,7 @@ pub static ENGINES: &[&dyn ExactEngine] = &[
     &Kernel,
     &Adaptive,
     &Merge,
+    &Blockwise,
 ];
 
 /// The engine called `name` (or one of its aliases) in [`ENGINES`].
@@ -236,7 +255,7 @@ impl Cost {
 /// model [`Cost::of`]: the integer kernel, which runs on the narrowest
 /// integer width the data allow at each time (`i128`, 256-bit, `BigInt`),
 /// when the common denominator is small enough; else the generic
-/// projection on local denominators.
+/// projection with one common denominator per block ([`Blockwise`]).
 pub fn auto(data: &InitialData<BigRational>) -> &'static dyn ExactEngine {
     auto_for(&Cost::of(data))
 }
@@ -246,7 +265,7 @@ pub fn auto_for(cost: &Cost) -> &'static dyn ExactEngine {
     if cost.common_is_cheaper() {
         &Kernel
     } else {
-        &GenericProjection
+        &Blockwise
     }
 }
 
@@ -297,12 +316,37 @@ pub fn check_work_for(
     data: &InitialData<BigRational>,
     engine: &dyn ExactEngine,
 ) -> Result<(), Error> {
+    check_work_capped(data, engine, MAX_WORK)
+}
+
+/// The default cap of [`check_work_watched`]: `2^35` word operations, 64
+/// times [`MAX_WORK`] — tens of minutes, long but not hopeless.
+pub const MAX_WATCHED_WORK: u64 = 1 << 35;
+
+/// [`check_work_for`] for work that shows its progress and can be
+/// interrupted (the command line's bar, Python's Ctrl-C): only what is
+/// hopeless is refused, above [`MAX_WATCHED_WORK`] (or
+/// `$STICKY_MAX_WORK` when set).
+pub fn check_work_watched(
+    data: &InitialData<BigRational>,
+    engine: &dyn ExactEngine,
+) -> Result<(), Error> {
+    check_work_capped(data, engine, MAX_WATCHED_WORK)
+}
+
+/// The guard of [`check_work_for`] with `default_cap` when
+/// `$STICKY_MAX_WORK` is not set.
+fn check_work_capped(
+    data: &InitialData<BigRational>,
+    engine: &dyn ExactEngine,
+    default_cap: u64,
+) -> Result<(), Error> {
     let cap = std::env::var(WORK_VAR)
         .ok()
         .and_then(|v| v.trim().parse::<u64>().ok())
-        .unwrap_or(MAX_WORK);
+        .unwrap_or(default_cap);
     let cost = Cost::of(data);
-    let local = engine.name() == GenericProjection.name();
+    let local = [GenericProjection.name(), Blockwise.name()].contains(&engine.name());
     let words = if local {
         cost.largest_denominator_bits
     } else {
@@ -365,6 +409,34 @@ impl ExactEngine for GenericProjection {
         Box::new(OneShot(move |t: &BigRational| {
             projection::state_at(&data, t)
         }))
+    }
+}
+
+/// A prepared [`Blockwise`] engine.
+struct BlockwiseData(InitialData<BigRational>);
+
+impl Prepared for BlockwiseData {
+    fn state_at(&self, t: &BigRational) -> Result<State<BigRational>, Error> {
+        crate::blockwise::state_at(&self.0, t, &Silent)
+    }
+    fn state_at_with_progress(
+        &self,
+        t: &BigRational,
+        progress: &dyn Progress,
+    ) -> Result<State<BigRational>, Error> {
+        crate::blockwise::state_at(&self.0, t, progress)
+    }
+}
+
+impl ExactEngine for Blockwise {
+    fn name(&self) -> &'static str {
+        "blockwise"
+    }
+    fn summary(&self) -> &'static str {
+        "P_K(x⁰ + t u⁰) by PAVA on BigInt numerators over one common denominator per block (BigRational answers)"
+    }
+    fn prepare(&self, data: &InitialData<BigRational>) -> Box<dyn Prepared> {
+        Box::new(BlockwiseData(data.clone()))
     }
 }
 
@@ -460,7 +532,8 @@ mod tests {
                 "generic-events",
                 "kernel",
                 "adaptive",
-                "merge"
+                "merge",
+                "blockwise"
             ]
         );
         for e in ENGINES {

@@ -3,7 +3,9 @@
 use std::io::Write;
 use std::path::PathBuf;
 
+use sticky::progress::Progress;
 use sticky::report::json;
+use sticky::report::progress::Bar;
 
 use crate::table::write_events_table;
 use crate::{io_err, load, Failure};
@@ -38,9 +40,15 @@ pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
         let cost = sticky::fast::engine::Cost::of(&scene.data);
         eprintln!("{}", cost.explain(&sticky::fast::engine::Merge));
     }
-    sticky::fast::engine::check_work_for(&scene.data, &sticky::fast::engine::Merge)
+    // The merge shows its progress (merges done of at most N − 1, time
+    // left) on a terminal and stops on Ctrl-C: only hopeless work is
+    // refused.
+    sticky::fast::engine::check_work_watched(&scene.data, &sticky::fast::engine::Merge)
         .map_err(|e| Failure(format!("{}: {e}", args.scene.display())))?;
-    let traj = sticky::fast::merge::trajectory(&scene.data);
+    let bar = Bar::for_command("events");
+    let traj = sticky::fast::merge::trajectory_with_progress(&scene.data, &bar)
+        .map_err(|e| Failure(format!("{}: {e}", args.scene.display())))?;
+    bar.finish();
     if args.json {
         writeln!(out, "{}", json::events(traj.impulses())).map_err(io_err)?;
         return Ok(());

@@ -9,7 +9,9 @@ use clap::ValueEnum;
 use num_rational::BigRational;
 
 use sticky::fast::engine::{self, ENGINES};
+use sticky::progress::Progress;
 use sticky::report::json;
+use sticky::report::progress::Bar;
 use sticky::scene::{Scene, SceneKind};
 use sticky::{Scalar, State};
 
@@ -190,14 +192,20 @@ fn run(
         name => engine::by_name(name).ok_or_else(|| Failure(format!("unknown engine {name:?}")))?,
     };
     let prepared = engine.prepare(data);
+    // A bar on stderr when it is a terminal (engines that take long on one
+    // state tell it their steps; Ctrl-C ends the process).
+    let bar = Bar::for_command("run");
     for t in times {
-        let state = prepared.state_at(t).map_err(|e| Failure(e.to_string()))?;
+        let state = prepared
+            .state_at_with_progress(t, &bar)
+            .map_err(|e| Failure(e.to_string()))?;
         if as_json {
             writeln!(out, "{}", json::state(&state, data.radius())).map_err(io_err)?;
         } else {
             write_state_table(out, &state, data.radius()).map_err(io_err)?;
         }
     }
+    bar.finish();
     Ok(())
 }
 

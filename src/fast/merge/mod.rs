@@ -103,6 +103,7 @@ use crate::contact::Impulse;
 use crate::fast::int::{ratio, ratio_over};
 use crate::fast::scaling::scale_i128;
 use crate::initial::InitialData;
+use crate::progress::{Progress, Silent};
 use crate::trajectory::Trajectory;
 
 mod events;
@@ -160,15 +161,32 @@ impl IntegerTrajectory {
     /// on `i128` when the width bound holds, otherwise with the generic
     /// `BigRational` engine ([`IntegerTrajectory::engine`] tells which).
     pub fn new(data: &InitialData<BigRational>) -> IntegerTrajectory {
+        match Self::new_with_progress(data, &Silent) {
+            Ok(t) => t,
+            Err(_) => unreachable!("`Silent` never cancels"),
+        }
+    }
+
+    /// [`IntegerTrajectory::new`], telling `progress` of the generic merge
+    /// when it runs ([`Trajectory::new_with_progress`]: the integer engine's
+    /// own run is bounded and quick) and stopping with
+    /// [`crate::Error::Interrupted`] when it asks.
+    pub fn new_with_progress(
+        data: &InitialData<BigRational>,
+        progress: &dyn Progress,
+    ) -> Result<IntegerTrajectory, crate::Error> {
         let scaled = if data.n() < MAX_N {
             scale_i128(data)
         } else {
             None
         };
         let Some(s) = scaled.filter(|s| within_bound(s.x.len(), s.max_abs())) else {
-            return IntegerTrajectory {
-                inner: Inner::Generic(Box::new(Trajectory::new(data.clone()))),
-            };
+            return Ok(IntegerTrajectory {
+                inner: Inner::Generic(Box::new(Trajectory::new_with_progress(
+                    data.clone(),
+                    progress,
+                )?)),
+            });
         };
         let narrow = narrow_sums(s.x.len(), s.max_abs());
         let words = match (s.x_range.narrow(&s.x), s.u_range.narrow(&s.u)) {
@@ -181,7 +199,7 @@ impl IntegerTrajectory {
             (Words::I64(x, u), false) => run_split::<i64, i128>(x, u),
             (Words::I128(x, u), _) => run_split::<i128, i128>(x, u),
         };
-        IntegerTrajectory {
+        Ok(IntegerTrajectory {
             inner: Inner::Integer(Box::new(IntegerHistory {
                 words,
                 dx,
@@ -189,7 +207,7 @@ impl IntegerTrajectory {
                 radius: data.radius().clone(),
                 hist,
             })),
-        }
+        })
     }
 
     /// The engine that ran.
@@ -246,6 +264,15 @@ impl IntegerTrajectory {
 /// (the tests check it), and the way the CLI computes every trajectory.
 pub fn trajectory(data: &InitialData<BigRational>) -> Trajectory<BigRational> {
     IntegerTrajectory::new(data).into_trajectory()
+}
+
+/// [`trajectory`], telling `progress` of the merges and stopping with
+/// [`crate::Error::Interrupted`] when it asks.
+pub fn trajectory_with_progress(
+    data: &InitialData<BigRational>,
+    progress: &dyn Progress,
+) -> Result<Trajectory<BigRational>, crate::Error> {
+    Ok(IntegerTrajectory::new_with_progress(data, progress)?.into_trajectory())
 }
 
 /// The collision history of the streaming path's `i64` columns

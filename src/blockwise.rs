@@ -1,0 +1,357 @@
+//! The state at `t` on `BigRational` data with one common denominator per
+//! block: the projection formula of `prop:proj-micro` (`eq:proj-micro-x`,
+//! `eq:proj-u-micro`, the multipliers of `eq:dyn-micro`) computed so that
+//! data whose denominators are small one by one but large together (issue
+//! 29: 20,000 velocities `(−1)^i/(i+1)`, a common denominator of 28,821
+//! bits) cost a few big gcds per block instead of several per particle.
+//!
+//! The lexicographic PAVA is the one of [`crate::projection`] (the same
+//! [`pools`] decision), but a block keeps its sums `Σ ỹ` and `Σ u⁰` as
+//! numerators over the lcm of its members' denominators, never reduced:
+//! adding one particle costs a remainder by its (small) denominator, not a
+//! gcd of two big numbers. The answers are then reduced once per block:
+//!
+//! - every position of a block is its mean `P/Q` (one gcd) plus `2r·i`; with
+//!   `2r = a/b`, `x_i = (P b + a i Q)/(Q b)`, and since `gcd(P, Q) = 1` the
+//!   common factor of that fraction divides `m = b·gcd(b, Q)` — a remainder
+//!   by `m`, no big gcd (`m = 1` when `2r` is an integer);
+//! - the velocity of a block is one reduced mean for all its particles;
+//! - the multipliers of a block are `λ = (k A_m − m A_k)/(k N D)`
+//!   ([`crate::contact::cluster_multiplier_numerators`]), `D` the block's
+//!   common denominator, reduced by Lehmer's gcd ([`crate::gcd`]).
+//!
+//! The work is told to a [`Progress`] (one step per particle) and stops with
+//! [`Error::Interrupted`] when it asks.
+
+use std::cmp::Ordering;
+
+use num_bigint::{BigInt, BigUint, Sign};
+use num_integer::Integer;
+use num_rational::BigRational;
+use num_traits::{One, Zero};
+
+use crate::cluster::Cluster;
+use crate::error::Error;
+use crate::gcd;
+use crate::initial::InitialData;
+use crate::progress::Progress;
+use crate::projection::{pools, shifted_free_flight};
+use crate::state::State;
+
+/// Steps (particles) between two polls of [`Progress::cancelled`] and two
+/// reports of progress.
+const POLL_STEPS: usize = 256;
+
+/// A sum of fractions as `numer / denom`, not reduced: `denom` is the lcm
+/// of the summands' denominators.
+#[derive(Debug, Clone)]
+struct Sum {
+    numer: BigInt,
+    denom: BigUint,
+}
+
+impl Sum {
+    /// The sum of one fraction.
+    fn of(q: &BigRational) -> Sum {
+        Sum {
+            numer: q.numer().clone(),
+            denom: q.denom().magnitude().clone(),
+        }
+    }
+
+    /// `self + other` over `lcm` of the denominators (`g` their gcd: a
+    /// remainder by a word when one of them is small).
+    fn add(self, other: &Sum) -> Sum {
+        let g = gcd::gcd(&self.denom, &other.denom);
+        let to_other = &other.denom / &g;
+        let to_self = &self.denom / &g;
+        let numer = self.numer * BigInt::from_biguint(Sign::Plus, to_other.clone())
+            + &other.numer * BigInt::from_biguint(Sign::Plus, to_self);
+        Sum {
+            numer,
+            denom: self.denom * to_other,
+        }
+    }
+
+    /// The mean `self / k`, reduced.
+    fn mean(&self, k: usize) -> BigRational {
+        let d = BigInt::from_biguint(Sign::Plus, &self.denom * BigUint::from(k));
+        gcd::ratio(self.numer.clone(), d)
+    }
+}
+
+/// `Σ_a / k_a` against `Σ_b / k_b`, cross-multiplied (denominators are
+/// positive): a product by a small number when one block is a single
+/// particle.
+fn cmp_means(a: &Sum, ka: usize, b: &Sum, kb: usize) -> Ordering {
+    let left = &a.numer * BigInt::from_biguint(Sign::Plus, &b.denom * BigUint::from(kb));
+    let right = &b.numer * BigInt::from_biguint(Sign::Plus, &a.denom * BigUint::from(ka));
+    left.cmp(&right)
+}
+
+/// One pooled block: `size` particles from `first`, with the sums of the
+/// translated free flight `ỹ` and of `u⁰` over it.
+#[derive(Debug, Clone)]
+struct Block {
+    first: usize,
+    size: usize,
+    sum_y: Sum,
+    sum_u: Sum,
+}
+
+/// Polls `progress` every [`POLL_STEPS`] steps: reports them done, and
+/// stops the work when the watcher asked.
+fn poll(progress: &dyn Progress, step: usize) -> Result<(), Error> {
+    if step % POLL_STEPS == 0 && step > 0 {
+        progress.advance(POLL_STEPS as u64);
+        if progress.cancelled() {
+            return Err(Error::Interrupted {
+                during: "the state's computation",
+            });
+        }
+    }
+    Ok(())
+}
+
+/// The lexicographic PAVA on `(ỹ_i, u⁰_i)` (module documentation).
+fn pava(
+    y: &[BigRational],
+    u0: &[BigRational],
+    progress: &dyn Progress,
+) -> Result<Vec<Block>, Error> {
+    let mut stack: Vec<Block> = Vec::new();
+    for (i, (yi, ui)) in y.iter().zip(u0).enumerate() {
+        poll(progress, i)?;
+        let mut cur = Block {
+            first: i,
+            size: 1,
+            sum_y: Sum::of(yi),
+            sum_u: Sum::of(ui),
+        };
+        while let Some(top) = stack.pop() {
+            let joins = pools(
+                cmp_means(&top.sum_y, top.size, &cur.sum_y, cur.size),
+                || cmp_means(&top.sum_u, top.size, &cur.sum_u, cur.size),
+            );
+            if !joins {
+                stack.push(top);
+                break;
+            }
+            cur = Block {
+                first: top.first,
+                size: top.size + cur.size,
+                sum_y: top.sum_y.add(&cur.sum_y),
+                sum_u: top.sum_u.add(&cur.sum_u),
+            };
+        }
+        stack.push(cur);
+    }
+    Ok(stack)
+}
+
+/// `mean + 2r·i` for the particles `i` of a block, reduced without a big
+/// gcd (module documentation): `mean = P/Q` and `2r = a/b` in lowest terms.
+fn positions_of(
+    mean: &BigRational,
+    two_r: &BigRational,
+    block: &Block,
+    out: &mut Vec<BigRational>,
+) {
+    let (p, q) = (mean.numer(), mean.denom());
+    let (a, b) = (two_r.numer(), two_r.denom());
+    let denom = q * b;
+    // Every common factor of `P b + a i Q` and `Q b` divides `m`.
+    let m = b * q.gcd(b);
+    let pb = p * b;
+    let aq = a * q;
+    for i in block.first..block.first + block.size {
+        let numer = &pb + &aq * BigInt::from(i);
+        let g = if m.is_one() {
+            BigInt::one()
+        } else {
+            numer.mod_floor(&m).gcd(&m)
+        };
+        let x = if g.is_one() {
+            BigRational::new_raw(numer, denom.clone())
+        } else {
+            BigRational::new_raw(numer / &g, &denom / &g)
+        };
+        debug_assert!(gcd::gcd(x.numer().magnitude(), x.denom().magnitude()).is_one());
+        out.push(x);
+    }
+}
+
+/// The multipliers `λ` of the pairs inside a block (all but its last
+/// particle; the pair that closes a block has `λ = 0`, pushed by the
+/// caller): `(k A_m − m A_k)/(k N D)` with `u⁰_j = a_j / D` over the
+/// block's common denominator `D` (`eq:dyn-micro`).
+fn multipliers_of(
+    u0: &[BigRational],
+    block: &Block,
+    n: usize,
+    progress: &dyn Progress,
+    done: &mut usize,
+    out: &mut Vec<BigRational>,
+) -> Result<(), Error> {
+    let d = &block.sum_u.denom;
+    let k = BigInt::from(block.size);
+    let total = &block.sum_u.numer;
+    let denom = BigInt::from_biguint(Sign::Plus, d * BigUint::from(block.size) * BigUint::from(n));
+    let mut prefix = BigInt::zero();
+    let members = &u0[block.first..block.first + block.size];
+    for (m, u) in members.iter().enumerate().take(block.size - 1) {
+        poll(progress, *done)?;
+        *done += 1;
+        let scale = d / u.denom().magnitude();
+        prefix += u.numer() * BigInt::from_biguint(Sign::Plus, scale);
+        let numer = &k * &prefix - BigInt::from(m + 1) * total;
+        out.push(gcd::ratio(numer, denom.clone()));
+    }
+    Ok(())
+}
+
+/// The state at time `t ≥ 0` by the projection formula, with one common
+/// denominator per block (module documentation): the same [`State`] as
+/// [`crate::projection::state_at`], which the oracle battery checks.
+pub fn state_at(
+    data: &InitialData<BigRational>,
+    t: &BigRational,
+    progress: &dyn Progress,
+) -> Result<State<BigRational>, Error> {
+    if t < &BigRational::zero() {
+        return Err(Error::NegativeTime {
+            t: crate::Scalar::render(t),
+        });
+    }
+    let n = data.n();
+    let u0 = data.velocities();
+    progress.stage("projection", Some(n as u64));
+    let y = shifted_free_flight(data, t);
+    let blocks = pava(&y, u0, progress)?;
+    progress.stage("positions, velocities, multipliers", Some(n as u64));
+    let two_r = data.two_r();
+    let mut positions = Vec::with_capacity(n);
+    let mut velocities = Vec::with_capacity(n);
+    let mut multipliers = Vec::with_capacity(n.saturating_sub(1));
+    let mut means: Vec<BigRational> = Vec::with_capacity(blocks.len());
+    let mut done = 0;
+    for block in &blocks {
+        let mean = block.sum_y.mean(block.size);
+        positions_of(&mean, &two_r, block, &mut positions);
+        means.push(mean);
+        velocities.extend(std::iter::repeat_n(
+            block.sum_u.mean(block.size),
+            block.size,
+        ));
+        multipliers_of(u0, block, n, progress, &mut done, &mut multipliers)?;
+        multipliers.push(BigRational::zero());
+        done += 1;
+    }
+    // The pair closing the last block is not a pair.
+    multipliers.pop();
+    // Contact clusters: adjacent blocks with the same translated position
+    // (at `t = 0` touching particles that separate are two blocks).
+    let mut clusters: Vec<Cluster> = Vec::new();
+    let mut previous: Option<&BigRational> = None;
+    for (b, mean) in blocks.iter().zip(&means) {
+        match clusters.last_mut() {
+            Some(c) if previous == Some(mean) => c.size += b.size,
+            _ => clusters.push(Cluster {
+                first: b.first,
+                size: b.size,
+            }),
+        }
+        previous = Some(mean);
+    }
+    Ok(State {
+        t: t.clone(),
+        positions,
+        velocities,
+        multipliers,
+        clusters,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::progress::Silent;
+
+    fn q(n: i64, d: i64) -> BigRational {
+        BigRational::new(n.into(), d.into())
+    }
+
+    /// The hostile shape of issue 29 at small N, and variations of its
+    /// radius, against the generic projection at several times.
+    #[test]
+    fn equals_the_generic_projection() {
+        for (n, radius) in [(1, q(1, 2)), (7, q(1, 2)), (40, q(1, 3)), (60, q(2, 7))] {
+            let positions = (0..n).map(|i| q(3 * i, 1)).collect();
+            let velocities = (0..n)
+                .map(|i| q(if i % 2 == 0 { 1 } else { -1 }, i + 1))
+                .collect();
+            let data = InitialData::new(radius, positions, velocities).unwrap();
+            for t in [q(0, 1), q(1, 3), q(100, 1), q(10_i64.pow(12), 1), q(7, 1)] {
+                let want = crate::projection::state_at(&data, &t).unwrap();
+                let got = state_at(&data, &t, &Silent).unwrap();
+                assert_eq!(got, want, "n = {n}, t = {t}");
+                lowest_terms(&got);
+            }
+        }
+    }
+
+    /// Every value is in lowest terms with a positive denominator, as
+    /// `BigRational::new` leaves it (equality of ratios compares values, so
+    /// `assert_eq!` alone would let a fraction left unreduced through, and
+    /// it would print unreduced).
+    fn lowest_terms(s: &State<BigRational>) {
+        for v in s
+            .positions
+            .iter()
+            .chain(&s.velocities)
+            .chain(&s.multipliers)
+        {
+            assert!(v.denom() > &BigInt::zero(), "{v}");
+            assert!(
+                gcd::gcd(v.numer().magnitude(), v.denom().magnitude()).is_one(),
+                "{}/{} is not reduced",
+                v.numer(),
+                v.denom()
+            );
+        }
+    }
+
+    /// Touching particles that separate at `t = 0` are one contact cluster
+    /// and two blocks.
+    #[test]
+    fn contact_at_zero() {
+        let data =
+            InitialData::new(q(1, 2), vec![q(0, 1), q(1, 1)], vec![q(0, 1), q(1, 1)]).unwrap();
+        let s = state_at(&data, &q(0, 1), &Silent).unwrap();
+        assert_eq!(s, crate::projection::state_at(&data, &q(0, 1)).unwrap());
+        assert_eq!(s.clusters, vec![Cluster { first: 0, size: 2 }]);
+    }
+
+    /// A watcher that has asked to stop gets [`Error::Interrupted`].
+    #[test]
+    fn stops_when_cancelled() {
+        struct Stop;
+        impl Progress for Stop {
+            fn cancelled(&self) -> bool {
+                true
+            }
+        }
+        let n = 3 * POLL_STEPS as i64;
+        let data = InitialData::new(
+            q(1, 2),
+            (0..n).map(|i| q(3 * i, 1)).collect(),
+            (0..n).map(|i| q(1, i + 1)).collect(),
+        )
+        .unwrap();
+        assert!(matches!(
+            state_at(&data, &q(5, 1), &Stop),
+            Err(Error::Interrupted { .. })
+        ));
+        assert!(state_at(&data, &q(-1, 1), &Silent).is_err());
+    }
+}
