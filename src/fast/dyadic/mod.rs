@@ -51,6 +51,7 @@ use crate::cluster::{runs, Cluster};
 use crate::fast::kernel::{pava_words, size_bits, Run};
 use crate::fast::stream::Nearest;
 use crate::state::State;
+use round::Split;
 
 /// Bits of `|v|` (0 for 0).
 fn bits(v: u128) -> u64 {
@@ -290,13 +291,27 @@ impl DyadicBlocks<'_> {
             // x_i = (S + k C i) 2^{ey} / (k b_o q_o), i = first, first + 1, …
             let den = k.checked_mul(den_y)?;
             let step = ki.checked_mul(self.c)?;
-            let mut num =
-                r.sy.checked_add(step.checked_mul(i128::try_from(first).ok()?)?)?;
-            for m in 0..k {
-                if m > 0 {
-                    num = num.checked_add(step)?;
+            let first_i = i128::try_from(first).ok()?;
+            let num_at = |m: u64| r.sy.checked_add(step.checked_mul(first_i + i128::from(m))?);
+            if den_y == 1 {
+                // x_i 2^{−ey} = ⌊S/k⌋ + C i + (S mod k)/k: one division per
+                // block, none per particle (`round::nearest_plus`).
+                let split = Split::new(r.sy, k);
+                let mut w = split.floor.checked_add(self.c.checked_mul(first_i)?)?;
+                for m in 0..k {
+                    if m > 0 {
+                        w = w.checked_add(self.c)?;
+                    }
+                    let x = match round::nearest_plus(w, &split, ey) {
+                        Some(x) => x,
+                        None => round::nearest(num_at(m)?, den, ey),
+                    };
+                    out.positions.push(x);
                 }
-                out.positions.push(round::nearest(num, den, ey));
+            } else {
+                for m in 0..k {
+                    out.positions.push(round::nearest(num_at(m)?, den, ey));
+                }
             }
             let u = round::nearest(r.su, k, eu);
             out.velocities.extend(std::iter::repeat_n(u, k as usize));

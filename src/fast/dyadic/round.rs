@@ -28,7 +28,8 @@ pub fn nearest(num: i128, den: u64, exp: i64) -> f64 {
         (a, false, exp - i64::from(den.trailing_zeros()))
     } else {
         let d = u128::from(den);
-        (a / d, a % d != 0, exp)
+        let q = a / d;
+        (q, a != q.wrapping_mul(d), exp)
     };
     let magnitude = round_scaled(q, sticky, exp - s);
     if negative {
@@ -40,10 +41,30 @@ pub fn nearest(num: i128, den: u64, exp: i64) -> f64 {
 
 /// The nearest double of `(q + ρ) 2^e` with `q ≥ 2^63` and `0 ≤ ρ < 1`,
 /// `sticky` telling `ρ > 0`.
-fn round_scaled(q: u128, sticky: bool, e: i64) -> f64 {
+pub fn round_scaled(q: u128, sticky: bool, e: i64) -> f64 {
     debug_assert!(q >= 1 << 63);
-    let bits = 128 - i64::from(q.leading_zeros());
+    let lz = q.leading_zeros();
     // The value lies in [2^top, 2^(top+1)).
+    let top = 127 - i64::from(lz) + e;
+    if (-1022..=1023).contains(&top) {
+        // A normal double: the top 53 bits of q kept, the 75 below (and
+        // ρ) dropped; no variable shift but the normalisation.
+        let qn = q << lz;
+        let kept = (qn >> 75) as u64;
+        let rest = qn << 53;
+        const HALF: u128 = 1 << 127;
+        let up = rest > HALF || (rest == HALF && (sticky || kept & 1 == 1));
+        // kept + up ≤ 2^53; a carry into 2^53 moves into the exponent field
+        // (to ∞ past 2^1024: the correct rounding there).
+        let field = ((top + 1023) as u64) << 52;
+        return f64::from_bits(field + (kept - (1 << 52)) + u64::from(up));
+    }
+    round_slow(q, sticky, e)
+}
+
+/// [`round_scaled`] for values that are subnormal or beyond the range.
+fn round_slow(q: u128, sticky: bool, e: i64) -> f64 {
+    let bits = 128 - i64::from(q.leading_zeros());
     let top = bits - 1 + e;
     if top > 1023 {
         return f64::INFINITY;
@@ -72,7 +93,111 @@ fn round_scaled(q: u128, sticky: bool, e: i64) -> f64 {
     // m ≤ 2^53: exact as a double; m 2^last is exact (or overflows to ∞
     // when it is 2^1024, the correct rounding there).
     debug_assert!(m <= 1 << 53);
-    (m as f64) * pow2(last)
+    (m as u64 as f64) * pow2(last)
+}
+
+/// A fraction `num / den` in `[0, 1)` to 64 bits: `⌊num 2^64 / den⌋` and
+/// whether the rest is not zero.
+#[derive(Debug, Clone, Copy)]
+pub struct Fraction64 {
+    /// The first 64 bits after the binary point.
+    pub bits: u64,
+    /// The bits beyond are not all zero.
+    pub sticky: bool,
+}
+
+impl Fraction64 {
+    /// `num / den` for `0 ≤ num < den`.
+    pub fn new(num: u64, den: u64) -> Fraction64 {
+        debug_assert!(num < den);
+        let a = u128::from(num) << 64;
+        let d = u128::from(den);
+        let q = a / d;
+        Fraction64 {
+            bits: q as u64,
+            sticky: a != q.wrapping_mul(d),
+        }
+    }
+
+    /// Zero.
+    pub const ZERO: Fraction64 = Fraction64 {
+        bits: 0,
+        sticky: false,
+    };
+}
+
+/// The mean of a block of `k` values with sum `s`, split as `⌊s/k⌋` and
+/// the fractions `f = (s mod k)/k` and `1 − f` (for the values below zero).
+#[derive(Debug, Clone, Copy)]
+pub struct Split {
+    /// `⌊s/k⌋`.
+    pub floor: i128,
+    /// `f`: zero when `k` divides `s`.
+    pub up: Fraction64,
+    /// `1 − f` when `f > 0` (unused when `f = 0`).
+    pub down: Fraction64,
+    /// `f = 0`.
+    pub whole: bool,
+}
+
+impl Split {
+    /// `s / k`, `k > 0`: one division.
+    pub fn new(s: i128, k: u64) -> Split {
+        let ki = i128::from(k);
+        let floor = s.div_euclid(ki);
+        let rem = s.wrapping_sub(floor.wrapping_mul(ki)) as u64;
+        let whole = rem == 0;
+        if whole {
+            return Split {
+                floor,
+                up: Fraction64::ZERO,
+                down: Fraction64::ZERO,
+                whole,
+            };
+        }
+        let up = Fraction64::new(rem, k);
+        // f = (B + δ)/2^64, 0 ≤ δ < 1, B ≥ 1 when δ = 0: 1 − f is
+        // (!B + (1 − δ))/2^64 when δ > 0, (!B + 1)/2^64 when δ = 0.
+        let down = Fraction64 {
+            bits: if up.sticky {
+                !up.bits
+            } else {
+                (!up.bits).wrapping_add(1)
+            },
+            sticky: up.sticky,
+        };
+        Split {
+            floor,
+            up,
+            down,
+            whole,
+        }
+    }
+}
+
+/// The nearest double of `(w + f) 2^exp` for an integer `w` and the
+/// fraction `f` of `split` (`split.floor` is not used): no division. `None`
+/// when the value is below `2^(exp−1)` in magnitude and not zero, where 64
+/// bits of the fraction may not be enough (the caller divides).
+pub fn nearest_plus(w: i128, split: &Split, exp: i64) -> Option<f64> {
+    // |w + f| = i + g: i = w, g = f for w ≥ 0; i = |w| − 1, g = 1 − f for
+    // w < 0 and f > 0.
+    let negative = w < 0;
+    let (i, g) = match (negative, split.whole) {
+        (_, true) => (w.unsigned_abs(), Fraction64::ZERO),
+        (false, false) => (w.unsigned_abs(), split.up),
+        (true, false) => (w.unsigned_abs() - 1, split.down),
+    };
+    let magnitude = if i >= 1 << 63 {
+        round_scaled(i, g.bits != 0 || g.sticky, exp)
+    } else {
+        let v = (i << 64) | u128::from(g.bits);
+        if v < 1 << 63 {
+            return if v == 0 && !g.sticky { Some(0.0) } else { None };
+        }
+        round_scaled(v, g.sticky, exp - 64)
+    };
+    Some(if negative { -magnitude } else { magnitude })
 }
 
 /// `2^e` as a double, for `−1074 ≤ e ≤ 1023`.
@@ -151,6 +276,31 @@ mod tests {
 
     /// Exact midpoints between two doubles round to the even one, and one
     /// unit of the remainder more or less decides: the sticky bit counts.
+    /// `nearest_plus` on a block's split mean is `nearest` of the fraction.
+    #[test]
+    fn split_means_round_as_their_fractions() {
+        let mut rng = SplitMix64::new(99);
+        let mut answered = 0;
+        for case in 0..20_000 {
+            let k = 1 + rng.next_u64() % if case % 2 == 0 { 7 } else { 1 << 40 };
+            let nb = rng.next_u64() % 100;
+            let s = ((u128::from(rng.next_u64()) << 64 | u128::from(rng.next_u64()))
+                >> (128 - nb.max(1))) as i128;
+            let s = if rng.next_u64() % 2 == 0 { s } else { -s };
+            let c = (rng.next_u64() >> (rng.next_u64() % 64)) as i128;
+            let i = (rng.next_u64() % 1000) as i128;
+            let exp = (rng.next_u64() % 400) as i64 - 200;
+            let split = Split::new(s, k);
+            let w = split.floor + c * i;
+            let num = s + i128::from(k) * c * i;
+            if let Some(f) = nearest_plus(w, &split, exp) {
+                answered += 1;
+                assert_eq!(f.to_bits(), oracle(num, k, exp).to_bits(), "{num} / {k}");
+            }
+        }
+        assert!(answered > 19_000, "{answered}");
+    }
+
     #[test]
     fn ties_go_to_even_and_the_remainder_breaks_them() {
         // (2^53 + 1) / 2^53 · 2 ... : midpoints between 1 + k 2^-52 and the
