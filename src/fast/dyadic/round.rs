@@ -21,17 +21,33 @@ pub fn nearest(num: i128, den: u64, exp: i64) -> f64 {
     }
     let negative = num < 0;
     let a = num.unsigned_abs();
-    let s = i64::from(a.leading_zeros());
-    let a = a << s;
-    // Division by a power of two is a shift of the exponent: no remainder.
-    let (q, sticky, exp) = if den.is_power_of_two() {
-        (a, false, exp - i64::from(den.trailing_zeros()))
+    let magnitude = if den.is_power_of_two() {
+        // Division by a power of two is a shift of the exponent.
+        let s = a.leading_zeros();
+        round_scaled(
+            a << s,
+            false,
+            exp - i64::from(s) - i64::from(den.trailing_zeros()),
+        )
     } else {
+        // a' = ⌊a 2^s⌋ with 63 + bits(den) bits: the quotient q = ⌊a'/den⌋
+        // lies in [2^62, 2^64) (one machine division), and for s < 0 the
+        // bits of a shifted out are below q's last unit: a/den is
+        // (q + ρ) 2^(−s) with ρ > 0 exactly when the remainder or those
+        // bits are not zero.
         let d = u128::from(den);
-        let q = a / d;
-        (q, a != q.wrapping_mul(d), exp)
+        let bits_d = 64 - i64::from(den.leading_zeros());
+        let bits_a = 128 - i64::from(a.leading_zeros());
+        let s = 63 + bits_d - bits_a;
+        let (a2, lost) = if s >= 0 {
+            (a << s, false)
+        } else {
+            let r = (-s) as u32;
+            (a >> r, a & ((1u128 << r) - 1) != 0)
+        };
+        let q = a2 / d;
+        round_scaled(q, lost || a2 != q.wrapping_mul(d), exp - s)
     };
-    let magnitude = round_scaled(q, sticky, exp - s);
     if negative {
         -magnitude
     } else {
@@ -39,10 +55,10 @@ pub fn nearest(num: i128, den: u64, exp: i64) -> f64 {
     }
 }
 
-/// The nearest double of `(q + ρ) 2^e` with `q ≥ 2^63` and `0 ≤ ρ < 1`,
-/// `sticky` telling `ρ > 0`.
+/// The nearest double of `(q + ρ) 2^e` with `q ≥ 2^53` (so that at least
+/// one bit of `q` is dropped) and `0 ≤ ρ < 1`, `sticky` telling `ρ > 0`.
 pub fn round_scaled(q: u128, sticky: bool, e: i64) -> f64 {
-    debug_assert!(q >= 1 << 63);
+    debug_assert!(q >= 1 << 53);
     let lz = q.leading_zeros();
     // The value lies in [2^top, 2^(top+1)).
     let top = 127 - i64::from(lz) + e;
@@ -72,7 +88,7 @@ fn round_slow(q: u128, sticky: bool, e: i64) -> f64 {
     // The last place kept: 53 significant bits, or 2^-1074 for subnormals.
     let last = (top - 52).max(-1074);
     let drop = last - e;
-    // `bits ≥ 64`: a normal value drops at least 11 bits; a subnormal may
+    // `bits ≥ 54`: a normal value drops at least one bit; a subnormal may
     // drop all of them (then the kept part is 0).
     debug_assert!(drop >= 1);
     let (kept, round_up) = if drop > bits {
