@@ -10,8 +10,9 @@ Data: N particles, r = 2^-21. "Grid doubles": positions x0_i =
 with k_i uniform in {-64, ..., 64} (doubles with short binary denominators,
 as a solver's grid data are). "Random doubles": x0_i = 4r i + r v_i,
 u0_i = 2 w_i - 1 with v_i, w_i uniform in [0, 1) (53-bit mantissas at
-every scale: the first positions have denominators beyond 64 bits, so the
-general BigRational path answers). sticky answers
+every scale: the first positions have denominators beyond 64 bits). Both
+take the dyadic path (sticky.fast::dyadic: i128 columns over dyadic
+scales, one rounding per value, no big number). sticky answers
 x(t) = P_K(x0 + t u0) exactly, then rounds to the nearest doubles; scipy
 gets the shifted free flight y = x0 + t u0 - 2r i, already computed, and
 runs its floating-point PAVA. Each timing is the median of REPEATS runs,

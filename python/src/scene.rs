@@ -3,8 +3,11 @@
 //! them: the state at any time (`prop:proj-micro`), the collision events,
 //! the projection onto `K` (`df:KN`).
 //!
-//! Two paths, one answer. Data on machine words (doubles from numpy, small
-//! fractions) go the library's streaming path ([`sticky::fast::stream`]:
+//! Three paths, one answer. Columns of doubles (numpy arrays, lists of
+//! `float`) go the library's dyadic path ([`sticky::fast::dyadic`]: `i128`
+//! columns over dyadic scales, the kernel's PAVA, one rounding per value
+//! with no big number); other data on machine words (small fractions) go
+//! the library's streaming path ([`sticky::fast::stream`]:
 //! `i64` columns, the integer kernel's PAVA, values in lowest terms on
 //! words); anything else — and the streaming path's refusals (a value off
 //! words, a time beyond its bound, invalid data, whose error of record the
@@ -19,6 +22,7 @@ use numpy::PyArray1;
 use pyo3::exceptions::{PyOSError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyList;
+use sticky::fast::dyadic::Dyadic;
 use sticky::fast::engine;
 use sticky::fast::kernel::{self, IntegerData};
 use sticky::fast::stream::Lean;
@@ -55,6 +59,7 @@ enum Source {
 
 /// Everything a scene holds, shared with the worker threads.
 pub struct Inner {
+    dyadic: Option<Dyadic>,
     lean: Option<Lean>,
     source: Source,
     general: OnceLock<SceneFile>,
@@ -69,6 +74,7 @@ impl Inner {
         let general = OnceLock::new();
         let _ = general.set(scene);
         Inner {
+            dyadic: None,
             lean,
             source: Source::Built,
             general,
@@ -127,6 +133,9 @@ impl Inner {
 
     /// The radius r.
     pub fn radius(&self) -> Result<BigRational, Error> {
+        if let Some(d) = &self.dyadic {
+            return Ok(d.radius().clone());
+        }
         match &self.lean {
             Some(l) => Ok(l.radius().clone()),
             None => Ok(self.scene()?.data.radius().clone()),
@@ -135,16 +144,22 @@ impl Inner {
 
     /// N.
     pub fn n(&self) -> Result<usize, Error> {
+        if let Some(d) = &self.dyadic {
+            return Ok(d.n());
+        }
         match &self.lean {
             Some(l) => Ok(l.n()),
             None => Ok(self.scene()?.n()),
         }
     }
 
-    /// The exact state at `t`: the streaming path's blocks when they
-    /// answer, the integer kernel otherwise (the same state: the library's
-    /// tests compare both).
+    /// The exact state at `t`: the dyadic path's or the streaming path's
+    /// blocks when they answer, the integer kernel otherwise (the same
+    /// state: the library's tests compare them).
     pub fn answer(&self, t: &BigRational) -> Result<Answer, Error> {
+        if let Some(blocks) = self.dyadic.as_ref().and_then(|d| d.blocks_at(t)) {
+            return Ok(Answer::from_dyadic(&blocks));
+        }
         if let Some(blocks) = self.lean.as_ref().and_then(|l| l.blocks_at(t)) {
             return Ok(Answer::from_blocks(&blocks));
         }
@@ -155,6 +170,9 @@ impl Inner {
     /// The exact state at `t`, every value a `BigRational` (for the exact
     /// lists a `State` gives on demand).
     pub fn exact(&self, t: &BigRational) -> Result<sticky::State<BigRational>, Error> {
+        if let Some(blocks) = self.dyadic.as_ref().and_then(|d| d.blocks_at(t)) {
+            return Ok(blocks.exact_state());
+        }
         if let Some(blocks) = self.lean.as_ref().and_then(|l| l.blocks_at(t)) {
             return Ok(crate::state::exact_state(&blocks));
         }
@@ -223,13 +241,17 @@ impl Scene {
             }));
         }
         if let (Column::Doubles(xs), Column::Doubles(us)) = (&x, &u) {
-            let lean = py.detach(|| Lean::from_doubles(radius.clone(), xs, us));
-            if let Some(lean) = lean {
+            let paths = py.detach(|| match Dyadic::from_doubles(radius.clone(), xs, us) {
+                Some(d) => Some((Some(d), None)),
+                None => Lean::from_doubles(radius.clone(), xs, us).map(|l| (None, Some(l))),
+            });
+            if let Some((dyadic, lean)) = paths {
                 let (Column::Doubles(positions), Column::Doubles(velocities)) = (x, u) else {
                     return Err(PyValueError::new_err("unreachable: columns of doubles"));
                 };
                 return Ok(Scene::wrap(Inner {
-                    lean: Some(lean),
+                    dyadic,
+                    lean,
                     source: Source::Doubles {
                         radius,
                         positions,
@@ -262,6 +284,7 @@ impl Scene {
         let inner = py.detach(|| -> Result<Inner, Error> {
             if let Some(lean) = Lean::load(&path) {
                 return Ok(Inner {
+                    dyadic: None,
                     lean: Some(lean),
                     source: Source::File(path),
                     general: OnceLock::new(),

@@ -9,6 +9,7 @@ use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use sticky::cluster::Cluster;
+use sticky::fast::dyadic::DyadicBlocks;
 use sticky::fast::stream::{Exact, LeanBlocks};
 use sticky::Scalar;
 
@@ -72,6 +73,23 @@ impl Answer {
             multipliers: nearest.multipliers,
             clusters: b.clusters(),
             exact: None,
+        }
+    }
+
+    /// The nearest doubles from the dyadic path's blocks (the exact values
+    /// are computed again when asked for); when an intermediate leaves
+    /// `i128`, the exact state rounded (and kept).
+    pub fn from_dyadic(b: &DyadicBlocks<'_>) -> Answer {
+        match b.nearest() {
+            Some(nearest) => Answer {
+                t: b.t().clone(),
+                positions: nearest.positions,
+                velocities: nearest.velocities,
+                multipliers: nearest.multipliers,
+                clusters: b.clusters(),
+                exact: None,
+            },
+            None => Answer::from_state(b.exact_state()),
         }
     }
 

@@ -11,6 +11,8 @@
 //! * `scaling` — the one scaling to common denominators both use;
 //! * `int` — the integer helpers they share (gcd and reduction, checked
 //!   products, narrowing to the smallest width, the block-size bound);
+//! * [`dyadic`] — columns of doubles on `i128` over dyadic scales, PAVA
+//!   and the nearest doubles with no big number per value (Python);
 //! * [`stream`] — the streaming path from a column file to the answer on
 //!   machine words, value by value, no `BigRational` per value;
 //! * [`engine`] — the one interface every exact engine implements (the
@@ -21,6 +23,7 @@
 
 pub mod adaptive;
 pub mod battery;
+pub mod dyadic;
 pub mod engine;
 pub(crate) mod int;
 pub mod kernel;

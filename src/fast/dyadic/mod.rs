@@ -1,0 +1,409 @@
+//! The lean path for doubles (issue 27): columns of `f64` straight to the
+//! integer PAVA and back to the nearest doubles, with no `BigRational` and
+//! no big integer per value.
+//!
+//! Every double is a dyadic rational `m 2^e`. [`Dyadic::from_doubles`]
+//! decomposes each one with integer operations and scales each column to
+//! its smallest exponent: with `2r = a / (b_o 2^{b_s})` (`b_o` odd) and
+//! `ex` the smallest exponent among the positions and `2^{-b_s}`,
+//!
+//! `x̃⁰_i = x⁰_i − 2r i = X̃_i 2^{ex} / b_o` (`df:translat-x`),
+//! `u⁰_i = U_i 2^{eu}`,
+//!
+//! with `X̃_i`, `U_i` in `i128`, and checks `df:KN` (`X̃_{i+1} ≥ X̃_i`) and
+//! `def:velcone` (`U_{i+1} ≥ U_i` across a contact) on them. At a time
+//! `t = p / (q_o 2^{q_s})`, with `ey = min(ex, eu − q_s)`,
+//!
+//! `Y_i = A X̃_i + B U_i`, `A = q_o 2^{ex − ey}`, `B = b_o p 2^{eu − q_s − ey}`,
+//! `ỹ_i = x̃⁰_i + t u⁰_i = Y_i / M`, `M = b_o q_o 2^{−ey}`,
+//!
+//! and the kernel's PAVA ([`crate::fast::kernel`], `prop:proj-micro`) runs on
+//! the `i128` pairs `(Y_i, U_i)` under the kernel's width bound
+//! (`b_Y + b_K ≤ 127`). A block of `k` entries with sums `S = ΣY`,
+//! `S_U = ΣU` gives, for each of its particles `i`,
+//!
+//! * `x_i = S/(kM) + 2r i = (S + k C i) 2^{ey} / (k b_o q_o)`, `C = A R`,
+//!   `R = 2r b_o 2^{−ex}` (an integer);
+//! * `u_i = S_U 2^{eu} / k` (`eq:proj-u-micro`);
+//! * `λ_m = (k Σ_{j ≤ m} U_j − m S_U) 2^{eu} / (k N)` for the `m`-th pair of
+//!   the block (`eq:dyn-micro`, [`crate::contact::cluster_multiplier_numerators`]).
+//!
+//! Each is an `i128` numerator over a 64-bit denominator times a power of
+//! two, rounded once to the nearest double by [`round::nearest`] (one
+//! integer division, none when the denominator is a power of two) or
+//! reduced to lowest terms on demand ([`DyadicBlocks::exact_state`]).
+//!
+//! **Same results.** Everything answers `None` the moment the data leave
+//! this range (a non-finite value, a radius or time whose factors do not fit
+//! 64 bits, a scaled value beyond `i128`, invalid data, the width bound not
+//! proved): the caller then takes another path, which gives the same answer
+//! or the error of record. The tests compare the exact states with the
+//! generic projection and the doubles with the exact values' nearest
+//! doubles, bit for bit.
+
+pub mod round;
+
+use num_bigint::BigInt;
+use num_rational::BigRational;
+use num_traits::{Signed, ToPrimitive, Zero};
+
+use crate::cluster::{runs, Cluster};
+use crate::fast::kernel::{pava_words, size_bits, Run};
+use crate::fast::stream::Nearest;
+use crate::state::State;
+use round::Split;
+
+/// Bits of `|v|` (0 for 0).
+fn bits(v: u128) -> u64 {
+    u64::from(128 - v.leading_zeros())
+}
+
+/// `v 2^s` when it fits `i128` (exactly), `None` otherwise.
+fn shl_exact(v: i128, s: u64) -> Option<i128> {
+    if v == 0 {
+        return Some(0);
+    }
+    if s >= 127 || bits(v.unsigned_abs()) + s > 126 {
+        return None;
+    }
+    Some(v << s)
+}
+
+/// A finite double as `(m, e)` with value `m 2^e`, `m` odd (or `0`);
+/// `None` for a NaN or an infinity.
+fn decompose(d: f64) -> Option<(i64, i64)> {
+    let b = d.to_bits();
+    let field = ((b >> 52) & 0x7ff) as i64;
+    let frac = (b & ((1u64 << 52) - 1)) as i64;
+    let (m, e) = match field {
+        0x7ff => return None,
+        0 => (frac, -1074),
+        _ => (frac | (1 << 52), field - 1075),
+    };
+    if m == 0 {
+        return Some((0, 0));
+    }
+    let tz = i64::from(m.trailing_zeros());
+    let m = m >> tz;
+    Some((if d < 0.0 { -m } else { m }, e + tz))
+}
+
+/// A positive rational `a / (o 2^s)` (`o` odd) as `(a, o, s)`, `a` and `o`
+/// on 64 bits; `None` when it is negative or a term does not fit.
+fn split_odd(q: &BigRational) -> Option<(u64, u64, u64)> {
+    let a = q.numer().to_u64()?;
+    let s = q.denom().trailing_zeros()?;
+    let o = (q.denom() >> s).to_u64()?;
+    Some((a, o, s))
+}
+
+/// A scene of doubles on `i128` columns over dyadic scales (module
+/// documentation): `x̃⁰_i = X̃_i 2^{ex} / b_o`, `u⁰_i = U_i 2^{eu}`.
+#[derive(Debug, Clone)]
+pub struct Dyadic {
+    radius: BigRational,
+    x: Vec<i128>,
+    u: Vec<i128>,
+    ex: i64,
+    eu: i64,
+    b_odd: u64,
+    /// `R = 2r b_o 2^{−ex}`, the integer `2r` at the positions' scale.
+    two_r: i128,
+    x_bits: u64,
+    u_bits: u64,
+}
+
+impl Dyadic {
+    /// The scene of radius `radius` (`None`: `1/(2N)`) with positions `xs`
+    /// and velocities `us`, each double taken as the exact binary rational
+    /// it is. `None` when a value is not finite, the radius's terms do not
+    /// fit 64 bits, a scaled value does not fit `i128`, or the data are not
+    /// valid (`df:KN`, `def:velcone`): the general path
+    /// ([`crate::InitialData::new`]) then answers or names the error.
+    pub fn from_doubles(radius: Option<BigRational>, xs: &[f64], us: &[f64]) -> Option<Dyadic> {
+        let n = xs.len();
+        if n == 0 || us.len() != n {
+            return None;
+        }
+        let radius = radius.unwrap_or_else(|| BigRational::new(1.into(), BigInt::from(2 * n)));
+        if !radius.is_positive() {
+            return None;
+        }
+        let (a, b_odd, b_s) = split_odd(&(&radius + &radius))?;
+        if a == 0 {
+            return None;
+        }
+        let px = xs
+            .iter()
+            .map(|&d| decompose(d))
+            .collect::<Option<Vec<_>>>()?;
+        let pu = us
+            .iter()
+            .map(|&d| decompose(d))
+            .collect::<Option<Vec<_>>>()?;
+        let least = |p: &[(i64, i64)]| p.iter().filter(|v| v.0 != 0).map(|v| v.1).min();
+        let b_s = i64::try_from(b_s).ok()?;
+        let ex = least(&px).map_or(-b_s, |e| e.min(-b_s));
+        let eu = least(&pu).unwrap_or(0);
+        // R = a 2^{−b_s − ex}, X̃_i = b_o m_i 2^{e_i − ex} − R i.
+        let two_r = shl_exact(i128::from(a), u64::try_from(-b_s - ex).ok()?)?;
+        let b = i128::from(b_odd);
+        let x = px
+            .iter()
+            .enumerate()
+            .map(|(i, &(m, e))| {
+                let scaled = shl_exact(i128::from(m) * b, (e - ex) as u64)?;
+                scaled.checked_sub(two_r.checked_mul(i128::try_from(i).ok()?)?)
+            })
+            .collect::<Option<Vec<_>>>()?;
+        drop(px);
+        let u = pu
+            .iter()
+            .map(|&(m, e)| shl_exact(i128::from(m), (e - eu) as u64))
+            .collect::<Option<Vec<_>>>()?;
+        drop(pu);
+        // `df:KN` and `def:velcone` on the scaled data, the checks of
+        // `InitialData::new` (the general path names the first failure).
+        for i in 1..n {
+            if x[i] < x[i - 1] || (x[i] == x[i - 1] && u[i] < u[i - 1]) {
+                return None;
+            }
+        }
+        let max_bits = |v: &[i128]| v.iter().map(|w| bits(w.unsigned_abs())).max().unwrap_or(0);
+        Some(Dyadic {
+            radius,
+            x_bits: max_bits(&x),
+            u_bits: max_bits(&u),
+            x,
+            u,
+            ex,
+            eu,
+            b_odd,
+            two_r,
+        })
+    }
+
+    /// N.
+    pub fn n(&self) -> usize {
+        self.x.len()
+    }
+
+    /// The radius r.
+    pub fn radius(&self) -> &BigRational {
+        &self.radius
+    }
+
+    /// The exact PAVA blocks at `t ≥ 0` on `i128` sums; `None` when `t < 0`,
+    /// its terms do not fit 64 bits, or the kernel's `i128` bound does not
+    /// hold at `t` (the caller then takes another path).
+    pub fn blocks_at(&self, t: &BigRational) -> Option<DyadicBlocks<'_>> {
+        if t.is_negative() {
+            return None;
+        }
+        let (p, q_odd, q_s) = split_odd(t)?;
+        let q_s = i64::try_from(q_s).ok()?;
+        let ey = self.ex.min(self.eu - q_s);
+        let a = shl_exact(i128::from(q_odd), (self.ex - ey) as u64)?;
+        let b = shl_exact(
+            i128::from(self.b_odd).checked_mul(i128::from(p))?,
+            (self.eu - q_s - ey) as u64,
+        )?;
+        // The kernel's bound (`crate::fast::kernel`): |Y_i| < 2^b_Y, every
+        // block sum and cross product below 2^(b_Y + b_K) ≤ 2^127, the same
+        // for the U sums.
+        let b_k = size_bits(self.n());
+        let b_y =
+            (bits(a.unsigned_abs()) + self.x_bits).max(bits(b.unsigned_abs()) + self.u_bits) + 1;
+        if b_y + b_k > 127 || self.u_bits + b_k > 127 {
+            return None;
+        }
+        let c = a.checked_mul(self.two_r)?;
+        let (xs, us) = (&self.x, &self.u);
+        let runs = pava_words(self.n(), |i| {
+            (
+                a.wrapping_mul(xs[i]).wrapping_add(b.wrapping_mul(us[i])),
+                us[i],
+            )
+        });
+        Some(DyadicBlocks {
+            d: self,
+            runs,
+            t: t.clone(),
+            ey,
+            q_odd,
+            c,
+        })
+    }
+}
+
+/// The PAVA blocks of a [`Dyadic`] scene at one time, and the state they
+/// give.
+#[derive(Debug)]
+pub struct DyadicBlocks<'a> {
+    d: &'a Dyadic,
+    runs: Vec<Run<i128>>,
+    t: BigRational,
+    ey: i64,
+    q_odd: u64,
+    /// `C = A R`: `x_i = (S + k C i) 2^{ey} / (k b_o q_o)`.
+    c: i128,
+}
+
+/// `num 2^exp / den` in lowest terms.
+fn exact(num: BigInt, den: BigInt, exp: i64) -> BigRational {
+    let shift = exp.unsigned_abs() as usize;
+    if exp >= 0 {
+        BigRational::new(num << shift, den)
+    } else {
+        BigRational::new(num, den << shift)
+    }
+}
+
+impl DyadicBlocks<'_> {
+    /// The time.
+    pub fn t(&self) -> &BigRational {
+        &self.t
+    }
+
+    /// N.
+    pub fn n(&self) -> usize {
+        self.d.n()
+    }
+
+    /// The state rounded to the nearest doubles (ties to even), each value
+    /// rounded once from its exact value; `None` when an intermediate does
+    /// not fit `i128` or a denominator 64 bits (then round
+    /// [`Self::exact_state`]).
+    pub fn nearest(&self) -> Option<Nearest> {
+        let n = self.n();
+        let (ey, eu) = (self.ey, self.d.eu);
+        let den_y = self.d.b_odd.checked_mul(self.q_odd)?;
+        let big_n = u64::try_from(n).ok()?;
+        let mut out = Nearest {
+            positions: Vec::with_capacity(n),
+            velocities: Vec::with_capacity(n),
+            multipliers: Vec::with_capacity(n.saturating_sub(1)),
+        };
+        let mut first = 0usize;
+        for r in &self.runs {
+            let k = r.k;
+            let ki = i128::from(k);
+            // x_i = (S + k C i) 2^{ey} / (k b_o q_o), i = first, first + 1, …
+            let den = k.checked_mul(den_y)?;
+            let step = ki.checked_mul(self.c)?;
+            let first_i = i128::try_from(first).ok()?;
+            let num_at = |m: u64| r.sy.checked_add(step.checked_mul(first_i + i128::from(m))?);
+            if den_y == 1 {
+                // x_i 2^{−ey} = ⌊S/k⌋ + C i + (S mod k)/k: one division per
+                // block, none per particle (`round::nearest_plus`).
+                let split = Split::new(r.sy, k);
+                let mut w = split.floor.checked_add(self.c.checked_mul(first_i)?)?;
+                for m in 0..k {
+                    if m > 0 {
+                        w = w.checked_add(self.c)?;
+                    }
+                    let x = match round::nearest_plus(w, &split, ey) {
+                        Some(x) => x,
+                        None => round::nearest(num_at(m)?, den, ey),
+                    };
+                    out.positions.push(x);
+                }
+            } else {
+                for m in 0..k {
+                    out.positions.push(round::nearest(num_at(m)?, den, ey));
+                }
+            }
+            let u = round::nearest(r.su, k, eu);
+            out.velocities.extend(std::iter::repeat_n(u, k as usize));
+            // λ of the m-th pair of the block: (k Σ_{j ≤ m} U_j − m S_U) 2^{eu} / (k N);
+            // the last pair of a block (m = k) is 0.
+            let den = k.checked_mul(big_n)?;
+            let mut prefix = 0i128;
+            for m in 1..=k {
+                let i = first + m as usize - 1;
+                if i + 1 >= n {
+                    break;
+                }
+                prefix = prefix.checked_add(self.d.u[i])?;
+                let num = ki
+                    .checked_mul(prefix)?
+                    .checked_sub(i128::from(m).checked_mul(r.su)?)?;
+                out.multipliers.push(round::nearest(num, den, eu));
+            }
+            first += k as usize;
+        }
+        Some(out)
+    }
+
+    /// The exact state (`prop:proj-micro`): every value in lowest terms,
+    /// from the same block sums.
+    pub fn exact_state(&self) -> State<BigRational> {
+        let n = self.n();
+        let (ey, eu) = (self.ey, self.d.eu);
+        let den_y = BigInt::from(self.d.b_odd) * BigInt::from(self.q_odd);
+        let mut positions = Vec::with_capacity(n);
+        let mut velocities = Vec::with_capacity(n);
+        let mut multipliers = Vec::with_capacity(n.saturating_sub(1));
+        let mut first = 0usize;
+        let c = BigInt::from(self.c);
+        for r in &self.runs {
+            let k = r.k;
+            let kb = BigInt::from(k);
+            let den = &kb * &den_y;
+            for m in 0..k as usize {
+                let num = BigInt::from(r.sy) + &kb * &c * BigInt::from(first + m);
+                positions.push(exact(num, den.clone(), ey));
+            }
+            let u = exact(BigInt::from(r.su), kb.clone(), eu);
+            velocities.extend(std::iter::repeat_n(u, k as usize));
+            let mut prefix = BigInt::zero();
+            for m in 1..=k {
+                let i = first + m as usize - 1;
+                if i + 1 >= n {
+                    break;
+                }
+                prefix += BigInt::from(self.d.u[i]);
+                let num = &kb * &prefix - BigInt::from(m) * BigInt::from(r.su);
+                multipliers.push(exact(num, &kb * BigInt::from(n), eu));
+            }
+            first += k as usize;
+        }
+        // `λ ≥ 0` (eq:dyn-micro, the Coq development's `multiplier_nonneg`).
+        debug_assert!(multipliers.iter().all(|l: &BigRational| !l.is_negative()));
+        State {
+            t: self.t.clone(),
+            positions,
+            velocities,
+            multipliers,
+            clusters: self.clusters(),
+        }
+    }
+
+    /// The contact clusters of `x(t)` (`df:Omega-micro`): runs of blocks
+    /// with equal `x̃` (cross-multiplied sums, exact by the kernel's bound).
+    pub fn clusters(&self) -> Vec<Cluster> {
+        let blocks = runs(self.runs.len(), |j| {
+            let (a, b) = (&self.runs[j], &self.runs[j + 1]);
+            a.sy.wrapping_mul(i128::from(b.k)) == b.sy.wrapping_mul(i128::from(a.k))
+        });
+        let mut first = 0usize;
+        blocks
+            .into_iter()
+            .map(|c| {
+                let size: u64 = self.runs[c.first..c.first + c.size]
+                    .iter()
+                    .map(|r| r.k)
+                    .sum();
+                let start = first;
+                first += size as usize;
+                Cluster {
+                    first: start,
+                    size: size as usize,
+                }
+            })
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,360 @@
+//! The nearest double of `num · 2^exp / den` on machine words: one integer
+//! division, no `BigInt`, correctly rounded (to nearest, ties to even),
+//! subnormals and overflow included.
+//!
+//! The magnitude `|num|` is shifted left until its top bit is bit 127, so
+//! that the quotient `q = ⌊|num| 2^s / den⌋` has at least 64 significant
+//! bits (`den < 2^64`); the remainder is the sticky bit. The value is then
+//! `(q + ρ) 2^(exp − s)` with `0 ≤ ρ < 1`, `ρ > 0` exactly when the
+//! remainder is not zero, and rounding `q` at the double's last place with
+//! `ρ` as sticky bit is rounding the exact value: the dropped part is
+//! compared with half a unit of the last place, and it is exactly half only
+//! when the dropped bits of `q` are `10…0` and `ρ = 0`.
+
+/// The nearest double of `num · 2^exp / den` (round to nearest, ties to
+/// even; `±∞` when the value rounds beyond the largest finite double, `0.0`
+/// for `num = 0`). `den` must be positive.
+pub fn nearest(num: i128, den: u64, exp: i64) -> f64 {
+    debug_assert!(den > 0);
+    if num == 0 {
+        return 0.0;
+    }
+    let negative = num < 0;
+    let a = num.unsigned_abs();
+    let magnitude = if den.is_power_of_two() {
+        // Division by a power of two is a shift of the exponent.
+        let s = a.leading_zeros();
+        round_scaled(
+            a << s,
+            false,
+            exp - i64::from(s) - i64::from(den.trailing_zeros()),
+        )
+    } else {
+        // a' = ⌊a 2^s⌋ with 63 + bits(den) bits: the quotient q = ⌊a'/den⌋
+        // lies in [2^62, 2^64) (one machine division), and for s < 0 the
+        // bits of a shifted out are below q's last unit: a/den is
+        // (q + ρ) 2^(−s) with ρ > 0 exactly when the remainder or those
+        // bits are not zero.
+        let d = u128::from(den);
+        let bits_d = 64 - i64::from(den.leading_zeros());
+        let bits_a = 128 - i64::from(a.leading_zeros());
+        let s = 63 + bits_d - bits_a;
+        let (a2, lost) = if s >= 0 {
+            (a << s, false)
+        } else {
+            let r = (-s) as u32;
+            (a >> r, a & ((1u128 << r) - 1) != 0)
+        };
+        let q = a2 / d;
+        round_scaled(q, lost || a2 != q.wrapping_mul(d), exp - s)
+    };
+    if negative {
+        -magnitude
+    } else {
+        magnitude
+    }
+}
+
+/// The nearest double of `(q + ρ) 2^e` with `q ≥ 2^53` (so that at least
+/// one bit of `q` is dropped) and `0 ≤ ρ < 1`, `sticky` telling `ρ > 0`.
+pub fn round_scaled(q: u128, sticky: bool, e: i64) -> f64 {
+    debug_assert!(q >= 1 << 53);
+    let lz = q.leading_zeros();
+    // The value lies in [2^top, 2^(top+1)).
+    let top = 127 - i64::from(lz) + e;
+    if (-1022..=1023).contains(&top) {
+        // A normal double: the top 53 bits of q kept, the 75 below (and
+        // ρ) dropped; no variable shift but the normalisation.
+        let qn = q << lz;
+        let kept = (qn >> 75) as u64;
+        let rest = qn << 53;
+        const HALF: u128 = 1 << 127;
+        let up = rest > HALF || (rest == HALF && (sticky || kept & 1 == 1));
+        // kept + up ≤ 2^53; a carry into 2^53 moves into the exponent field
+        // (to ∞ past 2^1024: the correct rounding there).
+        let field = ((top + 1023) as u64) << 52;
+        return f64::from_bits(field + (kept - (1 << 52)) + u64::from(up));
+    }
+    round_slow(q, sticky, e)
+}
+
+/// [`round_scaled`] for values that are subnormal or beyond the range.
+fn round_slow(q: u128, sticky: bool, e: i64) -> f64 {
+    let bits = 128 - i64::from(q.leading_zeros());
+    let top = bits - 1 + e;
+    if top > 1023 {
+        return f64::INFINITY;
+    }
+    // The last place kept: 53 significant bits, or 2^-1074 for subnormals.
+    let last = (top - 52).max(-1074);
+    let drop = last - e;
+    // `bits ≥ 54`: a normal value drops at least one bit; a subnormal may
+    // drop all of them (then the kept part is 0).
+    debug_assert!(drop >= 1);
+    let (kept, round_up) = if drop > bits {
+        // Below half of 2^-1074.
+        (0u128, false)
+    } else {
+        let kept = if drop >= 128 { 0 } else { q >> drop };
+        let rest = if drop >= 128 {
+            q
+        } else {
+            q & ((1u128 << drop) - 1)
+        };
+        let half = 1u128 << (drop - 1);
+        let up = rest > half || (rest == half && (sticky || kept & 1 == 1));
+        (kept, up)
+    };
+    let m = kept + u128::from(round_up);
+    // m ≤ 2^53: exact as a double; m 2^last is exact (or overflows to ∞
+    // when it is 2^1024, the correct rounding there).
+    debug_assert!(m <= 1 << 53);
+    (m as u64 as f64) * pow2(last)
+}
+
+/// A fraction `num / den` in `[0, 1)` to 64 bits: `⌊num 2^64 / den⌋` and
+/// whether the rest is not zero.
+#[derive(Debug, Clone, Copy)]
+pub struct Fraction64 {
+    /// The first 64 bits after the binary point.
+    pub bits: u64,
+    /// The bits beyond are not all zero.
+    pub sticky: bool,
+}
+
+impl Fraction64 {
+    /// `num / den` for `0 ≤ num < den`.
+    pub fn new(num: u64, den: u64) -> Fraction64 {
+        debug_assert!(num < den);
+        let a = u128::from(num) << 64;
+        let d = u128::from(den);
+        let q = a / d;
+        Fraction64 {
+            bits: q as u64,
+            sticky: a != q.wrapping_mul(d),
+        }
+    }
+
+    /// Zero.
+    pub const ZERO: Fraction64 = Fraction64 {
+        bits: 0,
+        sticky: false,
+    };
+}
+
+/// The mean of a block of `k` values with sum `s`, split as `⌊s/k⌋` and
+/// the fractions `f = (s mod k)/k` and `1 − f` (for the values below zero).
+#[derive(Debug, Clone, Copy)]
+pub struct Split {
+    /// `⌊s/k⌋`.
+    pub floor: i128,
+    /// `f`: zero when `k` divides `s`.
+    pub up: Fraction64,
+    /// `1 − f` when `f > 0` (unused when `f = 0`).
+    pub down: Fraction64,
+    /// `f = 0`.
+    pub whole: bool,
+}
+
+impl Split {
+    /// `s / k`, `k > 0`: one division.
+    pub fn new(s: i128, k: u64) -> Split {
+        let ki = i128::from(k);
+        let floor = s.div_euclid(ki);
+        let rem = s.wrapping_sub(floor.wrapping_mul(ki)) as u64;
+        let whole = rem == 0;
+        if whole {
+            return Split {
+                floor,
+                up: Fraction64::ZERO,
+                down: Fraction64::ZERO,
+                whole,
+            };
+        }
+        let up = Fraction64::new(rem, k);
+        // f = (B + δ)/2^64, 0 ≤ δ < 1, B ≥ 1 when δ = 0: 1 − f is
+        // (!B + (1 − δ))/2^64 when δ > 0, (!B + 1)/2^64 when δ = 0.
+        let down = Fraction64 {
+            bits: if up.sticky {
+                !up.bits
+            } else {
+                (!up.bits).wrapping_add(1)
+            },
+            sticky: up.sticky,
+        };
+        Split {
+            floor,
+            up,
+            down,
+            whole,
+        }
+    }
+}
+
+/// The nearest double of `(w + f) 2^exp` for an integer `w` and the
+/// fraction `f` of `split` (`split.floor` is not used): no division. `None`
+/// when the value is below `2^(exp−1)` in magnitude and not zero, where 64
+/// bits of the fraction may not be enough (the caller divides).
+pub fn nearest_plus(w: i128, split: &Split, exp: i64) -> Option<f64> {
+    // |w + f| = i + g: i = w, g = f for w ≥ 0; i = |w| − 1, g = 1 − f for
+    // w < 0 and f > 0.
+    let negative = w < 0;
+    let (i, g) = match (negative, split.whole) {
+        (_, true) => (w.unsigned_abs(), Fraction64::ZERO),
+        (false, false) => (w.unsigned_abs(), split.up),
+        (true, false) => (w.unsigned_abs() - 1, split.down),
+    };
+    let magnitude = if i >= 1 << 63 {
+        round_scaled(i, g.bits != 0 || g.sticky, exp)
+    } else {
+        let v = (i << 64) | u128::from(g.bits);
+        if v < 1 << 63 {
+            return if v == 0 && !g.sticky { Some(0.0) } else { None };
+        }
+        round_scaled(v, g.sticky, exp - 64)
+    };
+    Some(if negative { -magnitude } else { magnitude })
+}
+
+/// `2^e` as a double, for `−1074 ≤ e ≤ 1023`.
+fn pow2(e: i64) -> f64 {
+    debug_assert!((-1074..=1023).contains(&e));
+    if e >= -1022 {
+        f64::from_bits(((e + 1023) as u64) << 52)
+    } else {
+        f64::from_bits(1u64 << (e + 1074))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::generate::SplitMix64;
+    use num_bigint::BigInt;
+    use num_rational::BigRational;
+    use num_traits::{One, ToPrimitive};
+
+    fn exact(num: i128, den: u64, exp: i64) -> BigRational {
+        let two = BigRational::from_integer(BigInt::from(2));
+        let scale = if exp >= 0 {
+            num_traits::pow(two, exp as usize)
+        } else {
+            BigRational::one() / num_traits::pow(two, (-exp) as usize)
+        };
+        BigRational::new(BigInt::from(num), BigInt::from(den)) * scale
+    }
+
+    /// The oracle: the exactly checked nearest double of the rational
+    /// ([`crate::rational::nearest_f64`]), `∞` where it is beyond range.
+    fn oracle(num: i128, den: u64, exp: i64) -> f64 {
+        let q = exact(num, den, exp);
+        match crate::rational::nearest_f64(&q) {
+            Some(f) => f,
+            None => {
+                let f = q.to_f64().unwrap_or(f64::NAN);
+                assert!(f.is_infinite(), "{q}");
+                f
+            }
+        }
+    }
+
+    fn check(num: i128, den: u64, exp: i64) {
+        let got = nearest(num, den, exp);
+        let want = oracle(num, den, exp);
+        assert_eq!(
+            got.to_bits(),
+            want.to_bits(),
+            "{num} 2^{exp} / {den}: {got:e} vs {want:e}"
+        );
+    }
+
+    /// Random numerators, denominators and exponents of every size, the
+    /// ranges of subnormals and of overflow included.
+    #[test]
+    fn agrees_with_the_exact_nearest_double() {
+        let mut rng = SplitMix64::new(0x5eed);
+        for _ in 0..20_000 {
+            let nb = rng.next_u64() % 128;
+            let num = (((u128::from(rng.next_u64()) << 64) | u128::from(rng.next_u64()))
+                >> (128 - nb.max(1))) as i128;
+            let num = if rng.next_u64() % 2 == 0 { num } else { -num };
+            let db = rng.next_u64() % 64 + 1;
+            let den = (rng.next_u64() >> (64 - db)).max(1);
+            let exp = match rng.next_u64() % 4 {
+                0 => (rng.next_u64() % 200) as i64 - 100,
+                1 => -1074 - (rng.next_u64() % 130) as i64 + 64,
+                2 => 1024 - (rng.next_u64() % 130) as i64,
+                _ => (rng.next_u64() % 2400) as i64 - 1200,
+            };
+            check(num, den, exp);
+        }
+    }
+
+    /// Exact midpoints between two doubles round to the even one, and one
+    /// unit of the remainder more or less decides: the sticky bit counts.
+    /// `nearest_plus` on a block's split mean is `nearest` of the fraction.
+    #[test]
+    fn split_means_round_as_their_fractions() {
+        let mut rng = SplitMix64::new(99);
+        let mut answered = 0;
+        for case in 0..20_000 {
+            let k = 1 + rng.next_u64() % if case % 2 == 0 { 7 } else { 1 << 40 };
+            let nb = rng.next_u64() % 100;
+            let s = ((u128::from(rng.next_u64()) << 64 | u128::from(rng.next_u64()))
+                >> (128 - nb.max(1))) as i128;
+            let s = if rng.next_u64() % 2 == 0 { s } else { -s };
+            let c = (rng.next_u64() >> (rng.next_u64() % 64)) as i128;
+            let i = (rng.next_u64() % 1000) as i128;
+            let exp = (rng.next_u64() % 400) as i64 - 200;
+            let split = Split::new(s, k);
+            let w = split.floor + c * i;
+            let num = s + i128::from(k) * c * i;
+            if let Some(f) = nearest_plus(w, &split, exp) {
+                answered += 1;
+                assert_eq!(f.to_bits(), oracle(num, k, exp).to_bits(), "{num} / {k}");
+            }
+        }
+        assert!(answered > 19_000, "{answered}");
+    }
+
+    #[test]
+    fn ties_go_to_even_and_the_remainder_breaks_them() {
+        // (2^53 + 1) / 2^53 · 2 ... : midpoints between 1 + k 2^-52 and the
+        // next double, written with a non-power-of-two denominator.
+        for k in 0..50i128 {
+            let mid = (1i128 << 53) + 2 * k + 1; // odd: a midpoint at scale 2^-53
+            for den in [3u64, 5, 7, 1 << 20, 12_345] {
+                let d = i128::from(den);
+                check(mid * d, den, -53);
+                check(mid * d + 1, den, -53);
+                check(mid * d - 1, den, -53);
+                check(-mid * d, den, -53);
+                // Subnormal midpoints.
+                check((2 * k + 1) * d, den, -1075);
+                check((2 * k + 1) * d + 1, den, -1075);
+            }
+        }
+        // A remainder below the quotient's last bit: the dropped bits of the
+        // quotient are exactly 10…0 and only the sticky bit says the value
+        // is above (or below) the midpoint.
+        for d in [(1u64 << 63) - 25, 3 << 61 | 1, 1_000_000_007 << 32 | 5] {
+            for k in 0..20i128 {
+                let mid = (1i128 << 53) + 2 * k + 1;
+                let base = (mid * i128::from(d)) << 9;
+                for num in [base + 1, base - 1, base, -base - 1] {
+                    check(num, d, -53 - 9);
+                }
+            }
+        }
+        assert_eq!(nearest(3, 2, -1075), f64::from_bits(1)); // 3/4 of the least
+        assert_eq!(nearest(1, 2, -1074), 0.0); // half the least subnormal: even
+        assert_eq!(nearest(1, 1, 1024), f64::INFINITY);
+        assert_eq!(nearest(-1, 1, 1024), f64::NEG_INFINITY);
+        assert_eq!(nearest(i128::MIN, 1, 0), -(2f64.powi(127)));
+        assert_eq!(
+            nearest(i128::MAX, u64::MAX, 0),
+            oracle(i128::MAX, u64::MAX, 0)
+        );
+        assert_eq!(nearest(0, 7, 5), 0.0);
+    }
+}

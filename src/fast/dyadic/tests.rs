@@ -1,0 +1,225 @@
+//! The dyadic path against the generic projection (`BigRational`, the
+//! oracle): the exact states field by field, and every double the nearest
+//! double of the exact value, bit for bit.
+
+use num_bigint::BigInt;
+use num_rational::BigRational;
+use num_traits::ToPrimitive;
+
+use super::*;
+use crate::generate::SplitMix64;
+use crate::initial::InitialData;
+use crate::projection;
+
+fn q(n: i64, d: i64) -> BigRational {
+    BigRational::new(BigInt::from(n), BigInt::from(d))
+}
+
+fn exact_f64(v: f64) -> BigRational {
+    BigRational::from_float(v).unwrap()
+}
+
+fn nearest_of(v: &[BigRational]) -> Vec<u64> {
+    v.iter()
+        .map(|x| x.to_f64().unwrap_or(f64::NAN).to_bits())
+        .collect()
+}
+
+fn bits_of(v: &[f64]) -> Vec<u64> {
+    v.iter().map(|x| x.to_bits()).collect()
+}
+
+/// What [`check`] found.
+#[derive(Debug, PartialEq)]
+enum Outcome {
+    /// The data are not valid (both paths refuse them).
+    Invalid,
+    /// Valid data the dyadic path declined (a width beyond `i128`).
+    Declined,
+    /// Both paths gave the same answer.
+    Agreed,
+}
+
+/// [`check`] is [`Outcome::Agreed`].
+fn agree(radius: Option<BigRational>, xs: &[f64], us: &[f64], t: &BigRational) -> bool {
+    check(radius, xs, us, t) == Outcome::Agreed
+}
+
+/// The scene through both paths at `t`: the exact states equal, the
+/// doubles the exact values' nearest doubles (panics otherwise).
+fn check(radius: Option<BigRational>, xs: &[f64], us: &[f64], t: &BigRational) -> Outcome {
+    let x: Vec<BigRational> = xs.iter().map(|&v| exact_f64(v)).collect();
+    let u: Vec<BigRational> = us.iter().map(|&v| exact_f64(v)).collect();
+    let data = match radius.clone() {
+        Some(r) => InitialData::new(r, x, u),
+        None => InitialData::with_paper_radius(x, u),
+    };
+    let lean = Dyadic::from_doubles(radius, xs, us);
+    let data = match data {
+        Ok(d) => d,
+        Err(e) => {
+            assert!(lean.is_none(), "invalid data accepted: {e}");
+            return Outcome::Invalid;
+        }
+    };
+    let Some(lean) = lean else {
+        return Outcome::Declined;
+    };
+    let Some(blocks) = lean.blocks_at(t) else {
+        return Outcome::Declined;
+    };
+    let want = projection::state_at(&data, t).unwrap();
+    let got = blocks.exact_state();
+    assert_eq!(got, want, "exact state at t = {t}, x {xs:?}, u {us:?}");
+    let near = blocks.nearest().expect("on words");
+    assert_eq!(
+        bits_of(&near.positions),
+        nearest_of(&want.positions),
+        "x at {t}"
+    );
+    assert_eq!(
+        bits_of(&near.velocities),
+        nearest_of(&want.velocities),
+        "u at {t}"
+    );
+    assert_eq!(
+        bits_of(&near.multipliers),
+        nearest_of(&want.multipliers),
+        "λ at {t}"
+    );
+    Outcome::Agreed
+}
+
+/// A random double of `scale`'s order, `bits` significant bits, sign
+/// random; sometimes zero.
+fn random_double(rng: &mut SplitMix64, exp: i32, bits: u32) -> f64 {
+    if rng.next_u64() % 8 == 0 {
+        return 0.0;
+    }
+    let m = (rng.next_u64() >> (64 - bits.clamp(1, 53))) as f64;
+    let v = m * 2f64.powi(exp - bits as i32);
+    if rng.next_u64() % 2 == 0 {
+        v
+    } else {
+        -v
+    }
+}
+
+/// A random scene: gaps `2r` (contacts), `2r` plus a random double, or
+/// random; velocities random doubles of mixed exponents.
+fn random_scene(rng: &mut SplitMix64, n: usize, two_r: f64, exp: i32) -> (Vec<f64>, Vec<f64>) {
+    let mut xs = Vec::with_capacity(n);
+    let mut us = Vec::with_capacity(n);
+    let mut x = random_double(rng, exp, 53);
+    for _ in 0..n {
+        xs.push(x);
+        let bits = 1 + (rng.next_u64() % 53) as u32;
+        let e = exp - (rng.next_u64() % 40) as i32;
+        us.push(random_double(rng, e, bits));
+        let gap = match rng.next_u64() % 3 {
+            0 => two_r,
+            1 => two_r + random_double(rng, exp, bits).abs(),
+            _ => two_r * 3.0 + random_double(rng, exp + 2, 53).abs(),
+        };
+        x += gap;
+    }
+    (xs, us)
+}
+
+#[test]
+fn random_scenes_of_doubles_agree_with_the_generic_projection() {
+    let mut rng = SplitMix64::new(27);
+    let (mut answered, mut valid, mut cases) = (0, 0, 0);
+    for case in 0..600 {
+        let n = 1 + (rng.next_u64() % 12) as usize;
+        let (radius, two_r) = match case % 4 {
+            // Dyadic radii, tiny to large.
+            0 => (Some(q(1, 8)), 0.25),
+            1 => {
+                let e = (rng.next_u64() % 60) as i32 - 50;
+                let r = 2f64.powi(e);
+                (Some(exact_f64(r)), 2.0 * r)
+            }
+            // Radii with an odd denominator, and the paper's 1/(2N).
+            2 => (Some(q(1, 10)), 0.2),
+            _ => (None, 1.0 / n as f64),
+        };
+        let exp = (rng.next_u64() % 80) as i32 - 40;
+        let (xs, us) = random_scene(&mut rng, n, two_r, exp);
+        let times = [
+            q(0, 1),
+            exact_f64(random_double(&mut rng, 0, 53).abs()),
+            exact_f64(random_double(&mut rng, 10, 20).abs()),
+            q(1, 3),
+            q(7, 12),
+            q(1_000_001, 1),
+        ];
+        for t in &times {
+            cases += 1;
+            match check(radius.clone(), &xs, &us, t) {
+                Outcome::Invalid => {}
+                Outcome::Declined => valid += 1,
+                Outcome::Agreed => {
+                    valid += 1;
+                    answered += 1;
+                }
+            }
+        }
+    }
+    // Most valid cases take the dyadic path (the rest: a width the `i128`
+    // bound refuses, at the largest times); invalid data come from the
+    // rounding of the gaps in doubles.
+    assert!(answered * 10 > valid * 9, "{answered} of {valid}");
+    assert!(valid * 4 > cases, "{valid} of {cases}");
+}
+
+/// Subnormal positions and velocities, mixed with normal ones.
+#[test]
+fn subnormals_and_mixed_exponents() {
+    let tiny = f64::from_bits(1);
+    let r = 2f64.powi(-1070);
+    let xs = [-3.0 * tiny, 2.0 * r, 4.0 * r + tiny, 6.0 * r + 5.0 * tiny];
+    let us = [2f64.powi(-1000), tiny, -tiny, 0.0];
+    for t in [q(0, 1), q(1, 1), exact_f64(2f64.powi(-60)), q(1, 3)] {
+        assert!(agree(Some(exact_f64(r)), &xs, &us, &t), "t = {t}");
+    }
+    let xs = [0.0, 1.0, 2.0 + 2f64.powi(-60), 1e6];
+    let us = [1e-10, -1e-10, 3.5, -7.25];
+    for t in [q(0, 1), q(1, 2), exact_f64(0.75), q(2, 7), q(1 << 20, 1)] {
+        assert!(agree(Some(q(1, 4)), &xs, &us, &t), "t = {t}");
+    }
+}
+
+/// Exact answers on double midpoints round to even: two particles in
+/// contact whose common mean is `1 + 2^-53` (between 1 and its successor).
+#[test]
+fn midpoints_round_to_even() {
+    let eps = 2f64.powi(-52);
+    let xs = [1.0, 1.5 + eps];
+    let us = [1.0, -1.0];
+    assert!(agree(Some(q(1, 4)), &xs, &us, &q(1, 1)));
+    let lean = Dyadic::from_doubles(Some(q(1, 4)), &xs, &us).unwrap();
+    let near = lean.blocks_at(&q(1, 1)).unwrap().nearest().unwrap();
+    // x_0 = 1 + 2^-53 and x_1 = 1.5 + 2^-53: both midpoints, to even.
+    assert_eq!(near.positions, vec![1.0, 1.5]);
+    // One more unit below the midpoint of three: (3 (1 + 2^-53) + 2^-52)/3 is
+    // above the midpoint, the sticky bit decides.
+    let xs = [1.0, 1.5 + eps, 2.0 + 2.0 * eps];
+    let us = [1.0, 0.0, -1.0];
+    assert!(agree(Some(q(1, 4)), &xs, &us, &q(2, 1)));
+}
+
+/// Invalid data are declined (the general path names the error); so are
+/// non-finite values.
+#[test]
+fn invalid_and_non_finite_data_are_declined() {
+    assert!(Dyadic::from_doubles(Some(q(1, 4)), &[0.0, 0.4], &[0.0, 0.0]).is_none());
+    assert!(Dyadic::from_doubles(Some(q(1, 4)), &[0.0, 0.5], &[1.0, 0.0]).is_none());
+    assert!(Dyadic::from_doubles(Some(q(1, 4)), &[0.0, 0.5], &[0.0, 1.0]).is_some());
+    assert!(Dyadic::from_doubles(Some(q(1, 4)), &[0.0, f64::NAN], &[0.0, 0.0]).is_none());
+    assert!(Dyadic::from_doubles(Some(q(1, 4)), &[0.0, 1.0], &[f64::INFINITY, 0.0]).is_none());
+    assert!(Dyadic::from_doubles(Some(q(-1, 4)), &[0.0, 1.0], &[0.0, 0.0]).is_none());
+    assert!(Dyadic::from_doubles(Some(q(1, 4)), &[], &[]).is_none());
+    let d = Dyadic::from_doubles(Some(q(1, 4)), &[0.0, 1.0], &[0.0, 0.0]).unwrap();
+    assert!(d.blocks_at(&q(-1, 2)).is_none());
+}
