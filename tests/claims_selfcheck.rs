@@ -69,6 +69,7 @@ fn set_every_value(r: &mut sticky::claims::macro_data::Row, value: &Q) {
         &mut r.disc_u,
         &mut r.cvg_x,
         &mut r.cvg_lambda,
+        &mut r.mass_interpolated,
     ]
     .into_iter()
     .flatten()

@@ -440,6 +440,20 @@ pub fn eulerian_momentum_on(table: &[Series]) -> Result<Vec<ScalingReport>, Viol
     )
 }
 
+/// The mass equation of the proposition "Eulerian formulation" for the
+/// interpolated density `ρ̃_N = X̃_N#L¹` transported by the paper's
+/// velocity `U_N`: `max_φ |R_N(φ)| → 0` ([`Row::mass_interpolated`], see
+/// [`crate::limit::eulerian::interpolated_mass_residuals`]), measured for
+/// `N ≤` [`macro_data::MASS_INTERPOLATED_MAX_N`].
+pub fn eulerian_mass_interpolated(budget: Budget) -> Result<Vec<ScalingReport>, Violation> {
+    run(
+        "prop:eulerian-formulation#mass-interpolated",
+        budget,
+        Verdict::ToZero,
+        |r| r.mass_interpolated.clone(),
+    )
+}
+
 /// `prop:cvg1` as printed: `X̃_N → X` in `C([0,T] × [0,1])`, measured at
 /// `t = 0` on the whole `[0, 1]`: `sup_{w ∈ [0,1]} |X̃_N(0,w) − X⁰(w)|`
 /// (the artificial particle's cell `[0, 1/N]` included).
@@ -519,7 +533,8 @@ mod tests {
             cvg_lambda: Some(v.clone()),
             pn_gap: v.clone(),
             c0_prime: v.clone(),
-            momentum: v,
+            momentum: v.clone(),
+            mass_interpolated: Some(v),
         }
     }
 
