@@ -454,6 +454,19 @@ pub fn eulerian_mass_interpolated(budget: Budget) -> Result<Vec<ScalingReport>, 
     )
 }
 
+/// `eq:Lagr-1#particle-multiplier`: the continuum `Λ` against the
+/// particles' own multipliers, `max_t max_i |λ_i(t) − Λ(t, i/N)| → 0`
+/// ([`Row::lambda_nodes`]), at the comparison times with a rational
+/// profile.
+pub fn lagr1_particle_multiplier(budget: Budget) -> Result<Vec<ScalingReport>, Violation> {
+    run(
+        "eq:Lagr-1#particle-multiplier",
+        budget,
+        Verdict::ToZero,
+        |r| r.lambda_nodes.clone(),
+    )
+}
+
 /// `prop:cvg1` as printed: `X̃_N → X` in `C([0,T] × [0,1])`, measured at
 /// `t = 0` on the whole `[0, 1]`: `sup_{w ∈ [0,1]} |X̃_N(0,w) − X⁰(w)|`
 /// (the artificial particle's cell `[0, 1/N]` included).
@@ -531,6 +544,7 @@ mod tests {
             uniform_x0: v.clone(),
             cvg_x: Some(v.clone()),
             cvg_lambda: Some(v.clone()),
+            lambda_nodes: Some(v.clone()),
             pn_gap: v.clone(),
             c0_prime: v.clone(),
             momentum: v.clone(),
