@@ -23,24 +23,23 @@
 use num_rational::BigRational;
 use sticky::claims::macro_data::cases;
 use sticky::claims::scaling::{Budget, RowTamper};
-use sticky::claims::{continuum, registry, Kind};
+use sticky::claims::{continuum, density, eulerian, registry, Kind};
+use sticky::limit::appendix_c::{self, TwoBlocks};
+use sticky::limit::continuum::Continuum;
+use sticky::trajectory::Trajectory;
 use sticky::Scalar;
 
 type Q = BigRational;
 
 /// Formula claims with no broken-input check here, and why.
 const NO_MUTANT: &[(&str, &str)] = &[
-    ("thm:main#sampling-mass", "a property of the quantile sampling of fixed data (x⁰_{i+1} − x⁰_i ≥ 1/N from ρ⁰ ≤ 1): no engine output is read; its sampling is MacroDatum::quantiles, tested in src/quantile.rs"),
-    ("thm:main#sampling-contacts (corrected)", "the printed form fails (counterexample); the corrected one reads the same fixed samples with the one-sided limits of U⁰"),
-    ("app:uniqueness#free-collision", "a closed formula of Appendix C (t* = η/2) evaluated on the exact two-block data; no engine output"),
-    ("app:uniqueness#sticky-pressure (corrected)", "the printed P¹ fails (counterexample); the corrected weight is compared with the engine's λ jumps by app:uniqueness#sticky-pressure-is-continuum"),
-    ("app:uniqueness#rebound-pressure", "a closed formula of Appendix C (the rebound continuation is not computed by any engine)"),
-    ("app:uniqueness#projection-selects-sticky", "compares two closed-form continuations of Appendix C with the projection principle"),
-    ("app:uniqueness#particle-limit", "exact equality ‖X_N − X¹‖² = 1/(3N²) against the engines' histories: any change of the positions at N = 8 … 512 breaks the equality, but no hook corrupts them here"),
-    ("app:uniqueness#sticky-pressure-is-continuum", "exact equality of the continuum Λ's jump with the corrected P¹ at 33 points: no hook corrupts the continuum profile of this datum here"),
-    ("app:uniqueness#rebound-oleinik", "a closed formula of Appendix C"),
-    ("lem:density#continuum", "ρ = 1/∂_w X on the continuum profiles: no hook corrupts the profiles read through limit::eulerian::continuum_density"),
-    ("prop:eulerian-formulation#oleinik", "the Oleinik margin of the continuum profiles through limit::eulerian::oleinik_margin: no hook here; eq:Oleinik-Lagr's mutant corrupts the same profiles"),
+    ("thm:main#sampling-mass", "reads no engine output: a property of the quantile sampling of fixed data (x⁰_{i+1} − x⁰_i ≥ 1/N from ρ⁰ ≤ 1); a broken sampling is caught by the exact quantiles written in src/quantile.rs's tests (x0(9/16) = 13/16, …)"),
+    ("thm:main#sampling-contacts (corrected)", "reads no engine output: the printed form fails (counterexample) and the corrected one reads the same fixed samples with the one-sided limits of U⁰; a broken U⁰ is caught by the exact values in src/quantile.rs's tests (u0(9/16) = −1, …)"),
+    ("app:uniqueness#free-collision", "reads no engine output: a closed formula of Appendix C (t* = η/2) on the exact two-block data; a broken formula is caught by the exact X^f = w + η/2 it is compared with, and by tests/limit.rs::appendix_c_as_printed"),
+    ("app:uniqueness#sticky-pressure (corrected)", "reads no engine output: the printed P¹ fails (counterexample); the corrected weight is compared with the continuum Λ's jump by app:uniqueness#sticky-pressure-is-continuum, whose mutant is above, and with every eq:PDE-Lagr-2 finding in tests/limit.rs::appendix_c_as_printed"),
+    ("app:uniqueness#rebound-pressure", "reads no engine output: a closed formula of Appendix C (no engine computes the rebound); tests/limit.rs::appendix_c_as_printed asserts each of its eq:PDE-Lagr-2 findings for five η"),
+    ("app:uniqueness#projection-selects-sticky", "reads no engine output: two closed-form continuations of Appendix C against the projection principle; tests/limit.rs::appendix_c_as_printed asserts the rebound fails eq:velocity-projection and eq:Lagr-1 for five η"),
+    ("app:uniqueness#rebound-oleinik", "reads no engine output: a closed formula of Appendix C; tests/limit.rs::appendix_c_as_printed asserts eq:Oleinik-Lagr holds for the rebound exactly when η < 1 (five η)"),
 ];
 
 /// Claims reported as identities (their checker passes for any consistent
@@ -69,6 +68,8 @@ fn set_every_value(r: &mut sticky::claims::macro_data::Row, value: &Q) {
         &mut r.disc_u,
         &mut r.cvg_x,
         &mut r.cvg_lambda,
+        &mut r.lambda_nodes,
+        &mut r.mass_interpolated,
     ]
     .into_iter()
     .flatten()
@@ -97,9 +98,18 @@ const ROW_TAMPERS: &[(&str, RowTamper)] = &[
 /// A formula claim run on a corrupted datum: `Some(result)` for the claims
 /// that read the continuum solution (the result must be an error).
 fn formula_mutant(id: &str) -> Option<Result<(), String>> {
-    let id: &'static str = ["eq:Lagr-1", "eq:PDE-Lagr-2", "eq:Oleinik-Lagr"]
-        .into_iter()
-        .find(|k| *k == id)?;
+    if let Some(r) = appendix_c_mutant(id) {
+        return Some(r);
+    }
+    let id: &'static str = [
+        "eq:Lagr-1",
+        "eq:PDE-Lagr-2",
+        "eq:Oleinik-Lagr",
+        "lem:density#continuum",
+        "prop:eulerian-formulation#oleinik",
+    ]
+    .into_iter()
+    .find(|k| *k == id)?;
     let cs = cases(id).ok()?;
     let profiles = || {
         cs.iter().flat_map(|c| {
@@ -157,6 +167,79 @@ fn formula_mutant(id: &str) -> Option<Result<(), String>> {
                 .find(|r| r.is_err())
                 .unwrap_or(Ok(())),
         ),
+        // X's slope below 1 on every segment (ρ = 1/∂_w X > 1: the
+        // hypothesis ∂_w X ≥ 1 fails, and ρ ≤ 1 with it).
+        "lem:density#continuum" => Some(
+            profiles()
+                .map(|(c, t, mut p)| {
+                    for s in &mut p.segments {
+                        s.x[1] = s.x[1].clone() / Q::from_i64(2);
+                    }
+                    err(density::density_continuum_profile(&c.name, &t, &p))
+                })
+                .find(|r| r.is_err())
+                .unwrap_or(Ok(())),
+        ),
+        // The velocity's slope raised above ∂_w X / t on every segment, as
+        // for eq:Oleinik-Lagr, read through the Eulerian u = U(t, W(t, x)).
+        "prop:eulerian-formulation#oleinik" => Some(
+            profiles()
+                .map(|(c, t, mut p)| {
+                    for s in &mut p.segments {
+                        s.u[1] = s.x[1].clone() / &t + Q::one();
+                    }
+                    err(eulerian::oleinik_on_profile(&c.name, &t, &p))
+                })
+                .find(|r| r.is_err())
+                .unwrap_or(Ok(())),
+        ),
+        _ => None,
+    }
+}
+
+/// The Appendix C claims that read the engines' histories or the continuum
+/// solver, run on corrupted ones.
+fn appendix_c_mutant(id: &str) -> Option<Result<(), String>> {
+    let err = |r: Result<(), sticky::claims::Violation>| r.map_err(|v| v.witness);
+    let tb = TwoBlocks::new(Q::new(1.into(), 4.into())).ok()?;
+    match id {
+        // The engine's positions at t = 1 with the last particle moved by
+        // 1/N (true positions are accepted: checked first).
+        "app:uniqueness#particle-limit" => {
+            let t = Q::one();
+            let datum = tb.datum().ok()?;
+            let mut good = Vec::new();
+            let mut bad = Vec::new();
+            for n in [8usize, 16, 32] {
+                let s = Trajectory::new(datum.sample(n).ok()?).at(&t).ok()?;
+                let (d1, d2) = tb.distances_of(&s.positions, &t);
+                good.push((n, d1, d2));
+                let mut x = s.positions.clone();
+                let last = x.len() - 1;
+                x[last] = x[last].clone() + Q::from_usize(n).recip();
+                let (d1, d2) = tb.distances_of(&x, &t);
+                bad.push((n, d1, d2));
+            }
+            if appendix_c::particle_limit_on(&tb, &t, &good).is_err() {
+                // The true positions must pass for the mutant to mean anything.
+                return Some(Ok(()));
+            }
+            Some(err(appendix_c::particle_limit_on(&tb, &t, &bad)))
+        }
+        // The continuum profile at t* replaced by the one at t*/2: no jump
+        // of Λ, while P¹ is not 0 inside (0, 1).
+        "app:uniqueness#sticky-pressure-is-continuum" => {
+            let c = Continuum::new(&tb.datum().ok()?);
+            let before = c.profile(&(tb.t_star() / Q::from_i64(2))).ok()?;
+            let at = c.profile(&tb.t_star()).ok()?;
+            if appendix_c::pressure_is_continuum_on(&tb, &before, &at).is_err() {
+                // The true profiles must pass for the mutant to mean anything.
+                return Some(Ok(()));
+            }
+            Some(err(appendix_c::pressure_is_continuum_on(
+                &tb, &before, &before,
+            )))
+        }
         _ => None,
     }
 }

@@ -163,69 +163,13 @@ pub fn density<S: Scalar>(case: &Case<S>) -> R {
 /// profile of the macroscopic data, `∂_w X ≥ 1` and `ρ = 1/∂_w X ∈ [0, 1]`
 /// on each segment's image, `ρ = 0` in the vacuum between images.
 pub fn density_continuum() -> R {
-    use num_rational::BigRational as Q;
     const CID: &str = "lem:density#continuum";
     let mut checked = 0usize;
     for c in super::macro_data::cases(CID)? {
         for (t, p) in &c.profiles {
             let Some(p) = p else { continue };
             checked += 1;
-            let bad = |what: String| {
-                Err(Violation::new(
-                    CID,
-                    format!("{}, t = {}: {what}", c.name, t.render()),
-                ))
-            };
-            let ends = |s: &crate::limit::continuum::Segment<Q>| {
-                (
-                    s.x[0].clone() + s.x[1].clone() * &s.w0,
-                    s.x[0].clone() + s.x[1].clone() * &s.w1,
-                )
-            };
-            for s in &p.segments {
-                if s.x[1] < Q::one() {
-                    return bad(format!(
-                        "hypothesis: ∂_w X = {} < 1 on [{}, {}]",
-                        s.x[1].render(),
-                        s.w0.render(),
-                        s.w1.render()
-                    ));
-                }
-                let (a, b) = ends(s);
-                let rho = continuum_density(p, &((a.clone() + &b) / Q::from_i64(2)));
-                if rho < Q::zero() || rho > Q::one() {
-                    return bad(format!(
-                        "ρ = {} ∉ [0, 1] on ({}, {})",
-                        rho.render(),
-                        a.render(),
-                        b.render()
-                    ));
-                }
-                // The image has the mass of its w-interval.
-                if rho.clone() * (b.clone() - &a) != s.w1.clone() - &s.w0 {
-                    return bad(format!(
-                        "ρ = {} on ({}, {}) is not the density of X(t)#L¹ there",
-                        rho.render(),
-                        a.render(),
-                        b.render()
-                    ));
-                }
-            }
-            for w in p.segments.windows(2) {
-                let (_, b) = ends(&w[0]);
-                let (a, _) = ends(&w[1]);
-                if a > b {
-                    let rho = continuum_density(p, &((a.clone() + &b) / Q::from_i64(2)));
-                    if !rho.is_zero() {
-                        return bad(format!(
-                            "ρ = {} ≠ 0 in the vacuum ({}, {})",
-                            rho.render(),
-                            b.render(),
-                            a.render()
-                        ));
-                    }
-                }
-            }
+            density_continuum_profile(&c.name, t, p)?;
         }
     }
     if checked == 0 {
@@ -233,6 +177,74 @@ pub fn density_continuum() -> R {
             CID,
             "vacuous: no rational continuum profile",
         ));
+    }
+    Ok(())
+}
+
+/// [`density_continuum`] on one profile at `t` (`tests/claims_selfcheck.rs`
+/// runs it on a corrupted profile).
+pub fn density_continuum_profile(
+    name: &str,
+    t: &num_rational::BigRational,
+    p: &crate::limit::continuum::Profile<num_rational::BigRational>,
+) -> R {
+    use num_rational::BigRational as Q;
+    const CID: &str = "lem:density#continuum";
+    let bad = |what: String| {
+        Err(Violation::new(
+            CID,
+            format!("{name}, t = {}: {what}", t.render()),
+        ))
+    };
+    let ends = |s: &crate::limit::continuum::Segment<Q>| {
+        (
+            s.x[0].clone() + s.x[1].clone() * &s.w0,
+            s.x[0].clone() + s.x[1].clone() * &s.w1,
+        )
+    };
+    for s in &p.segments {
+        if s.x[1] < Q::one() {
+            return bad(format!(
+                "hypothesis: ∂_w X = {} < 1 on [{}, {}]",
+                s.x[1].render(),
+                s.w0.render(),
+                s.w1.render()
+            ));
+        }
+        let (a, b) = ends(s);
+        let rho = continuum_density(p, &((a.clone() + &b) / Q::from_i64(2)));
+        if rho < Q::zero() || rho > Q::one() {
+            return bad(format!(
+                "ρ = {} ∉ [0, 1] on ({}, {})",
+                rho.render(),
+                a.render(),
+                b.render()
+            ));
+        }
+        // The image has the mass of its w-interval.
+        if rho.clone() * (b.clone() - &a) != s.w1.clone() - &s.w0 {
+            return bad(format!(
+                "ρ = {} on ({}, {}) is not the density of X(t)#L¹ there",
+                rho.render(),
+                a.render(),
+                b.render()
+            ));
+        }
+    }
+    for w in p.segments.windows(2) {
+        let (_, b) = ends(&w[0]);
+        let (a, _) = ends(&w[1]);
+        if a > b {
+            let rho = continuum_density(p, &((a.clone() + &b) / Q::from_i64(2)));
+            if !rho.is_zero() {
+                return bad(format!(
+                    "ρ = {} ≠ 0 in the vacuum ({}, {})",
+                    rho.render(),
+                    b.render(),
+                    a.render()
+                ));
+            }
+        }
     }
     Ok(())
 }

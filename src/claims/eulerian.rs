@@ -221,53 +221,62 @@ pub fn mass<S: Scalar>(case: &Case<S>) -> R {
 /// margin over the vacuum gaps too, `t [U]/[X] ≤ 1`
 /// ([`oleinik_margin`]); `u` jumping upwards with no gap fails.
 pub fn oleinik() -> R {
-    type Q = BigRational;
     const ID: &str = "prop:eulerian-formulation#oleinik";
     let mut checked = 0usize;
     for c in super::macro_data::cases(ID)? {
         for (t, p) in &c.profiles {
             let Some(p) = p else { continue };
             checked += 1;
-            let Some(margin) = oleinik_margin(p, t, &Q::zero()) else {
-                return Err(Violation::new(
-                    ID,
-                    format!(
-                        "{}, t = {}: u jumps upwards with no vacuum gap (∂_x u = +∞)",
-                        c.name,
-                        t.render()
-                    ),
-                ));
-            };
-            if margin > Q::one() {
-                return Err(Violation::new(
-                    ID,
-                    format!(
-                        "{}, t = {}: t sup ∂_x u = {} > 1",
-                        c.name,
-                        t.render(),
-                        margin.render()
-                    ),
-                ));
-            }
-            for s in &p.segments {
-                if t.clone() * &s.u[1] >= s.x[1] {
-                    return Err(Violation::new(
-                        ID,
-                        format!(
-                            "{}, t = {}: on the image of [{}, {}], t ∂_x u = t ∂_w U/∂_w X = {} ≥ 1",
-                            c.name,
-                            t.render(),
-                            s.w0.render(),
-                            s.w1.render(),
-                            (t.clone() * &s.u[1] / &s.x[1]).render()
-                        ),
-                    ));
-                }
-            }
+            oleinik_on_profile(&c.name, t, p)?;
         }
     }
     if checked == 0 {
         return Err(Violation::new(ID, "vacuous: no rational continuum profile"));
+    }
+    Ok(())
+}
+
+/// [`oleinik`] on one profile at `t > 0` (`tests/claims_selfcheck.rs` runs
+/// it on a corrupted profile).
+pub fn oleinik_on_profile(
+    name: &str,
+    t: &BigRational,
+    p: &crate::limit::continuum::Profile<BigRational>,
+) -> R {
+    type Q = BigRational;
+    const ID: &str = "prop:eulerian-formulation#oleinik";
+    let Some(margin) = oleinik_margin(p, t, &Q::zero()) else {
+        return Err(Violation::new(
+            ID,
+            format!(
+                "{name}, t = {}: u jumps upwards with no vacuum gap (∂_x u = +∞)",
+                t.render()
+            ),
+        ));
+    };
+    if margin > Q::one() {
+        return Err(Violation::new(
+            ID,
+            format!(
+                "{name}, t = {}: t sup ∂_x u = {} > 1",
+                t.render(),
+                margin.render()
+            ),
+        ));
+    }
+    for s in &p.segments {
+        if t.clone() * &s.u[1] >= s.x[1] {
+            return Err(Violation::new(
+                ID,
+                format!(
+                    "{name}, t = {}: on the image of [{}, {}], t ∂_x u = t ∂_w U/∂_w X = {} ≥ 1",
+                    t.render(),
+                    s.w0.render(),
+                    s.w1.render(),
+                    (t.clone() * &s.u[1] / &s.x[1]).render()
+                ),
+            ));
+        }
     }
     Ok(())
 }

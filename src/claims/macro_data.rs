@@ -26,7 +26,8 @@ use crate::generate::{macro_datum, SplitMix64};
 use crate::initial::InitialData;
 use crate::limit::continuum::{Continuum, Profile, Segment};
 use crate::limit::eulerian::{
-    particle_momentum_residuals, support_window, test_family, TestFunction,
+    interpolated_mass_residuals, particle_momentum_residuals, support_window, test_family,
+    TestFunction,
 };
 use crate::quantile::MacroDatum;
 use crate::scalar::Scalar;
@@ -34,6 +35,12 @@ use crate::scene::{self, SceneKind};
 use crate::trajectory::Trajectory;
 
 type Q = BigRational;
+
+/// The largest N at which [`Row::mass_interpolated`] is measured (its
+/// cost is `O(N)` exact polynomial integrals per test function, on
+/// collision times whose denominators grow with N: up to 27 s for one
+/// datum at N = 4096, 3 s at N = 512).
+pub const MASS_INTERPOLATED_MAX_N: usize = 512;
 
 /// Random macroscopic data the scaling claims run on (besides the two
 /// shipped scenes).
@@ -95,6 +102,11 @@ pub struct Row {
     /// `max |∫_0^1 (Λ_N(t) − Λ(t)) φ|` over the comparison times with a
     /// rational profile and `φ ∈ {1, w}`.
     pub cvg_lambda: Option<Q>,
+    /// `max_i |λ_i(t) − Λ(t, i/N)|`, the particles' multipliers against the
+    /// continuum `Λ` at the nodes `w = i/N` (`λ_N = (1/N)Σ(u⁰_j − u_j)`),
+    /// maximised over the comparison times with a rational profile
+    /// (`lambda_node_gap`).
+    pub lambda_nodes: Option<Q>,
     /// `N · sup_t |∫_0^1 (Λ_N − Λ̃_N)(t,w) w dw|` over the probe times: the
     /// factor of `‖∂_t Ψ‖` in `|⟨P_N − P̃_N, Ψ⟩| ≤ (C/N)‖∂_t Ψ‖` for
     /// `Ψ = ψ(t)w` (`lambda_gap_moment`).
@@ -107,6 +119,11 @@ pub struct Row {
     /// momentum residual, [`particle_momentum_residuals`]), plus the bound on
     /// its dyadic accumulation error: an upper bound of the exact value.
     pub momentum: Q,
+    /// `max_φ |R_N(φ)|` over [`MacroCase::tests`], `R_N(φ) = ∫∫ ρ̃_N ∂_t φ +
+    /// m̃_N ∂_x φ` with `ρ̃_N = X̃_N#L¹`, `m̃_N = X̃_N#(U_N L¹)`
+    /// ([`interpolated_mass_residuals`]), plus the bound on its dyadic
+    /// accumulation error; `None` above [`MASS_INTERPOLATED_MAX_N`].
+    pub mass_interpolated: Option<Q>,
 }
 
 /// One datum measured across N.
@@ -347,6 +364,29 @@ fn uniform_x0(d: &MacroDatum, x: &[Q]) -> Q {
     sup
 }
 
+/// `max_i |λ_i − Λ(i/N)|` for the multipliers `λ_1 … λ_N` of one state and
+/// the continuum profile at the same time: `Λ` is quadratic on each
+/// segment, evaluated at the nodes `i/N` in increasing order (one pass
+/// over the segments; `Λ` is continuous, so a node on a segment end may be
+/// read from either side).
+fn lambda_node_gap(l: &[Q], p: &Profile<Q>) -> Q {
+    let nn = Q::from_usize(l.len());
+    let mut k = 0usize;
+    let mut sup = Q::zero();
+    for (i, li) in l.iter().enumerate() {
+        let w = Q::from_usize(i + 1) / &nn;
+        while k + 1 < p.segments.len() && p.segments[k].w1 < w {
+            k += 1;
+        }
+        let Some(s) = p.segments.get(k) else {
+            return sup;
+        };
+        let lam = s.lambda[0].clone() + (s.lambda[1].clone() + s.lambda[2].clone() * &w) * &w;
+        sup = max(sup, abs(li.clone() - lam));
+    }
+    sup
+}
+
 /// `∫_0^1 (Λ_N − Λ̃_N)(t,w) w dw` from `λ_1 … λ_N` (`λ_0 = 0`): on cell `i`,
 /// `w = (i−1)/N + s/N`, `Λ_N − Λ̃_N = d_i (1 − s)` with `d_i = λ_i − λ_{i−1}`,
 /// so the cell gives `d_i ((i−1)/(2N²) + 1/(6N²))`. (Against `Ψ = ψ(t)`
@@ -504,6 +544,7 @@ fn row_of(c: &MacroCase, traj: &Trajectory<Q>, id: &'static str) -> Result<Row, 
         (Q::zero(), Q::zero(), Q::zero(), Q::zero());
     let mut cvg_x: Option<Q> = None;
     let mut cvg_lambda: Option<Q> = None;
+    let mut lambda_nodes: Option<Q> = None;
     let mut pn_gap = Q::zero();
     // t = kT/4, k = 0 … 4: the comparison times and 0.
     let probes = std::iter::once((Q::zero(), None))
@@ -535,6 +576,8 @@ fn row_of(c: &MacroCase, traj: &Trajectory<Q>, id: &'static str) -> Result<Row, 
         if let Some(p) = profile {
             let dx = l2_sq(&s.positions, p, |s| &s.x);
             cvg_x = Some(max(cvg_x.unwrap_or_else(Q::zero), dx));
+            let gap = lambda_node_gap(&l, p);
+            lambda_nodes = Some(max(lambda_nodes.unwrap_or_else(Q::zero), gap));
             for k in 0..2 {
                 let d = abs(lambda_n_moment(&l, k) - lambda_moment(p, k));
                 cvg_lambda = Some(max(cvg_lambda.unwrap_or_else(Q::zero), d));
@@ -555,6 +598,15 @@ fn row_of(c: &MacroCase, traj: &Trajectory<Q>, id: &'static str) -> Result<Row, 
         .into_iter()
         .fold(Q::zero(), |m, v| max(m, abs(v)))
         + rounding;
+    let mass_interpolated = if n <= MASS_INTERPOLATED_MAX_N {
+        let r = interpolated_mass_residuals(traj, &c.tests, &c.t_end)
+            .map_err(|e| fail(e.to_string()))?;
+        let rounding = Q::from_float(r.rounding_bound)
+            .ok_or_else(|| fail("rounding bound not finite".into()))?;
+        Some(r.values.into_iter().fold(Q::zero(), |m, v| max(m, abs(v))) + rounding)
+    } else {
+        None
+    };
     let (qx, qu) = c.datum.quantiles(n).map_err(|e| fail(e.to_string()))?;
     let (disc_x, disc_u) = match &c.initial {
         Some(p) => (Some(l2_sq(&qx, p, |s| &s.x)), Some(l2_sq(&qu, p, |s| &s.u))),
@@ -573,9 +625,11 @@ fn row_of(c: &MacroCase, traj: &Trajectory<Q>, id: &'static str) -> Result<Row, 
         uniform_x0: uniform_x0(&c.datum, &qx),
         cvg_x,
         cvg_lambda,
+        lambda_nodes,
         pn_gap,
         c0_prime,
         momentum,
+        mass_interpolated,
     })
 }
 
@@ -620,6 +674,29 @@ mod tests {
     /// The seven norms on one particle by hand: x_1 = 0, u_1 = 1, λ_1 = 0,
     /// so x_0 = −2 (δ = 1, 1/N = 1), u_0 = 1, λ_0 = 0: constant parts
     /// 0 + 1 + 0, affine parts (4 + 0 + 0)/3 + (1 + 1 + 1)/3 + 0, slope 0.
+    /// One segment, Λ(w) = w(1 − w): at N = 2 the nodes are 1/2 (Λ = 1/4)
+    /// and 1 (Λ = 0); λ = (1/4, 1/8) misses the second by 1/8.
+    #[test]
+    fn lambda_node_gap_by_hand() {
+        use crate::limit::continuum::Segment;
+        let seg = Segment {
+            w0: q(0, 1),
+            w1: q(1, 1),
+            block: 0,
+            x: [q(0, 1), q(1, 1)],
+            u: [q(0, 1), q(0, 1)],
+            lambda: [q(0, 1), q(1, 1), q(-1, 1)],
+            plateau: None,
+        };
+        let p = Profile {
+            t: q(1, 1),
+            segments: vec![seg],
+            plateaus: vec![],
+        };
+        assert_eq!(lambda_node_gap(&[q(1, 4), q(1, 8)], &p), q(1, 8));
+        assert_eq!(lambda_node_gap(&[q(1, 4), q(0, 1)], &p), q(0, 1));
+    }
+
     #[test]
     fn seven_norms_by_hand() {
         let z = Q::zero();

@@ -327,16 +327,27 @@ pub fn sticky_is_particle_limit() -> Result<(), Violation> {
     let d = tb
         .particle_distances(&ns, &t)
         .map_err(|e| violation(ID, e))?;
-    let gap = (&t - tb.t_star()) * (&t - tb.t_star()) / q(3, 1);
+    particle_limit_on(&tb, &t, &d)
+}
+
+/// [`sticky_is_particle_limit`] on given distances `(N, ‖X_N − X¹‖²,
+/// ‖X_N − X²‖²)` at `t` ([`TwoBlocks::particle_distances`];
+/// `tests/claims_selfcheck.rs` passes distances of corrupted positions).
+pub fn particle_limit_on(tb: &TwoBlocks, t: &Q, d: &[(usize, Q, Q)]) -> Result<(), Violation> {
+    const ID: &str = "app:uniqueness#particle-limit";
+    if d.is_empty() {
+        return Err(violation(ID, "vacuous: no N measured"));
+    }
+    let gap = (t - tb.t_star()) * (t - tb.t_star()) / q(3, 1);
     for (n, d1, d2) in d {
-        let nn = Q::from_integer(n.into());
-        if d1 != (q(3, 1) * &nn * &nn).recip() {
+        let nn = Q::from_integer((*n).into());
+        if *d1 != (q(3, 1) * &nn * &nn).recip() {
             return Err(violation(
                 ID,
                 format!("N = {n}: ‖X_N − X¹‖² = {} ≠ 1/(3N²)", d1.render()),
             ));
         }
-        if (&d2 - &gap).abs() > nn.recip() {
+        if (d2 - &gap).abs() > nn.recip() {
             return Err(violation(
                 ID,
                 format!(
@@ -362,29 +373,41 @@ pub fn sticky_pressure_is_continuum() -> Result<(), Violation> {
             .profile(&(tb.t_star() / q(2, 1)))
             .map_err(|e| violation(ID, e))?;
         let at = c.profile(&tb.t_star()).map_err(|e| violation(ID, e))?;
-        let w = tb.pressure_weight(Continuation::Sticky, Printing::Corrected);
-        for k in 0..=32 {
-            let wq = q(k, 32);
-            let l0 = before
-                .lambda_exact(&wq)
-                .and_then(|s| s.as_rational().cloned());
-            let l1 = at.lambda_exact(&wq).and_then(|s| s.as_rational().cloned());
-            let jump = match (l0, l1) {
-                (Some(a), Some(b)) => b - a,
-                _ => return Err(violation(ID, "irrational Λ")),
-            };
-            if jump != w.eval(&wq) {
-                return Err(violation(
-                    ID,
-                    format!(
-                        "η = {}, w = {}: [Λ]_{{t*}} = {} but P¹ (corrected) = {}",
-                        eta.render(),
-                        wq.render(),
-                        jump.render(),
-                        w.eval(&wq).render()
-                    ),
-                ));
-            }
+        pressure_is_continuum_on(&tb, &before, &at)?;
+    }
+    Ok(())
+}
+
+/// [`sticky_pressure_is_continuum`] for one `η` on given continuum profiles
+/// before and at `t*` (`tests/claims_selfcheck.rs` passes corrupted ones).
+pub fn pressure_is_continuum_on(
+    tb: &TwoBlocks,
+    before: &crate::limit::continuum::Profile<crate::limit::surd::Surd>,
+    at: &crate::limit::continuum::Profile<crate::limit::surd::Surd>,
+) -> Result<(), Violation> {
+    const ID: &str = "app:uniqueness#sticky-pressure-is-continuum";
+    let w = tb.pressure_weight(Continuation::Sticky, Printing::Corrected);
+    for k in 0..=32 {
+        let wq = q(k, 32);
+        let l0 = before
+            .lambda_exact(&wq)
+            .and_then(|s| s.as_rational().cloned());
+        let l1 = at.lambda_exact(&wq).and_then(|s| s.as_rational().cloned());
+        let jump = match (l0, l1) {
+            (Some(a), Some(b)) => b - a,
+            _ => return Err(violation(ID, "irrational Λ")),
+        };
+        if jump != w.eval(&wq) {
+            return Err(violation(
+                ID,
+                format!(
+                    "η = {}, w = {}: [Λ]_{{t*}} = {} but P¹ (corrected) = {}",
+                    tb.eta().render(),
+                    wq.render(),
+                    jump.render(),
+                    w.eval(&wq).render()
+                ),
+            ));
         }
     }
     Ok(())

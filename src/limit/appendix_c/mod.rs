@@ -53,9 +53,9 @@ use crate::trajectory::Trajectory;
 mod checks;
 
 pub use checks::{
-    free_collision, projection_selects_sticky, rebound_oleinik, rebound_pressure,
-    sticky_is_particle_limit, sticky_pressure_corrected, sticky_pressure_is_continuum,
-    sticky_pressure_printed,
+    free_collision, particle_limit_on, pressure_is_continuum_on, projection_selects_sticky,
+    rebound_oleinik, rebound_pressure, sticky_is_particle_limit, sticky_pressure_corrected,
+    sticky_pressure_is_continuum, sticky_pressure_printed,
 };
 
 type Q = BigRational;
@@ -596,19 +596,22 @@ impl TwoBlocks {
     /// samplings with the given N (exact).
     pub fn particle_distances(&self, ns: &[usize], t: &Q) -> Result<Vec<(usize, Q, Q)>, Error> {
         let datum = self.datum()?;
-        let p1 = self.profile_of(Continuation::Sticky, t);
-        let p2 = self.profile_of(Continuation::Rebound, t);
         let mut out = Vec::new();
         for &n in ns {
             let traj = Trajectory::new(datum.sample(n)?);
             let s = traj.at(t)?;
-            out.push((
-                n,
-                x_l2_squared(&s.positions, &p1),
-                x_l2_squared(&s.positions, &p2),
-            ));
+            let (d1, d2) = self.distances_of(&s.positions, t);
+            out.push((n, d1, d2));
         }
         Ok(out)
+    }
+
+    /// `(‖X_N(t) − X¹(t)‖², ‖X_N(t) − X²(t)‖²)` for given particle positions
+    /// at `t` (`X_N = x_i` on `((i−1)/N, i/N]`), exact.
+    pub fn distances_of(&self, positions: &[Q], t: &Q) -> (Q, Q) {
+        let p1 = self.profile_of(Continuation::Sticky, t);
+        let p2 = self.profile_of(Continuation::Rebound, t);
+        (x_l2_squared(positions, &p1), x_l2_squared(positions, &p2))
     }
 }
 

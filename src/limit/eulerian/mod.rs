@@ -65,6 +65,7 @@
 mod continuum_residuals;
 mod fields;
 mod grids;
+mod mass_interpolated;
 mod particles;
 
 pub use continuum_residuals::{continuum_residuals, Quadrature};
@@ -73,6 +74,7 @@ pub use fields::{
     continuum_velocity, oleinik_margin, particle_density, particle_pressure_atoms,
 };
 pub use grids::{continuum_density_grid, particle_density_grid, DensityGrid};
+pub use mass_interpolated::interpolated_mass_residuals;
 pub use particles::{
     cluster_containing, particle_complementarity, particle_momentum_residuals, ClusterPositions,
     Residuals, MAX_TEST_DEGREE, RESIDUAL_BITS,

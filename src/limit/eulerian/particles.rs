@@ -123,21 +123,21 @@ pub struct Residuals<S> {
 
 /// Accumulates exact terms on the dyadic grid `2^{−RESIDUAL_BITS}` (exact
 /// scalars) or plainly (`f64`).
-struct Accumulator<S> {
+pub(super) struct Accumulator<S> {
     values: Vec<S>,
     terms: usize,
     scale: BigRational,
 }
 
 impl<S: Scalar> Accumulator<S> {
-    fn new(k: usize) -> Self {
+    pub(super) fn new(k: usize) -> Self {
         Accumulator {
             values: vec![S::zero(); k],
             terms: 0,
             scale: BigRational::from_integer(BigInt::from(1) << RESIDUAL_BITS),
         }
     }
-    fn add(&mut self, k: usize, v: S) {
+    pub(super) fn add(&mut self, k: usize, v: S) {
         let v = if S::EXACT {
             match v.to_big_rational() {
                 Some(q) => {
@@ -152,7 +152,7 @@ impl<S: Scalar> Accumulator<S> {
         self.values[k] = self.values[k].clone() + &v;
         self.terms += 1;
     }
-    fn finish(self) -> Residuals<S> {
+    pub(super) fn finish(self) -> Residuals<S> {
         Residuals {
             rounding_bound: if S::EXACT {
                 self.terms as f64 * 2f64.powi(-(RESIDUAL_BITS as i32) - 1)
