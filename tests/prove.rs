@@ -52,11 +52,7 @@ const NOT_EXPRESSIBLE_UP_TO_3: [(&str, &str); 0] = [];
 /// Targets proved at N ≤ 2 whose N = 3 proof z3 does not finish, with the
 /// reason (the N = 3 attempt is not made; every numeric engine still checks
 /// them at all N).
-const UNDECIDED_AT_3: [(&str, &str); 4] = [
-    (
-        "prop:Linf-micro",
-        "one path at N = 3 needs x_N − x_0 ≤ (x⁰_N − x⁰_0) + 2t sup|u⁰| with products u·t under a long path condition; nlsat returns unknown",
-    ),
+const UNDECIDED_AT_3: [(&str, &str); 3] = [
     (
         "prop:eulerian-formulation#mass",
         "the exact residual is a sum of integrals of degree-10 polynomials in t whose coefficients are rational functions of the data and of the collision times; at N = 3 building them symbolically takes over 20 minutes a path (3 of 19+ paths in 1400 s); proved at N = 1, 2",
@@ -67,7 +63,7 @@ const UNDECIDED_AT_3: [(&str, &str); 4] = [
     ),
     (
         "lem:density",
-        "at N = 3 the coupling bound ∫|X̃_N(t) − X̃_N(s)|² ≤ (t − s)² ‖∂_t X̃_N‖²_∞ is a quartic inequality in (x⁰, u⁰, s, t) (products u·u·t·s) under a path condition with two collision times; nlsat returns unknown on the 6th path (proved at N = 1, 2)",
+        "at N = 3 the coupling bound ∫|X̃_N(t) − X̃_N(s)|² ≤ (t − s)² ‖∂_t X̃_N‖²_∞ is a quartic inequality in (x⁰, u⁰, s, t) (products u·u·t·s) under a path condition with two collision times; nlsat returns unknown on path 186 even with the ties' equalities eliminated and the nonlinear constraints dropped (proved at N = 1, 2)",
     ),
 ];
 

@@ -23,7 +23,9 @@ use num_rational::BigRational;
 use num_traits::{Signed, Zero};
 
 use super::budget;
+use super::eliminate::{self, Atom, Constraint, Reduced};
 use super::poly::Poly;
+use super::relax;
 use super::smt::{Sat, Solver, SolverError, SolverLimits};
 use crate::progress::Progress;
 
@@ -59,6 +61,10 @@ impl Rel {
             Rel::Gt => POS,
             Rel::Ge => ZERO | POS,
         }
+    }
+    /// `true` when the constant `q` satisfies `q rel 0`.
+    pub fn holds_for(self, q: &BigRational) -> bool {
+        self.mask() & sign_bit(q) != 0
     }
     /// The condition as SMT-LIB text on the term `p`.
     pub fn smt(self, p: &str) -> String {
@@ -105,6 +111,9 @@ struct PathState {
     masks: HashMap<Poly, u8>,
     /// The path condition as SMT-LIB text (hypotheses first).
     pc: Vec<String>,
+    /// The same path condition as polynomial constraints (for
+    /// [`eliminate`], when the solver cannot decide a query on `pc`).
+    cons: Vec<Constraint>,
     solver: Solver,
     names: Vec<String>,
     queries: usize,
@@ -193,6 +202,10 @@ impl PathState {
             let k = usize::from(k).min(outcomes.len() - 1);
             self.taken.push((fingerprint, k as u8));
             self.record(&np, flipped, outcomes[k], Some(outcomes[k].smt(&ptext)));
+            self.cons.push(Constraint::Atom(Atom {
+                poly: p.clone(),
+                rel: outcomes[k],
+            }));
             return k;
         }
         // The outcome the current model takes is feasible: no query.
@@ -223,8 +236,22 @@ impl PathState {
                 Ok((Sat::Sat, m)) => feasible.push((k, m)),
                 Ok((Sat::Unsat, _)) => {}
                 Ok((Sat::Unknown, _)) => {
-                    self.unknown_answers += 1;
-                    feasible.push((k, None));
+                    let extra = Atom {
+                        poly: p.clone(),
+                        rel: outcomes[k],
+                    };
+                    match self.check_reduced(Some(extra)) {
+                        Ok((Sat::Sat, m)) => feasible.push((k, m)),
+                        Ok((Sat::Unsat, _)) => {}
+                        Ok((Sat::Unknown, _)) => {
+                            self.unknown_answers += 1;
+                            feasible.push((k, None));
+                        }
+                        Err(e) => {
+                            self.error.get_or_insert(e.0);
+                            feasible.push((k, None));
+                        }
+                    }
                 }
                 Err(e) => {
                     self.error.get_or_insert(e.0);
@@ -246,8 +273,73 @@ impl PathState {
         }
         self.taken.push((fingerprint, k as u8));
         self.record(&np, flipped, outcomes[k], Some(outcomes[k].smt(&ptext)));
+        self.cons.push(Constraint::Atom(Atom {
+            poly: p.clone(),
+            rel: outcomes[k],
+        }));
         k
     }
+
+    /// The query `path condition ∧ extra` asked again after eliminating the
+    /// variables that equalities of the path condition determine
+    /// ([`eliminate`]), for a query the solver answered `unknown` on as
+    /// asked: `unsat` when the algebra alone refutes it; with `sat`, the
+    /// model completed with the eliminated values (exact, so it satisfies
+    /// the path condition whenever the solver's values are rational).
+    /// Failing that, the linear part of the system and `extra` are asked
+    /// ([`relax`]): `unsat` there is `unsat` here. Otherwise `unknown`.
+    fn check_reduced(
+        &mut self,
+        extra: Option<Atom>,
+    ) -> Result<(Sat, Option<Vec<BigRational>>), SolverError> {
+        let mut system = self.cons.clone();
+        system.extend(extra.clone().map(Constraint::Atom));
+        let masks = &self.masks;
+        // `a ≠ 0` on the path when the path condition excludes the sign 0
+        // of `a` (up to a constant factor).
+        let nonzero = |a: &Poly| {
+            let (np, _) = a.normalized();
+            masks.get(&np).is_some_and(|m| m & ZERO == 0)
+        };
+        let reduced = eliminate::reduce(&system, &nonzero, self.names.len());
+        match &reduced {
+            Reduced::Unsatisfiable => return Ok((Sat::Unsat, None)),
+            Reduced::System {
+                constraints,
+                eliminated,
+            } if !eliminated.is_empty() => {
+                let text: Vec<String> = constraints.iter().map(|c| c.smt(&self.names)).collect();
+                self.queries += 1;
+                match self.solver.check(&text, None)? {
+                    Sat::Sat => {
+                        let model = self.solver.model(&self.names)?;
+                        return Ok((Sat::Sat, model.and_then(|m| reduced.complete(&m))));
+                    }
+                    Sat::Unsat => return Ok((Sat::Unsat, None)),
+                    Sat::Unknown => {}
+                }
+            }
+            Reduced::System { .. } => {}
+        }
+        let weaker = relax::linear_part(&self.cons, extra.as_ref());
+        let text: Vec<String> = weaker.iter().map(|c| c.smt(&self.names)).collect();
+        self.queries += 1;
+        match self.solver.check(&text, None)? {
+            Sat::Unsat => Ok((Sat::Unsat, None)),
+            _ => Ok((Sat::Unknown, None)),
+        }
+    }
+}
+
+/// `true` when the exact point satisfies every constraint.
+fn satisfies(constraints: &[Constraint], point: &[BigRational]) -> bool {
+    constraints.iter().all(|c| {
+        let atoms = match c {
+            Constraint::Atom(a) => std::slice::from_ref(a),
+            Constraint::Any(atoms) => atoms.as_slice(),
+        };
+        atoms.iter().any(|a| a.rel.holds_for(&a.poly.eval(point)))
+    })
 }
 
 /// `Some(true)` when the path condition is known (without asking the
@@ -298,8 +390,8 @@ pub fn decide(p: &Poly, outcomes: &[Rel]) -> usize {
 pub enum Hypothesis {
     /// A sign condition on a polynomial (also known to the oracle's cache).
     Sign(Poly, Rel),
-    /// Any SMT-LIB formula over the variables.
-    Formula(String),
+    /// At least one of these sign conditions holds.
+    Any(Vec<(Poly, Rel)>),
 }
 
 /// How a path ended.
@@ -411,6 +503,7 @@ pub fn explore(
     NAMES.with(|n| *n.borrow_mut() = names.to_vec());
     let mut base_pc = Vec::new();
     let mut base_masks = HashMap::new();
+    let mut base_cons = Vec::new();
     for h in hypotheses {
         match h {
             Hypothesis::Sign(p, rel) => {
@@ -422,8 +515,24 @@ pub fn explore(
                 };
                 *base_masks.entry(np).or_insert(NEG | ZERO | POS) &= m;
                 base_pc.push(rel.smt(&p.smt(names)));
+                base_cons.push(Constraint::Atom(Atom {
+                    poly: p.clone(),
+                    rel: *rel,
+                }));
             }
-            Hypothesis::Formula(f) => base_pc.push(f.clone()),
+            Hypothesis::Any(atoms) => {
+                let c = Constraint::Any(
+                    atoms
+                        .iter()
+                        .map(|(p, rel)| Atom {
+                            poly: p.clone(),
+                            rel: *rel,
+                        })
+                        .collect(),
+                );
+                base_pc.push(c.smt(names));
+                base_cons.push(c);
+            }
         }
     }
     let mut result = Exploration {
@@ -450,6 +559,7 @@ pub fn explore(
         model: None,
         masks: base_masks.clone(),
         pc: base_pc.clone(),
+        cons: base_cons.clone(),
         solver,
         names: names.to_vec(),
         queries: 0,
@@ -491,6 +601,7 @@ pub fn explore(
         st.branches.clear();
         st.masks = base_masks.clone();
         st.pc = base_pc.clone();
+        st.cons = base_cons.clone();
         st.queries = 0;
         st.unknown_answers = 0;
         st.fault = None;
@@ -550,7 +661,26 @@ pub fn explore(
             PathEnd::Excluded(_) => result.excluded += 1,
             PathEnd::Violated(message) => {
                 result.queries += 1;
+                let mut reduced_point = None;
                 let answer = match st.solver.check(&st.pc, None) {
+                    Ok(Sat::Unknown) => {
+                        st.queries = 0;
+                        let r = st.check_reduced(None);
+                        result.queries += st.queries;
+                        match r {
+                            Ok((a, point)) => {
+                                reduced_point = point;
+                                a
+                            }
+                            Err(e) => {
+                                result.verdict = Verdict::Unknown(format!(
+                                    "{e} (deciding a path to a violation: {message})"
+                                ));
+                                state = Some(st);
+                                break;
+                            }
+                        }
+                    }
                     Ok(a) => a,
                     Err(e) => {
                         result.verdict = Verdict::Unknown(format!(
@@ -571,7 +701,13 @@ pub fn explore(
                     }
                     Sat::Sat => {
                         let pc = st.pc.clone();
-                        let point = st.solver.rational_model(&pc, names);
+                        // A completed model of the reduced query satisfies
+                        // the path condition when checked exactly.
+                        let exact = reduced_point.filter(|m| satisfies(&st.cons, m));
+                        let point = match exact {
+                            Some(m) => Ok(Some(m)),
+                            None => st.solver.rational_model(&pc, names),
+                        };
                         result.queries += 2 * names.len();
                         result.verdict = match point {
                             Ok(Some(point)) => Verdict::Counterexample { message, point },

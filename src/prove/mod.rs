@@ -31,9 +31,11 @@
 //! [`Trajectory::at`]: crate::trajectory::Trajectory::at
 
 pub mod budget;
+pub mod eliminate;
 pub mod explore;
 pub mod poly;
 pub mod record;
+pub mod relax;
 pub mod smt;
 pub mod sym;
 
@@ -152,7 +154,6 @@ fn var(i: usize) -> Var {
 /// `t ≥ 0` (and `0 ≤ s ≤ t`).
 fn hypotheses(n: usize, two_times: bool) -> (Vec<Hypothesis>, String) {
     let two_r = BigRational::new(1.into(), (n as i64).into());
-    let names = variable_names(n, two_times);
     let mut hs = Vec::new();
     for i in 0..n.saturating_sub(1) {
         // gap − 2r ≥ 0, and gap = 2r ⇒ u_i ≤ u_{i+1}.
@@ -161,11 +162,7 @@ fn hypotheses(n: usize, two_times: bool) -> (Vec<Hypothesis>, String) {
             .sub(&Poly::constant(two_r.clone()));
         let closing = Poly::var(var(n + i)).sub(&Poly::var(var(n + i + 1)));
         hs.push(Hypothesis::Sign(gap.clone(), Rel::Ge));
-        hs.push(Hypothesis::Formula(format!(
-            "(or {} {})",
-            Rel::Gt.smt(&gap.smt(&names)),
-            Rel::Le.smt(&closing.smt(&names))
-        )));
+        hs.push(Hypothesis::Any(vec![(gap, Rel::Gt), (closing, Rel::Le)]));
     }
     let t = Poly::var(var(2 * n));
     if two_times {

@@ -157,6 +157,53 @@ impl Poly {
             }
         }
     }
+    /// The variables that occur, each once, in increasing order.
+    pub fn variables(&self) -> Vec<Var> {
+        let mut vars: Vec<Var> = self.terms.keys().flatten().copied().collect();
+        vars.sort_unstable();
+        vars.dedup();
+        vars
+    }
+    /// The degree of the polynomial in the variable `v` alone.
+    pub fn degree_in(&self, v: Var) -> usize {
+        self.terms
+            .keys()
+            .map(|m| m.iter().filter(|&&w| w == v).count())
+            .max()
+            .unwrap_or(0)
+    }
+    /// The coefficients `c₀ … c_d` of `self = Σ_k c_k v^k` as polynomials
+    /// free of `v` (`d` = [`Poly::degree_in`]).
+    pub fn coefficients_in(&self, v: Var) -> Vec<Poly> {
+        let mut out = vec![Poly::zero(); self.degree_in(v) + 1];
+        for (m, c) in &self.terms {
+            let k = m.iter().filter(|&&w| w == v).count();
+            let rest: Vec<Var> = m.iter().copied().filter(|&w| w != v).collect();
+            out[k].add_term(rest, c.clone());
+        }
+        out
+    }
+    /// `self` with the variable `v` replaced by `num / den`, multiplied by
+    /// `den^e` (so that it stays a polynomial): `Σ_k c_k num^k den^(e−k)`.
+    /// `e` must be at least [`Poly::degree_in`]`(v)`; `num`, `den` free of `v`.
+    pub fn substitute(&self, v: Var, num: &Poly, den: &Poly, e: usize) -> Poly {
+        let coefficients = self.coefficients_in(v);
+        debug_assert!(e + 1 >= coefficients.len(), "den^e must clear every power");
+        let mut num_powers = vec![Poly::constant(BigRational::one())];
+        let mut den_powers = vec![Poly::constant(BigRational::one())];
+        for k in 1..=e {
+            num_powers.push(num_powers[k - 1].mul(num));
+            den_powers.push(den_powers[k - 1].mul(den));
+        }
+        let mut out = Poly::zero();
+        for (k, c) in coefficients.iter().enumerate() {
+            if c.is_zero() {
+                continue;
+            }
+            out = out.add(&c.mul(&num_powers[k]).mul(&den_powers[e - k]));
+        }
+        out
+    }
     /// The value at a point (`point[v]` for the variable `v`).
     pub fn eval(&self, point: &[BigRational]) -> BigRational {
         let mut acc = BigRational::zero();

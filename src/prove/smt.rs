@@ -119,6 +119,21 @@ pub fn available() -> Option<String> {
         .then(|| String::from_utf8_lossy(&out.stdout).trim().to_string())
 }
 
+/// Appends `text` to the file named by `STICKY_Z3_LOG`, when it is set: a
+/// transcript of everything sent to the solver, for finding the hard query
+/// of an attempt (`z3 -in < file` replays it).
+fn log(text: &str) {
+    if let Some(path) = std::env::var_os("STICKY_Z3_LOG") {
+        if let Ok(mut f) = std::fs::OpenOptions::new()
+            .create(true)
+            .append(true)
+            .open(path)
+        {
+            let _ = f.write_all(text.as_bytes());
+        }
+    }
+}
+
 /// How a wait for the solver's answer ended without one.
 enum NoAnswer {
     /// The wait's limit passed (the process was killed).
@@ -212,6 +227,7 @@ impl Solver {
     }
 
     fn send(&mut self, text: &str) -> Result<(), SolverError> {
+        log(text);
         let Some(p) = self.process.as_mut() else {
             return Err(SolverError("the solver is not running".into()));
         };
