@@ -548,6 +548,7 @@ fn index_problems(text: &str, n: usize) -> Vec<String> {
 #[test]
 fn index_scanner_sees_1_based_forms() {
     assert!(index_problems("pair (0, 1) touches, x[1] − x[0] = 1/2, λ[−1] = 0", 2).is_empty());
+    assert!(index_problems("x[0] − x[-1] = 2", 1).is_empty());
     assert!(index_problems("particles [0..2] ∈ H, u⁰[2] = 1, w ∈ (0/N, 1/N]", 3).is_empty());
     assert!(index_problems("particle [0] (i = 1 in the paper's numbering): u_i", 1).is_empty());
     assert!(index_problems("Σ [u_i] φ_i = 0, u_i = 2", 1).is_empty());

@@ -55,10 +55,11 @@ pub(crate) struct FromPaper(pub usize);
 
 impl std::fmt::Display for FromPaper {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        // i − 1 without a cast: the paper's 0 (x_0, λ_0) prints as −1.
+        // i − 1 without a cast: the paper's 0 (x_0, λ_0) prints as −1,
+        // with the minus sign of the ledger's other −1 indices (`x[−1]`).
         match self.0.checked_sub(1) {
             Some(i) => write!(f, "{i}"),
-            None => f.write_str("-1"),
+            None => f.write_str("−1"),
         }
     }
 }

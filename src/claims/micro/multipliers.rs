@@ -3,7 +3,7 @@
 //! increments `ΔL`.
 
 use super::{norm2, state, sub, R};
-use crate::claims::{Case, Violation};
+use crate::claims::{Case, FromPaper, Violation};
 use crate::initial::InitialData;
 use crate::scalar::Scalar;
 use crate::state::State;
@@ -40,7 +40,7 @@ pub fn multiplier_signs<S: Scalar>(data: &InitialData<S>, s: &State<S>) -> R {
                     i - 1,
                     lhs.render(),
                     i - 1,
-                    i as isize - 2,
+                    FromPaper(i - 1),
                     rhs.render(),
                     s.t.render()
                 ),
