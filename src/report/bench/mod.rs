@@ -301,7 +301,8 @@ pub fn run(opts: &BenchOptions, t: &BigRational, scripts: &Path) -> BenchReport 
 /// [`run`], telling `progress` which repetition and which method is being
 /// timed (one step per repetition, warm-up included, and one for the
 /// peers). Between two repetitions it asks [`Progress::cancelled`]: on a
-/// stop the report holds the repetitions done so far and no peers.
+/// stop the report holds the repetitions done so far (the warm-up's
+/// figures when the stop came right after it) and no peers.
 pub fn run_with_progress(
     opts: &BenchOptions,
     t: &BigRational,
