@@ -129,3 +129,64 @@ fn e2e_inputs_are_one_scene_three_ways() {
     assert!(contacts > 100 && contacts < 2000, "{contacts}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// What `run_with_progress` tells its observer, which asks to stop after
+/// `stop_after` steps.
+struct Observer {
+    stop_after: u64,
+    steps: std::sync::atomic::AtomicU64,
+    notes: std::sync::Mutex<Vec<String>>,
+}
+
+impl sticky::progress::Progress for Observer {
+    fn advance(&self, steps: u64) {
+        self.steps
+            .fetch_add(steps, std::sync::atomic::Ordering::Relaxed);
+    }
+    fn note(&self, what: &str) {
+        self.notes.lock().unwrap().push(what.to_string());
+    }
+    fn cancelled(&self) -> bool {
+        self.steps.load(std::sync::atomic::Ordering::Relaxed) >= self.stop_after
+    }
+}
+
+/// One step per repetition (the warm-up included), notes naming N and the
+/// repetition, and a stop asked after the warm-up ends the run there.
+#[test]
+fn bench_reports_progress_and_stops_when_cancelled() {
+    use sticky::report::bench::run_with_progress;
+    let opts = BenchOptions {
+        n: 200,
+        reps: 2,
+        peers: false,
+        events: false,
+        memory: false,
+    };
+    let t = BigRational::new(1.into(), 100.into());
+    let scripts = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scripts");
+    let observe = |stop_after| Observer {
+        stop_after,
+        steps: 0.into(),
+        notes: Vec::new().into(),
+    };
+    let all = observe(u64::MAX);
+    run_with_progress(&opts, &t, &scripts, &all);
+    assert_eq!(
+        all.steps.into_inner(),
+        1 + 2,
+        "the warm-up and 2 repetitions"
+    );
+    let notes = all.notes.into_inner().unwrap();
+    assert_eq!(notes[0], "N = 200, warm-up: f64, integer kernel, adaptive");
+    assert!(notes.contains(&"N = 200, repetition 2/2: generic PAVA on BigRational".to_string()));
+    let first = observe(1);
+    run_with_progress(&opts, &t, &scripts, &first);
+    assert_eq!(first.steps.into_inner(), 1, "stopped after the warm-up");
+    assert!(!first
+        .notes
+        .into_inner()
+        .unwrap()
+        .iter()
+        .any(|n| n.contains("repetition")));
+}

@@ -465,3 +465,149 @@ fn untampered_states_are_the_engines() {
         }
     }
 }
+
+// ---- the index convention of the violation texts ---------------------------
+
+/// The integer that starts `s` (an optional `-` or `−`, then digits), and
+/// the rest of `s` after it.
+fn leading_int(s: &str) -> Option<(i64, &str)> {
+    let (sign, rest) = match s.strip_prefix('-').or_else(|| s.strip_prefix('−')) {
+        Some(r) => (-1, r),
+        None => (1, s),
+    };
+    let digits = rest.len() - rest.trim_start_matches(|c: char| c.is_ascii_digit()).len();
+    let k: i64 = rest[..digits].parse().ok()?;
+    Some((sign * k, &rest[digits..]))
+}
+
+/// What in a ledger text breaks the convention of `claims::ledger::NUMBERING`
+/// for a case of `n` particles: a bracket index `x[k]`, `particle [k]`,
+/// `particles [a..b]` outside `−1 … N−1` (−1 is the artificial particle `x_0`
+/// of section 3, or the end multiplier `λ_0`), a `pair (a, b)` or
+/// `contact (a, b)` that is not two neighbours among `−1 … N−1`, or — unless
+/// the text says "paper's numbering" — a 1-based form: `x_1`, `u⁰_2`, `λ_1`,
+/// `particle 3`, `pair 2`, `i = 1`.
+fn index_problems(text: &str, n: usize) -> Vec<String> {
+    let n = n as i64;
+    let in_range = |k: i64| (-1..n).contains(&k);
+    let mut out = Vec::new();
+    let mut prev: Option<char> = None;
+    for (at, c) in text.char_indices() {
+        let rest = &text[at + c.len_utf8()..];
+        let before = &text[..at];
+        if c == '[' {
+            let named = prev.is_some_and(|p| p.is_alphabetic() || "⁰\u{303}".contains(p))
+                || before.ends_with("particle ")
+                || before.ends_with("particles ");
+            if let Some((k, tail)) = leading_int(rest).filter(|_| named) {
+                let last = match tail.strip_prefix("..").and_then(leading_int) {
+                    Some((b, t)) if t.starts_with(']') => Some(b),
+                    _ if tail.starts_with(']') => Some(k),
+                    _ => None,
+                };
+                if let Some(b) = last {
+                    if !in_range(k) || !in_range(b) {
+                        out.push(format!("index [{k}] or [{b}] outside −1…{}", n - 1));
+                    }
+                }
+            }
+        }
+        if c == '(' && (before.ends_with("pair ") || before.ends_with("contact ")) {
+            if let Some((a, tail)) = leading_int(rest) {
+                if let Some((b, _)) = tail.strip_prefix(", ").and_then(leading_int) {
+                    if b != a + 1 || !in_range(a) || !in_range(b) {
+                        out.push(format!(
+                            "pair ({a}, {b}) is not two neighbours of −1…{}",
+                            n - 1
+                        ));
+                    }
+                }
+            }
+        }
+        if !text.contains("paper's numbering") {
+            let digit_next = rest.starts_with(|d: char| d.is_ascii_digit());
+            let subscript = c == '_' && prev.is_some_and(|p| "xuλμpeysnξ⁰\u{303}".contains(p));
+            let word_start = prev.is_none_or(|p| p == ' ' || p == '(' || p == ',');
+            let word = ["particle ", "particles ", "pair ", "i = ", "j = "]
+                .iter()
+                .filter(|_| word_start)
+                .any(|w| {
+                    text[at..].starts_with(w)
+                        && text[at + w.len()..].starts_with(|d: char| d.is_ascii_digit())
+                });
+            if (subscript && digit_next) || word {
+                let show: String = text[at..].chars().take(12).collect();
+                out.push(format!("1-based form `{show}`"));
+            }
+        }
+        prev = Some(c);
+    }
+    out
+}
+
+#[test]
+fn index_scanner_sees_1_based_forms() {
+    assert!(index_problems("pair (0, 1) touches, x[1] − x[0] = 1/2, λ[−1] = 0", 2).is_empty());
+    assert!(index_problems("x[0] − x[-1] = 2", 1).is_empty());
+    assert!(index_problems("particles [0..2] ∈ H, u⁰[2] = 1, w ∈ (0/N, 1/N]", 3).is_empty());
+    assert!(index_problems("particle [0] (i = 1 in the paper's numbering): u_i", 1).is_empty());
+    assert!(index_problems("Σ [u_i] φ_i = 0, u_i = 2", 1).is_empty());
+    for bad in [
+        "pair (1, 2) touches",
+        "pair (0, 2)",
+        "x[2] − x[1]",
+        "particles [1..2]",
+        "λ[−2] = 0",
+        "particles 1 and 2 touch",
+        "(i = 1)",
+        "u⁰_1 = -8",
+        "t = 1, i = 1: N(λ_i − λ_{i−1})",
+        "λ_1 jumps",
+    ] {
+        assert!(!index_problems(bad, 2).is_empty(), "{bad:?} passed");
+    }
+}
+
+/// Every violation text the case checkers write — on the battery's cases and
+/// on every mutant of them — indexes particles from 0
+/// (`claims::ledger::NUMBERING`): no index at or beyond N, no paper
+/// subscript unless the text says so. A checker put back to `i + 1` names
+/// `x[N]` or `pair (N−1, N)` on the cases whose violation is at the last
+/// particle, among them every violation at N = 2.
+#[test]
+fn violation_texts_index_from_0() {
+    let cases = cases();
+    let mutants = mutants();
+    let mut seen = 0usize;
+    let mut bad = Vec::new();
+    for (id, check, applies) in checkers() {
+        // N ≤ 6: where an index put back to `i + 1` runs past N − 1 most
+        // often, and a third of the battery's time.
+        for case in cases.iter().filter(|c| c.n() <= 6 && applies(c)) {
+            let variants =
+                std::iter::once(Some(case.clone())).chain(mutants.iter().map(|m| mutate(case, m)));
+            for v in variants.flatten() {
+                if let Err(violation) = check(&v) {
+                    seen += 1;
+                    for p in index_problems(&violation.witness, v.n()) {
+                        bad.push(format!(
+                            "{id} (N = {}): {p} in {:?}",
+                            v.n(),
+                            violation.witness
+                        ));
+                    }
+                }
+            }
+        }
+    }
+    assert!(
+        seen > 1000,
+        "only {seen} violation texts: the battery lost its mutants"
+    );
+    assert!(
+        bad.is_empty(),
+        "{} texts break the 0-based convention, e.g.:\n{}",
+        bad.len(),
+        bad.iter().take(12).cloned().collect::<Vec<_>>().join("\n")
+    );
+}

@@ -620,6 +620,79 @@ fn csv_files() {
     );
 }
 
+/// What `converge_with_progress` tells its observer, and a stop asked
+/// after `stop_after` steps.
+struct Observer {
+    stop_after: u64,
+    steps: std::sync::atomic::AtomicU64,
+    said: std::sync::Mutex<Vec<String>>,
+}
+
+impl Observer {
+    fn new(stop_after: u64) -> Self {
+        Observer {
+            stop_after,
+            steps: 0.into(),
+            said: Vec::new().into(),
+        }
+    }
+    fn steps(&self) -> u64 {
+        self.steps.load(std::sync::atomic::Ordering::Relaxed)
+    }
+}
+
+impl sticky::progress::Progress for Observer {
+    fn stage(&self, what: &str, total: Option<u64>) {
+        self.said
+            .lock()
+            .unwrap()
+            .push(format!("stage {what} ({total:?})"));
+    }
+    fn advance(&self, steps: u64) {
+        self.steps
+            .fetch_add(steps, std::sync::atomic::Ordering::Relaxed);
+    }
+    fn note(&self, what: &str) {
+        self.said.lock().unwrap().push(what.to_string());
+    }
+    fn cancelled(&self) -> bool {
+        self.steps() >= self.stop_after
+    }
+}
+
+/// The study tells its observer the scene, each N and its engine, one step
+/// per N plus the engine check; a stop asked after the first N ends it
+/// there, with that one row.
+#[test]
+fn converge_reports_progress_and_stops_when_cancelled() {
+    use sticky::limit::converge::converge_with_progress;
+    let opts = ConvergeOptions {
+        n_max: 64,
+        exact_max: 32,
+        panels: 2,
+        time_samples: 2,
+        ..ConvergeOptions::default()
+    };
+    let scene = load("riemann-compression");
+    let all = Observer::new(u64::MAX);
+    let r = converge_with_progress(&scene, &opts, &all).unwrap();
+    assert_eq!(r.rows.len(), 4);
+    assert_eq!(
+        all.steps(),
+        4 + 1,
+        "N = 8 … 64 and the engine check at N = 32"
+    );
+    let said = all.said.lock().unwrap().clone();
+    assert_eq!(said[0], "stage riemann-compression: N = 8 … 64 (Some(5))");
+    assert_eq!(said[1], "riemann-compression: N = 8 (exact)");
+    assert!(said.contains(&"riemann-compression: N = 64 (f64)".to_string()));
+    assert!(said.contains(&"engine check: N = 32 on f64".to_string()));
+    let first = Observer::new(1);
+    let r = converge_with_progress(&scene, &opts, &first).unwrap();
+    assert_eq!(r.rows.iter().map(|row| row.n).collect::<Vec<_>>(), [8]);
+    assert_eq!(first.steps(), 1);
+}
+
 // ---------------------------------------------------------------- Eulerian
 
 /// The momentum-residual identity of `eulerian` against a direct exact

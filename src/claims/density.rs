@@ -27,7 +27,7 @@
 //!   the image of each segment, 0 in the vacuum between images.
 
 use super::discrete::{abs, delta};
-use super::{Case, Violation};
+use super::{Case, FromPaper, Violation};
 use crate::limit::eulerian::{continuum_density, particle_density};
 use crate::limit::interpolation::Snapshot;
 use crate::scalar::Scalar;
@@ -53,8 +53,9 @@ fn density_at<S: Scalar>(snap: &Snapshot<S>) -> Result<(), String> {
         let slope = snap.dw_x_tilde(i);
         if slope < S::one() {
             return Err(format!(
-                "hypothesis: ∂_w X̃_N = N(x_{i} − x_{}) = {} < 1",
-                i - 1,
+                "hypothesis: ∂_w X̃_N = N(x[{}] − x[{}]) = {} < 1",
+                FromPaper(i),
+                FromPaper(i - 1),
                 slope.render()
             ));
         }
@@ -63,17 +64,19 @@ fn density_at<S: Scalar>(snap: &Snapshot<S>) -> Result<(), String> {
         let rho = particle_density(snap, &mid);
         if rho < S::zero() || rho > S::one() {
             return Err(format!(
-                "ρ̃_N = {} ∉ [0, 1] on (x_{}, x_{i})",
+                "ρ̃_N = {} ∉ [0, 1] on (x[{}], x[{}])",
                 rho.render(),
-                i - 1
+                FromPaper(i - 1),
+                FromPaper(i)
             ));
         }
         let mass = rho.clone() * &(b.clone() - a);
         if mass != inv_n {
             return Err(format!(
-                "ρ̃_N = {} on (x_{}, x_{i}) gives the cell mass {} ≠ 1/N: not the density of X̃_N#L¹",
+                "ρ̃_N = {} on (x[{}], x[{}]) gives the cell mass {} ≠ 1/N: not the density of X̃_N#L¹",
                 rho.render(),
-                i - 1,
+                FromPaper(i - 1),
+                FromPaper(i),
                 mass.render()
             ));
         }
@@ -82,7 +85,7 @@ fn density_at<S: Scalar>(snap: &Snapshot<S>) -> Result<(), String> {
         let rho = particle_density(snap, &x);
         if !rho.is_zero() {
             return Err(format!(
-                "ρ̃_N({}) = {} ≠ 0 off the support [x_0, x_N]",
+                "ρ̃_N({}) = {} ≠ 0 off the support [x[−1], x[N−1]]",
                 x.render(),
                 rho.render()
             ));

@@ -5,7 +5,7 @@
 //! They assume the paper's radius `2r = 1/N`; `δ = 1` here (any `δ > 0`
 //! independent of N; the claims below do not depend on its value).
 
-use super::{Case, Violation};
+use super::{Case, FromPaper, Violation};
 use crate::scalar::Scalar;
 use crate::state::State;
 
@@ -85,10 +85,13 @@ pub fn lagr_n1_printed<S: Scalar>(case: &Case<S>) -> R {
                 return Err(Violation::new(
                     ID,
                     format!(
-                        "t = {}, w ∈ (({i}−1)/N, {i}/N]: Λ_N = λ_{i} = {} but ∂_w X̃_N − 1 = N(x_{i} − x_{}) − 1 = {}",
+                        "t = {}, w ∈ ({}/N, {i}/N]: Λ_N = λ[{}] = {} but ∂_w X̃_N − 1 = N(x[{}] − x[{}]) − 1 = {}",
                         a.t.render(),
-                        a.lambda[i].render(),
                         i - 1,
+                        FromPaper(i),
+                        a.lambda[i].render(),
+                        FromPaper(i),
+                        FromPaper(i - 1),
                         (slope - &S::one()).render()
                     ),
                 ));
@@ -111,9 +114,12 @@ pub fn lagr_n1_corrected<S: Scalar>(case: &Case<S>) -> R {
                 return Err(Violation::new(
                     ID,
                     format!(
-                        "t = {}, i = {i}: λ_i = {}, N(x_{{i+1}} − x_i) = {}",
+                        "t = {}, pair ({}, {i}): λ[{}] = {}, N(x[{i}] − x[{}]) = {}",
                         a.t.render(),
+                        i - 1,
+                        i - 1,
                         a.lambda[i].render(),
+                        i - 1,
                         slope.render()
                     ),
                 ));
@@ -144,9 +150,10 @@ pub fn reindexed<S: Scalar>(case: &Case<S>) -> R {
                 return Err(Violation::new(
                     ID,
                     format!(
-                        "t = {}, w ∈ (({i}−1)/N, {i}/N]: Λ_N := λ_{} = {} but ∂_w X̃_N − 1 = {}",
+                        "t = {}, w ∈ ({}/N, {i}/N]: Λ_N := λ[{}] = {} but ∂_w X̃_N − 1 = {}",
                         a.t.render(),
                         i - 1,
+                        FromPaper(i - 1),
                         a.lambda[i - 1].render(),
                         (slope - &S::one()).render()
                     ),
@@ -162,8 +169,9 @@ pub fn reindexed<S: Scalar>(case: &Case<S>) -> R {
                     return Err(Violation::new(
                         ID,
                         format!(
-                            "t = {}, i = {i}, k = {k}: |Λ̃_N − Λ_N| = {} ≠ {}",
+                            "t = {}, w ∈ ({}/N, {i}/N], k = {k}: |Λ̃_N − Λ_N| = {} ≠ {}",
                             a.t.render(),
+                            i - 1,
                             actual.render(),
                             printed.render()
                         ),
@@ -184,10 +192,11 @@ pub fn reindexed<S: Scalar>(case: &Case<S>) -> R {
                 return Err(Violation::new(
                     ID,
                     format!(
-                        "collision at t = {}: P_N := p_{} carries {} on (({i}−1)/N, {i}/N] but ∂_w X̃_N − 1 = {}",
+                        "collision at t = {}: P_N := p[{}] carries {} on ({}/N, {i}/N] but ∂_w X̃_N − 1 = {}",
                         imp.t.render(),
-                        i - 1,
+                        FromPaper(i - 1),
                         jumps[i - 1].render(),
+                        i - 1,
                         (slope - &S::one()).render()
                     ),
                 ));
@@ -212,8 +221,9 @@ pub fn lagr_n1<S: Scalar>(case: &Case<S>) -> R {
                 return Err(Violation::new(
                     ID,
                     format!(
-                        "t = {}, i = {i}: u_i = {}, u⁰_i − NΔλ = {}, ∂_w X̃_N = {}, λ_i = {}",
+                        "t = {}, particle [{}] (i = {i} in the paper's numbering): u_i = {}, u⁰_i − NΔλ = {}, ∂_w X̃_N = {}, λ_i = {}",
                         a.t.render(),
+                        i - 1,
                         a.u[i].render(),
                         rhs.render(),
                         slope.render(),
@@ -255,10 +265,12 @@ fn exclusion<S: Scalar>(case: &Case<S>, id: &'static str, affine: bool) -> R {
                 return Err(Violation::new(
                     id,
                     format!(
-                        "collision at t = {}: on (({i}−1)/N, {i}/N] the pressure carries the jumps p_{} = {}·δ, p_{i} = {}·δ but ∂_w X̃_N − 1 = {} ≠ 0",
+                        "collision at t = {}: on ({}/N, {i}/N] the pressure carries the jumps p[{}] = {}·δ, p[{}] = {}·δ but ∂_w X̃_N − 1 = {} ≠ 0",
                         t.render(),
                         i - 1,
+                        FromPaper(i - 1),
                         jumps[i - 1].render(),
+                        FromPaper(i),
                         jumps[i].render(),
                         (slope - &S::one()).render()
                     ),
@@ -320,7 +332,7 @@ pub fn pairing_printed<S: Scalar>(case: &Case<S>) -> R {
             return Err(Violation::new(
                 ID,
                 format!(
-                    "collision at t = {}: ⟨P̃_N, (∂_w X̃_N − 1)·1⟩ = {} ≠ 0 (Σ_i (N(x_i − x_{{i−1}}) − 1)([λ_{{i−1}}] + [λ_i])/(2N), artificial particle x_0 = x_1 − 1/N − 1)",
+                    "collision at t = {}: ⟨P̃_N, (∂_w X̃_N − 1)·1⟩ = {} ≠ 0 (Σ_i (N(x_i − x_{{i−1}}) − 1)([λ_{{i−1}}] + [λ_i])/(2N), artificial particle x[−1] = x[0] − 1/N − 1)",
                     imp.t.render(),
                     affine.render()
                 ),
@@ -387,7 +399,7 @@ pub fn gap_delta<S: Scalar>(case: &Case<S>) -> R {
             return Err(Violation::new(
                 ID,
                 format!(
-                    "t = {}: x_N − x_0 − 1 = {} < δ = 1",
+                    "t = {}: x[N−1] − x[−1] − 1 = {} < δ = 1",
                     a.t.render(),
                     lhs.render()
                 ),
@@ -413,7 +425,7 @@ pub fn xn_l1<S: Scalar>(case: &Case<S>) -> R {
             return Err(Violation::new(
                 ID,
                 format!(
-                    "t = {}: ∫|X̃_N − X_N| = {} ≠ (x_N − x_0)/(2N) = {}",
+                    "t = {}: ∫|X̃_N − X_N| = {} ≠ (x[N−1] − x[−1])/(2N) = {}",
                     a.t.render(),
                     integral.render(),
                     closed.render()
@@ -442,8 +454,9 @@ pub fn diff_lambda_printed<S: Scalar>(case: &Case<S>) -> R {
                 return Err(Violation::new(
                     ID,
                     format!(
-                        "t = {}, w = ({i}−1)/N + 1/(4N), N = {}: |Λ̃_N − Λ_N| = {} but |N(λ_i − λ_{{i−1}})(w − (i−1)/N)| = {}",
+                        "t = {}, w = {}/N + 1/(4N), N = {}: |Λ̃_N − Λ_N| = {} but |N(λ_i − λ_{{i−1}})(w − (i−1)/N)| = {}",
                         a.t.render(),
+                        i - 1,
                         n.render(),
                         actual.render(),
                         printed.render()
@@ -479,8 +492,9 @@ pub fn diff_lambda_corrected<S: Scalar>(case: &Case<S>) -> R {
                     return Err(Violation::new(
                         ID,
                         format!(
-                            "t = {}, i = {i}, k = {k}: {} vs {} (bound {})",
+                            "t = {}, w ∈ ({}/N, {i}/N], k = {k}: {} vs {} (bound {})",
                             a.t.render(),
+                            i - 1,
                             actual.render(),
                             formula.render(),
                             bound.render()
@@ -505,7 +519,7 @@ pub fn un_l1_printed<S: Scalar>(case: &Case<S>) -> R {
             return Err(Violation::new(
                 ID,
                 format!(
-                    "t = {}: Σ|u_i − u_{{i−1}}| = {} but |u_N − u_0| = {} (u = [{}])",
+                    "t = {}: Σ|u_i − u_{{i−1}}| = {} but |u[N−1] − u[−1]| = {} (u = [{}])",
                     a.t.render(),
                     tv.render(),
                     ends.render(),
@@ -561,10 +575,12 @@ pub fn oleinik_tun<S: Scalar>(case: &Case<S>) -> R {
                 return Err(Violation::new(
                     ID,
                     format!(
-                        "t = {}, i = {i}: t(u_i − u_{{i−1}}) = {} ≥ {}",
+                        "t = {}, pair ({p}, {q}): t(u[{q}] − u[{p}]) = {} ≥ x[{q}] − x[{p}] = {}",
                         a.t.render(),
                         lhs.render(),
-                        rhs.render()
+                        rhs.render(),
+                        p = FromPaper(i - 1),
+                        q = FromPaper(i)
                     ),
                 ));
             }
@@ -639,7 +655,7 @@ pub fn bv_xn<S: Scalar>(case: &Case<S>) -> R {
             return Err(Violation::new(
                 ID,
                 format!(
-                    "t = {}: ∫|∂_w X̃_N| = {}, x_N − x_0 = {}, bound = {}",
+                    "t = {}: ∫|∂_w X̃_N| = {}, x[N−1] − x[−1] = {}, bound = {}",
                     a.t.render(),
                     integral.render(),
                     spread.render(),

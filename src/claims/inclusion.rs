@@ -112,9 +112,10 @@ fn inclusion_at<S: Scalar>(case: &Case<S>, s: &State<S>) -> R {
                 lambda[i].clone() * &((y[i].clone() - &y[i - 1]) - &(x[i].clone() - &x[i - 1]));
             if term < S::zero() {
                 return fail(format!(
-                    "t = {t}, y #{k}: λ_{i}((y_{} − y_{i}) − (x_{} − x_{i})) = {} < 0",
-                    i + 1,
-                    i + 1,
+                    "t = {t}, y #{k}: λ[{}]((y[{i}] − y[{}]) − (x[{i}] − x[{}])) = {} < 0",
+                    i - 1,
+                    i - 1,
+                    i - 1,
                     term.render()
                 ));
             }

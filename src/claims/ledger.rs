@@ -422,7 +422,7 @@ fn first_line(s: &str) -> &str {
 pub fn table(entries: &[Entry]) -> String {
     let mut out = String::new();
     out.push_str(&format!(
-        "{} claims: {}\n\n",
+        "{} claims: {}\n{NUMBERING}\n\n",
         entries.len(),
         counts(entries)
     ));
@@ -499,6 +499,12 @@ pub fn json(entries: &[Entry]) -> String {
     format!("[\n{}\n]", items.join(",\n"))
 }
 
+/// The index convention of the ledger's texts, said once at the top of the
+/// table and of `CLAIMS.md` (issue 28 item 5: every program output indexes
+/// particles from 0). [`super::FromPaper`] turns the paper's subscripts into
+/// these indices.
+pub const NUMBERING: &str = "Indices: quoted statements (the `>` lines of CLAIMS.md, the `statement` fields of `--json`) keep the paper's numbering, particles 1…N and λ_i for the pair (i, i+1); everything the program writes (witnesses, violations, measured notes) indexes from 0 as `sticky run --json` does: particles x[0] … x[N−1], pair (i, i+1), λ[i] the multiplier of pair (i, i+1) (the paper's λ_{i+1}; λ[−1] = λ[N−1] = 0 at the ends), x[−1] the artificial particle of section 3 (the paper's x_0). A formula with a symbolic i (x_i, λ_{i−1}) is in the paper's notation, and a text that gives a paper index says \"paper's numbering\".";
+
 /// The ledger as a Markdown document (`CLAIMS.md`). It contains no
 /// timings, so it is reproducible for a given budget.
 /// `proofs` fills the column "proved for all real data" (empty: `—`).
@@ -515,6 +521,7 @@ pub fn markdown(entries: &[Entry], budget: Budget, proofs: &Proofs) -> String {
         entries.len(),
         counts(entries)
     ));
+    out.push_str(&format!("{NUMBERING}\n\n"));
     out.push_str("\"Proved for all real data\" is the symbolic prover's record (`sticky prove`, committed in `docs/prove-n1-3.jsonl` and `docs/prove-n4.jsonl`, re-checked at N ≤ 3 by `tests/prove.rs`): for every real datum with that N satisfying the hypotheses printed with the claim, the checker passes.\n\n");
     let corrected = |id: &str| format!("{id} (corrected)");
     let cell = |id: &str| proofs.get(id).map_or("—".to_string(), |p| p.cell.clone());

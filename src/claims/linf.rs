@@ -12,7 +12,7 @@
 //!   (`|λ_i| ≤ Σ_{j ≤ i} |u⁰_j − u_j|/N`).
 
 use super::discrete::{abs, augmented, states, Augmented};
-use super::{Case, Violation};
+use super::{Case, FromPaper, Violation};
 use crate::scalar::Scalar;
 
 const ID: &str = "prop:Linf-micro";
@@ -42,7 +42,8 @@ pub(super) fn linf_at<S: Scalar>(a: &Augmented<S>, x0: &[S], sup_u0: &S) -> Resu
     for (i, u) in a.u.iter().enumerate().skip(1) {
         if u > sup_u0 || -u.clone() > *sup_u0 {
             return Err(format!(
-                "|u_{i}(t)| = {} > sup|u⁰| = {}",
+                "|u[{}](t)| = {} > sup|u⁰| = {}",
+                FromPaper(i),
                 abs(u.clone()).render(),
                 sup_u0.render()
             ));
@@ -53,7 +54,7 @@ pub(super) fn linf_at<S: Scalar>(a: &Augmented<S>, x0: &[S], sup_u0: &S) -> Resu
     let bv_c = (S::one() + &(two.clone() * t)) * &c0;
     if spread > bv || bv > bv_c {
         return Err(format!(
-            "x_N − x_0 = {}, (x⁰_N − x⁰_0) + 2T sup|u⁰| = {}, (1 + 2T)C'_0 = {}",
+            "x[N−1] − x[−1] = {}, (x⁰[N−1] − x⁰[−1]) + 2T sup|u⁰| = {}, (1 + 2T)C'_0 = {}",
             spread.render(),
             bv.render(),
             bv_c.render()
@@ -65,7 +66,7 @@ pub(super) fn linf_at<S: Scalar>(a: &Augmented<S>, x0: &[S], sup_u0: &S) -> Resu
     let x_c = (S::one() + &(S::from_i64(3) * t)) * &c0;
     if x_mid > x_c {
         return Err(format!(
-            "T sup|u⁰| + (x⁰_N − x⁰_0) + 2T sup|u⁰| = {} > (1 + 3T)C'_0 = {}",
+            "T sup|u⁰| + (x⁰[N−1] − x⁰[−1]) + 2T sup|u⁰| = {} > (1 + 3T)C'_0 = {}",
             x_mid.render(),
             x_c.render()
         ));
@@ -74,7 +75,8 @@ pub(super) fn linf_at<S: Scalar>(a: &Augmented<S>, x0: &[S], sup_u0: &S) -> Resu
         let d = x.clone() - &x0[0];
         if d > x_mid || -d.clone() > x_mid {
             return Err(format!(
-                "|x_{i}(t) − x⁰_0| = {} > T sup|u⁰| + (x⁰_N − x⁰_0) + 2T sup|u⁰| = {} (so ‖X_N‖_∞ + ‖X̃_N‖_∞ may exceed 2(1 + 3T)C'_0)",
+                "|x[{}](t) − x⁰[−1]| = {} > T sup|u⁰| + (x⁰[N−1] − x⁰[−1]) + 2T sup|u⁰| = {} (so ‖X_N‖_∞ + ‖X̃_N‖_∞ may exceed 2(1 + 3T)C'_0)",
+                FromPaper(i),
                 abs(d).render(),
                 x_mid.render()
             ));
@@ -85,7 +87,8 @@ pub(super) fn linf_at<S: Scalar>(a: &Augmented<S>, x0: &[S], sup_u0: &S) -> Resu
     for (i, l) in a.lambda.iter().enumerate() {
         if *l > l_mid || -l.clone() > l_mid {
             return Err(format!(
-                "|λ_{i}| = {} > 2 sup|u⁰| = {} (so ‖Λ_N‖_∞ + ‖Λ̃_N‖_∞ may exceed 4 sup|u⁰| ≤ 4C'_0)",
+                "|λ[{}]| = {} > 2 sup|u⁰| = {} (so ‖Λ_N‖_∞ + ‖Λ̃_N‖_∞ may exceed 4 sup|u⁰| ≤ 4C'_0)",
+                FromPaper(i),
                 abs(l.clone()).render(),
                 l_mid.render()
             ));

@@ -45,6 +45,25 @@ pub use registry::registry;
 
 pub use crate::violation::Violation;
 
+/// A subscript in the paper's numbering (particles `1 … N`; `0` is the
+/// artificial particle `x_0` of section 3, or the end multiplier `λ_0`),
+/// displayed as the index every program output uses: from 0, so `i − 1`,
+/// and the paper's `0` is `−1`. The ledger's texts print `x[i]`, `u⁰[i]`,
+/// `λ[i]` (the multiplier of the pair `(i, i+1)`, the paper's `λ_{i+1}`)
+/// with this; the paper's own statements, quoted, keep `1 … N`.
+pub(crate) struct FromPaper(pub usize);
+
+impl std::fmt::Display for FromPaper {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        // i − 1 without a cast: the paper's 0 (x_0, λ_0) prints as −1,
+        // with the minus sign of the ledger's other −1 indices (`x[−1]`).
+        match self.0.checked_sub(1) {
+            Some(i) => write!(f, "{i}"),
+            None => f.write_str("−1"),
+        }
+    }
+}
+
 /// A deliberate corruption of the state the engines compute, applied by
 /// [`Case::state`] and [`Case::history_state`] after the engine ran. Only
 /// for `tests/claims_mutants.rs`, which shows with hand-written mutants that

@@ -9,7 +9,7 @@
 //! `t_k` and at a time before it; the jumps from the event history.
 
 use super::discrete::augmented_jumps;
-use super::{Case, Violation};
+use super::{Case, FromPaper, Violation};
 use crate::scalar::Scalar;
 
 const ID: &str = "lem:discPDE2";
@@ -23,19 +23,24 @@ pub(super) fn momentum_at<S: Scalar>(du: &[S], jumps: &[S]) -> Result<(), String
     let n = du.len();
     let nn = S::from_usize(n);
     if !jumps[0].is_zero() || !jumps[n].is_zero() {
-        return Err("the boundary pressures p_0, p_N do not vanish".to_string());
+        return Err("the boundary pressures p[−1], p[N−1] do not vanish".to_string());
     }
     for i in 1..=n {
         let rhs = -(nn.clone() * &(jumps[i].clone() - &jumps[i - 1]));
         if du[i - 1] != rhs {
             return Err(format!(
-                "i = {i}: u_i(t) − u_i(t⁻) = {} but −N([λ_i] − [λ_{{i−1}}]) = {}",
+                "particle [{}] (i = {i} in the paper's numbering): u_i(t) − u_i(t⁻) = {} but −N([λ_i] − [λ_{{i−1}}]) = {}",
+                i - 1,
                 du[i - 1].render(),
                 rhs.render()
             ));
         }
         if jumps[i].total_cmp(&S::zero()).is_lt() {
-            return Err(format!("[λ_{i}] = {} < 0 (P_N ≥ 0)", jumps[i].render()));
+            return Err(format!(
+                "the jump of λ[{}] is {} < 0 (P_N ≥ 0)",
+                FromPaper(i),
+                jumps[i].render()
+            ));
         }
     }
     Ok(())
@@ -72,13 +77,10 @@ pub fn disc_pde2<S: Scalar>(case: &Case<S>) -> R {
                 return Err(Violation::new(
                     ID,
                     format!(
-                        "∂_t X_N = U_N: x_{}({}) − x_{}({}) = {} but (t − s) u_{}(s) = {}",
-                        i + 1,
+                        "∂_t X_N = U_N: x[{i}]({}) − x[{i}]({}) = {} but (t − s) u[{i}](s) = {}",
                         s1.t.render(),
-                        i + 1,
                         s0.t.render(),
                         moved.render(),
-                        i + 1,
                         (dt.clone() * &s0.velocities[i]).render()
                     ),
                 ));
@@ -116,9 +118,8 @@ pub fn disc_pde2<S: Scalar>(case: &Case<S>) -> R {
                 return Err(Violation::new(
                     ID,
                     format!(
-                        "t = {}: ∂_w X̃_N = N(x_{} − x_{}) = {} < 1",
+                        "t = {}: ∂_w X̃_N = N(x[{}] − x[{i}]) = {} < 1",
                         t.render(),
-                        i + 2,
                         i + 1,
                         slope.render()
                     ),
@@ -207,7 +208,7 @@ pub(super) fn pressure_bound_at<S: Scalar>(
     let lower = delta / &nn * &mass;
     if lhs != by_parts || by_parts != contact || contact < lower || lower < S::zero() {
         return Err(format!(
-            "(1/N) Σ [u_i] φ_i = {}, Σ [λ_i](φ_{{i+1}} − φ_i) = {}, ((x_N − x_0) − 1)/N · Σ[λ_i] = {}, (δ/N) Σ[λ_i] = {}",
+            "(1/N) Σ [u_i] φ_i = {}, Σ [λ_i](φ_{{i+1}} − φ_i) = {}, ((x[N−1] − x[−1]) − 1)/N · Σ[λ_i] = {}, (δ/N) Σ[λ_i] = {}",
             lhs.render(),
             by_parts.render(),
             contact.render(),

@@ -101,7 +101,8 @@ pub fn mass_between() -> R {
                 return Err(Violation::new(
                     ID,
                     format!(
-                        "{name}, N = {n}, i = {}: ∫ρ⁰ = {}, x_{{i+1}} − x_i = {} (1/N = {})",
+                        "{name}, N = {n}, pair ({i}, {}): ∫ρ⁰ = {}, x[{}] − x[{i}] = {} (1/N = {})",
+                        i + 1,
                         i + 1,
                         mass.render(),
                         gap.render(),
@@ -128,9 +129,8 @@ pub fn contacts_equal_velocities() -> R {
                 return Err(Violation::new(
                     ID,
                     format!(
-                        "{name}, N = {n}: particles {} and {} touch with u = {} and {}",
+                        "{name}, N = {n}: pair ({i}, {}) touches with u = {} and {}",
                         i + 1,
-                        i + 2,
                         u[i].render(),
                         u[i + 1].render()
                     ),
@@ -164,11 +164,12 @@ pub fn contacts_equal_velocities_inside() -> R {
                 return Err(Violation::new(
                     ID,
                     format!(
-                        "{name}, N = {n}: particles {} and {} touch, but U⁰ is not constant inside: U⁰(i/N+) = {}, U⁰ at the midpoint = {}, U⁰((i+1)/N−) = {}",
+                        "{name}, N = {n}: pair ({i}, {}) touches, but U⁰ is not constant inside: U⁰({}/N+) = {}, U⁰ at the midpoint = {}, U⁰({}/N−) = {}",
                         i + 1,
-                        i + 2,
+                        i + 1,
                         right_of_left.render(),
                         middle.render(),
+                        i + 2,
                         left_of_right.render()
                     ),
                 ));

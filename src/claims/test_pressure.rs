@@ -247,7 +247,7 @@ fn identity<S: Scalar>(case: &Case<S>, printed: bool, id: &'static str) -> R {
             return Err(Violation::new(
                 id,
                 format!(
-                    "ϕ = (t − a)²(b − t)² on [a, b] = [{}, {}]: ∫∫((x_N − x_0) − ∂_w X̃_N)ϕ P̃_N = {} but the right side = {} (bound {})",
+                    "ϕ = (t − a)²(b − t)² on [a, b] = [{}, {}]: ∫∫((x[N−1] − x[−1]) − ∂_w X̃_N)ϕ P̃_N = {} but the right side = {} (bound {})",
                     bump.a.render(),
                     bump.b.render(),
                     lhs.render(),
@@ -294,7 +294,7 @@ pub fn test_function_boundary<S: Scalar>(case: &Case<S>) -> R {
             return Err(Violation::new(
                 ID,
                 format!(
-                    "t = {} (x⁰_0 = 0): φ(t,0)/ϕ(t) = {}, φ(t,1)/ϕ(t) = {}",
+                    "t = {} (x⁰[−1] = 0): φ(t,0)/ϕ(t) = {}, φ(t,1)/ϕ(t) = {}",
                     t.render(),
                     at0.render(),
                     at1.render()

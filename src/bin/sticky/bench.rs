@@ -11,7 +11,9 @@ use std::process::ExitCode;
 
 use num_rational::BigRational;
 
+use sticky::progress::Progress;
 use sticky::report::bench::{self, Memory, MEMORY_MODE_VAR};
+use sticky::report::progress::Bar;
 
 use crate::{io_err, parse_time, print_paths, Failure};
 
@@ -140,7 +142,14 @@ pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
         events: !args.quick,
         memory: args.memory,
     };
-    let report = bench::run(&opts, &args.at, &scripts());
+    // The repetition and the method being timed, the count and the time
+    // left, on a terminal only (hidden when stderr is piped).
+    let bar = Bar::for_command("bench");
+    let report = bench::run_with_progress(&opts, &args.at, &scripts(), &bar);
+    bar.finish();
+    if bar.cancelled() {
+        return Err(Failure("bench: interrupted".to_string()));
+    }
     let text = if args.json {
         bench::json(&report)
     } else {
@@ -159,7 +168,12 @@ fn e2e(args: Args, out: &mut impl Write) -> Result<(), Failure> {
             .map_err(|e| Failure(format!("cannot find the sticky binary: {e}")))?,
         scripts: scripts(),
     };
-    let report = bench::e2e::run(&opts, |msg| eprintln!("bench: {msg}")).map_err(Failure)?;
+    // What is being timed, on a terminal only.
+    let bar = Bar::for_command("bench");
+    bar.stage("end-to-end rows", None);
+    let report = bench::e2e::run(&opts, |msg| bar.note(msg));
+    bar.finish();
+    let report = report.map_err(Failure)?;
     let text = if args.json {
         bench::e2e::json(&report)
     } else {
@@ -205,8 +219,24 @@ fn scaling(args: Args, out: &mut impl Write) -> Result<(), Failure> {
         memory,
         out: args.out.unwrap_or_else(|| PathBuf::from("out/bench")),
     };
-    let (rows, paths) = bench::scaling(&opts, &scripts(), |msg| eprintln!("bench: {msg}"))
-        .map_err(|e| Failure(e.to_string()))?;
+    // The regime and N being measured (one step each), the count and the
+    // time left, on a terminal only.
+    let bar = Bar::for_command("bench");
+    bar.stage(
+        "scaling study",
+        Some((bench::REGIMES.len() * opts.ns.len()) as u64),
+    );
+    let mut started = false;
+    let measured = bench::scaling(&opts, &scripts(), |msg| {
+        // One message as each (regime, N) starts: the one before is done.
+        if started {
+            bar.advance(1);
+        }
+        started = true;
+        bar.note(msg);
+    });
+    bar.finish();
+    let (rows, paths) = measured.map_err(|e| Failure(e.to_string()))?;
     for &(regime, _, _) in &bench::REGIMES {
         let line = bench::slopes(&rows, regime, memory)
             .iter()

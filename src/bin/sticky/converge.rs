@@ -1,8 +1,10 @@
 //! `sticky converge SCENE`: the hydrodynamic limit, rates and charts.
 
-use std::io::{self, Write};
+use std::io::Write;
 use std::path::PathBuf;
 
+use sticky::progress::Progress;
+use sticky::report::progress::Bar;
 use sticky::scene::Scene;
 
 use crate::{io_err, lib_err, load, print_paths, Failure};
@@ -45,19 +47,14 @@ fn converge(
         exact_max,
         ..ConvergeOptions::default()
     };
-    let tty = io::IsTerminal::is_terminal(&io::stderr());
-    let report = converge_with_progress(scene, &opts, &mut |row| {
-        if tty {
-            eprint!(
-                "\r\x1b[2Kconverge: N = {} done ({})",
-                row.n,
-                row.engine.name()
-            );
-        }
-    })
-    .map_err(lib_err)?;
-    if tty {
-        eprint!("\r\x1b[2K");
+    // The scene, the N being computed, the count and the time left, on a
+    // terminal only (hidden when stderr is piped or redirected).
+    let bar = Bar::for_command("converge");
+    let report = converge_with_progress(scene, &opts, &bar);
+    bar.finish();
+    let report = report.map_err(lib_err)?;
+    if bar.cancelled() {
+        return Err(Failure("converge: interrupted".to_string()));
     }
     std::fs::create_dir_all(&dir)
         .map_err(|e| Failure(format!("cannot create {}: {e}", dir.display())))?;

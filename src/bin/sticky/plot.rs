@@ -5,6 +5,8 @@ use std::path::PathBuf;
 
 use num_rational::BigRational;
 
+use sticky::progress::Progress;
+use sticky::report::progress::Bar;
 use sticky::scene::{Scene, SceneKind};
 use sticky::Scalar;
 
@@ -28,19 +30,55 @@ pub struct Args {
 pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
     let scene = load(&args.scene)?;
     let dir = args.out.unwrap_or_else(|| PathBuf::from("out/plot"));
-    plot(out, &scene, dir, args.t_end)
+    // The scene, N, the chart being drawn, the count and the time left, on
+    // a terminal only (hidden when stderr is piped or redirected).
+    let bar = Bar::for_command("plot");
+    let paths = plot(&scene, dir, args.t_end, &bar);
+    bar.finish();
+    print_paths(out, &paths?)
+}
+
+/// One stage of `sticky plot` on the bar: stops when the bar was
+/// cancelled, else says what is being drawn.
+struct Stages<'a> {
+    bar: &'a Bar,
+    label: String,
+}
+
+impl Stages<'_> {
+    fn start(&self, what: &str) -> Result<(), Failure> {
+        if self.bar.cancelled() {
+            return Err(Failure("plot: interrupted".to_string()));
+        }
+        self.bar.note(&format!("{}: {what}", self.label));
+        Ok(())
+    }
+
+    fn done(&self) {
+        self.bar.advance(1);
+    }
 }
 
 fn plot(
-    out: &mut impl Write,
     scene: &Scene,
     dir: PathBuf,
     t_end: Option<BigRational>,
-) -> Result<(), Failure> {
+    bar: &Bar,
+) -> Result<Vec<PathBuf>, Failure> {
     use sticky::limit::eulerian::{
         continuum_density_grid, particle_density_grid, particle_pressure_atoms,
     };
+    let n = scene.data.n();
+    let macro_scene = matches!(scene.kind, SceneKind::Macro { .. });
+    let charts = 2 + usize::from(macro_scene) + usize::from(n <= 5000);
+    let stages = Stages {
+        bar,
+        label: format!("{}, N = {n}", scene.name.as_deref().unwrap_or("scene")),
+    };
+    bar.stage(&stages.label, Some(1 + charts as u64));
+    stages.start("the exact history")?;
     let traj = sticky::fast::merge::trajectory(&scene.data);
+    stages.done();
     let t_end = t_end.or_else(|| scene.t_end.clone()).unwrap_or_else(|| {
         traj.last_collision()
             .cloned()
@@ -49,12 +87,13 @@ fn plot(
     });
     std::fs::create_dir_all(&dir)
         .map_err(|e| Failure(format!("cannot create {}: {e}", dir.display())))?;
+    stages.start("space-time diagram")?;
     let mut paths =
         sticky::report::figures::spacetime(&traj, &t_end, &dir, "spacetime").map_err(lib_err)?;
+    stages.done();
     // The x range: everything the particles visit on [0, t_end], with a margin.
     // The leftmost and rightmost particles at 0 and at t_end (they move
     // rigidly with their clusters: O(1) each, exactly).
-    let n = scene.data.n();
     let mut ends: Vec<BigRational> = Vec::new();
     ends.extend(scene.data.positions().first().cloned());
     ends.extend(scene.data.positions().last().cloned());
@@ -75,6 +114,7 @@ fn plot(
     // The particle density map from the exact history rounded to f64 (a
     // picture: 60 states of N particles in exact arithmetic would take
     // minutes at N = 10^5).
+    stages.start("particle density")?;
     let lossy = traj.to_f64_lossy();
     let grid = particle_density_grid(
         &lossy,
@@ -114,7 +154,9 @@ fn plot(
         sticky::report::figures::density(&grid, &title, &scale, &dir, "density-particles")
             .map_err(lib_err)?,
     );
+    stages.done();
     if let SceneKind::Macro { datum, .. } = &scene.kind {
+        stages.start("continuum density")?;
         let c = sticky::limit::continuum::Continuum::new(datum);
         let grid = continuum_density_grid(&c, &t_end, 60, (&lo, &hi), 160).map_err(lib_err)?;
         paths.extend(
@@ -127,10 +169,13 @@ fn plot(
             )
             .map_err(lib_err)?,
         );
+        stages.done();
     }
-    if scene.data.n() <= 5000 {
+    if n <= 5000 {
+        stages.start("pressure impulses")?;
         let atoms = particle_pressure_atoms(&traj, &t_end);
         paths.extend(sticky::report::figures::pressure(&atoms, &dir, "pressure").map_err(lib_err)?);
+        stages.done();
     }
-    print_paths(out, &paths)
+    Ok(paths)
 }

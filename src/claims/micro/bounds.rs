@@ -103,11 +103,11 @@ pub fn oleinik<S: Scalar>(case: &Case<S>) -> R {
                 return Err(Violation::new(
                     ID,
                     format!(
-                        "t = {}, i = {}: t(u_i − u_{{i−1}}) = {} ≥ x_i − x_{{i−1}} = {}",
+                        "t = {}, pair ({p}, {i}): t(u[{i}] − u[{p}]) = {} ≥ x[{i}] − x[{p}] = {}",
                         t.render(),
-                        i + 1,
                         lhs.render(),
-                        rhs.render()
+                        rhs.render(),
+                        p = i - 1
                     ),
                 ));
             }
@@ -135,10 +135,11 @@ pub fn oleinik_characteristics<S: Scalar>(case: &Case<S>) -> R {
                 return Err(Violation::new(
                     ID,
                     format!(
-                        "t = {}, i = {}: x_ℓ = {} (x_{{i−1}}(0) = {}), x_r = {} (x_i(0) = {})",
+                        "t = {}, pair ({}, {i}): x_ℓ = {} (x[{}](0) = {}), x_r = {} (x[{i}](0) = {})",
                         t.render(),
-                        i + 1,
+                        i - 1,
                         xl.render(),
+                        i - 1,
                         x0[i - 1].render(),
                         xr.render(),
                         x0[i].render()

@@ -49,19 +49,16 @@ pub fn normal_coefficients<S: Scalar>(
         let contact = contacts.contains(&j);
         if !contact && !mj.is_zero() {
             return Err(format!(
-                "coefficient of e_{} − e_{} is {} ≠ 0 but particles {} and {} are apart",
+                "coefficient of e[{j}] − e[{}] is {} ≠ 0 but pair ({j}, {}) is apart",
                 j + 1,
-                j + 2,
                 mj.render(),
-                j + 1,
-                j + 2
+                j + 1
             ));
         }
         if contact && !signed && mj.total_cmp(&S::zero()).is_lt() {
             return Err(format!(
-                "coefficient of e_{} − e_{} is {} < 0",
+                "coefficient of e[{j}] − e[{}] is {} < 0",
                 j + 1,
-                j + 2,
                 mj.render()
             ));
         }
@@ -130,7 +127,7 @@ pub fn characterization<S: Scalar>(
         let y2 = project(&z2);
         if y2 != a {
             return Err(format!(
-                "y = {} ∈ C and z − y = Σ μ_j (e_j − e_{{j+1}}) ∈ N_y C (μ_j = {} on the contacts), but P_C(z) = {}",
+                "y = {} ∈ C and z − y = Σ μ[j] (e[j] − e[j+1]) ∈ N_y C (μ[j] = {} on the contacts), but P_C(z) = {}",
                 render_vec(a),
                 if signed { "(j + k mod 3) − 1" } else { "(j + k mod 3)" },
                 render_vec(&y2)
@@ -147,12 +144,12 @@ pub fn characterization<S: Scalar>(
         let contact = contacts.contains(&j);
         if !contact {
             outside.push((
-                format!("e_{} − e_{}", j + 1, j + 2),
+                format!("e[{j}] − e[{}]", j + 1),
                 add_normal(a, &[(j, S::one())]),
             ));
         } else if !signed {
             outside.push((
-                format!("−(e_{} − e_{})", j + 1, j + 2),
+                format!("−(e[{j}] − e[{}])", j + 1),
                 add_normal(a, &[(j, -S::one())]),
             ));
         }

@@ -81,14 +81,12 @@ fn polar_violation<S: Scalar>(v: &[S], x: &[S], two_r: &S) -> Option<String> {
         let contact = (x[j + 1].clone() - &x[j]) == *two_r;
         if tail > S::zero() || (!contact && tail < S::zero()) {
             return Some(format!(
-                "{}s_{} (⟨v, s_{}⟩ = {})",
+                "{}s[{j}] (⟨v, s[{j}]⟩ = {})",
                 if contact || tail > S::zero() {
                     ""
                 } else {
                     "−"
                 },
-                j + 1,
-                j + 1,
                 tail.render()
             ));
         }
@@ -111,12 +109,9 @@ fn generators<S: Scalar>(x: &[S], two_r: &S) -> Vec<(String, Vec<S>)> {
     for j in pair_spread(x, two_r) {
         let s: Vec<S> = s_vec(n, j);
         if !contacts.contains(&j) {
-            g.push((
-                format!("−s_{}", j + 1),
-                s.iter().map(|v| -v.clone()).collect(),
-            ));
+            g.push((format!("−s[{j}]"), s.iter().map(|v| -v.clone()).collect()));
         }
-        g.push((format!("s_{}", j + 1), s));
+        g.push((format!("s[{j}]"), s));
     }
     g
 }
@@ -153,7 +148,7 @@ fn step<S: Scalar>(x: &[S], g: &[S], two_r: &S) -> Option<Vec<S>> {
 pub fn tangent_cone_at<S: Scalar>(x: &[S], two_r: &S, samples: &[Vec<S>]) -> Result<(), String> {
     for (name, g) in generators(x, two_r) {
         if let Some(j) = velocity_cone_violation(x, &g, two_r) {
-            return Err(format!("generator {name} ∉ C_x (pair {})", j + 1));
+            return Err(format!("generator {name} ∉ C_x (pair ({j}, {}))", j + 1));
         }
         match step(x, &g, two_r) {
             Some(y) if in_k(&y, two_r) => {}
@@ -171,7 +166,7 @@ pub fn tangent_cone_at<S: Scalar>(x: &[S], two_r: &S, samples: &[Vec<S>]) -> Res
         let d = sub(y, x);
         if let Some(j) = velocity_cone_violation(x, &d, two_r) {
             return Err(format!(
-                "y = {} ∈ K^N but y − x ∉ C_x (pair {})",
+                "y = {} ∈ K^N but y − x ∉ C_x (pair ({j}, {}))",
                 render_vec(y),
                 j + 1
             ));
@@ -185,7 +180,7 @@ pub fn tangent_cone_at<S: Scalar>(x: &[S], two_r: &S, samples: &[Vec<S>]) -> Res
     {
         let m: Vec<S> = s_vec::<S>(n, j).into_iter().map(|v| -v).collect();
         if velocity_cone_violation(x, &m, two_r).is_none() {
-            return Err(format!("−s_{} ∈ C_x across a contact", j + 1));
+            return Err(format!("−s[{j}] ∈ C_x across a contact"));
         }
         for theta in [S::one(), S::one() / S::from_i64(1000)] {
             let y: Vec<S> = x
@@ -195,9 +190,8 @@ pub fn tangent_cone_at<S: Scalar>(x: &[S], two_r: &S, samples: &[Vec<S>]) -> Res
                 .collect();
             if in_k(&y, two_r) {
                 return Err(format!(
-                    "x − {}·s_{} ∈ K^N across a contact",
-                    theta.render(),
-                    j + 1
+                    "x − {}·s[{j}] ∈ K^N across a contact",
+                    theta.render()
                 ));
             }
         }
@@ -224,13 +218,13 @@ pub fn polar_cone_at<S: Scalar>(
         let nj: Vec<S> = n_vec(n, j);
         if contacts.contains(&j) {
             if let Some(name) = polar(&nj) {
-                return Err(format!("contact {}: ⟨n_j, {name}⟩ > 0", j + 1));
+                return Err(format!("contact ({j}, {}): ⟨n[{j}], {name}⟩ > 0", j + 1));
             }
             for y in samples.iter().filter(|y| in_k(y, two_r)) {
                 let p = dot(&nj, &sub(y, x));
                 if p > S::zero() {
                     return Err(format!(
-                        "contact {}: ⟨n_j, y − x⟩ = {} > 0 for y = {} ∈ K^N",
+                        "contact ({j}, {}): ⟨n[{j}], y − x⟩ = {} > 0 for y = {} ∈ K^N",
                         j + 1,
                         p.render(),
                         render_vec(y)
@@ -239,7 +233,7 @@ pub fn polar_cone_at<S: Scalar>(
             }
         } else {
             if polar(&nj).is_none() {
-                return Err(format!("pair {} apart but n_j ∈ (T_x K)°", j + 1));
+                return Err(format!("pair ({j}, {}) apart but n[{j}] ∈ (T_x K)°", j + 1));
             }
             let slack = x[j + 1].clone() - &x[j] - two_r;
             let y: Vec<S> = x
@@ -249,7 +243,7 @@ pub fn polar_cone_at<S: Scalar>(
                 .collect();
             if !in_k(&y, two_r) || dot(&nj, &sub(&y, x)) <= S::zero() {
                 return Err(format!(
-                    "pair {} apart: y = x − (gap − 2r) s_j should be in K^N with ⟨n_j, y − x⟩ > 0",
+                    "pair ({j}, {}) apart: y = x − (gap − 2r) s[{j}] should be in K^N with ⟨n[{j}], y − x⟩ > 0",
                     j + 1
                 ));
             }
@@ -335,12 +329,10 @@ pub fn translated_cone_at<S: Scalar>(
             let b = pt[j + 1].clone() - &pt[j];
             if a != b {
                 return Err(format!(
-                    "y = {}: y_{} − y_{} − 2r = {} but ỹ_{} − ỹ_{} = {}",
+                    "y = {}: y[{}] − y[{j}] − 2r = {} but ỹ[{}] − ỹ[{j}] = {}",
                     render_vec(p),
-                    j + 2,
                     j + 1,
                     a.render(),
-                    j + 2,
                     j + 1,
                     b.render()
                 ));

@@ -49,7 +49,7 @@ pub fn kkt_corrected<S: Scalar>(case: &Case<S>) -> R {
             return Err(Violation::new(
                 ID,
                 format!(
-                    "t = {}: μ = {} (μ_N = {}) but ∫λ = {}",
+                    "t = {}: μ = {} (μ[N−1] = {}) but ∫λ = {}",
                     t.render(),
                     render_vec(&mu),
                     mu_n.render(),
@@ -63,9 +63,8 @@ pub fn kkt_corrected<S: Scalar>(case: &Case<S>) -> R {
                 return Err(Violation::new(
                     ID,
                     format!(
-                        "t = {}: μ_{} = {}, slack {}",
+                        "t = {}: μ[{i}] = {}, slack {}",
                         t.render(),
-                        i + 1,
                         m.render(),
                         slack.render()
                     ),

@@ -119,11 +119,9 @@ pub(crate) fn tangent_cone_violation<S: Scalar>(
         let contact = x[j + 1].clone() - &x[j] == *two_r;
         if (contact && tail > S::zero()) || (!contact && !tail.is_zero()) {
             return Some(format!(
-                "⟨{name}, s_{}⟩ = {} with particles {} and {} {}",
-                j + 1,
+                "⟨{name}, s[{j}]⟩ = {} with pair ({j}, {}) {}",
                 tail.render(),
                 j + 1,
-                j + 2,
                 if contact { "in contact" } else { "apart" }
             ));
         }

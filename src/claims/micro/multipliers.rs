@@ -3,7 +3,7 @@
 //! increments `ΔL`.
 
 use super::{norm2, state, sub, R};
-use crate::claims::{Case, Violation};
+use crate::claims::{Case, FromPaper, Violation};
 use crate::initial::InitialData;
 use crate::scalar::Scalar;
 use crate::state::State;
@@ -35,9 +35,12 @@ pub fn multiplier_signs<S: Scalar>(data: &InitialData<S>, s: &State<S>) -> R {
             return Err(Violation::new(
                 ID,
                 format!(
-                    "u_{i} − u⁰_{i} = {} but −N(λ_{i} − λ_{}) = {} at t = {} (λ_0 = λ_N = 0)",
+                    "u[{}] − u⁰[{}] = {} but −N(λ[{}] − λ[{}]) = {} at t = {} (λ[−1] = λ[N−1] = 0)",
+                    i - 1,
+                    i - 1,
                     lhs.render(),
                     i - 1,
+                    FromPaper(i - 1),
                     rhs.render(),
                     s.t.render()
                 ),
@@ -49,7 +52,7 @@ pub fn multiplier_signs<S: Scalar>(data: &InitialData<S>, s: &State<S>) -> R {
         if l.total_cmp(&S::zero()).is_lt() {
             return Err(Violation::new(
                 ID,
-                format!("λ_{} = {} < 0 at t = {}", i + 1, l.render(), s.t.render()),
+                format!("λ[{i}] = {} < 0 at t = {}", l.render(), s.t.render()),
             ));
         }
         let slack = s.positions[i + 1].clone() - &s.positions[i] - &two_r;
@@ -57,10 +60,8 @@ pub fn multiplier_signs<S: Scalar>(data: &InitialData<S>, s: &State<S>) -> R {
             return Err(Violation::new(
                 ID,
                 format!(
-                    "λ_{} = {} > 0 but x_{} − x_{} − 2r = {} ≠ 0 at t = {}",
-                    i + 1,
+                    "λ[{i}] = {} > 0 but x[{}] − x[{i}] − 2r = {} ≠ 0 at t = {}",
                     l.render(),
-                    i + 2,
                     i + 1,
                     slack.render(),
                     s.t.render()
@@ -200,9 +201,8 @@ pub fn lambda_cs<S: Scalar>(case: &Case<S>) -> R {
                 return Err(Violation::new(
                     ID,
                     format!(
-                        "t = {}: λ_{}² = {} > N²‖ΔL‖² = {}",
+                        "t = {}: λ[{i}]² = {} > N²‖ΔL‖² = {}",
                         t.render(),
-                        i + 1,
                         (li.clone() * li).render(),
                         bound.render()
                     ),
@@ -260,7 +260,7 @@ fn multiplier_relation<S: Scalar>(case: &Case<S>, id: &'static str, as_printed: 
                 return Err(Violation::new(
                     id,
                     format!(
-                        "t = {}, i = {}: N(λ_i − λ_{{i−1}}) = {} but {name} = {}",
+                        "t = {}, particle [{i}] (i = {} in the paper's numbering): N(λ_i − λ_{{i−1}}) = {} but {name} = {}",
                         t.render(),
                         i + 1,
                         lhs.render(),

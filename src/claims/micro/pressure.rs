@@ -25,11 +25,9 @@ pub fn micro_pressure<S: Scalar>(case: &Case<S>) -> R {
                 return Err(Violation::new(
                     ID,
                     format!(
-                        "λ_{} jumps by {} at t = {} but x_{} − x_{} − 2r = {}",
-                        i + 1,
+                        "λ[{i}] jumps by {} at t = {} but x[{}] − x[{i}] − 2r = {}",
                         j.render(),
                         imp.t.render(),
-                        i + 2,
                         i + 1,
                         slack.render()
                     ),
@@ -74,8 +72,8 @@ pub fn pressure_sign<S: Scalar>(imp: &Impulse<S>) -> R {
             return Err(Violation::new(
                 ID,
                 format!(
-                    "λ_{} jumps by {} < 0 at t = {}",
-                    imp.cluster.first + k + 1,
+                    "λ[{}] jumps by {} < 0 at t = {}",
+                    imp.cluster.first + k,
                     j.render(),
                     imp.t.render()
                 ),

@@ -92,9 +92,8 @@ pub fn admissible<S: Scalar>(case: &Case<S>) -> R {
                 return Err(Violation::new(
                     ID,
                     format!(
-                        "t = {}: x_{} − x_{} = {} < 2r = {}",
+                        "t = {}: x[{}] − x[{i}] = {} < 2r = {}",
                         t.render(),
-                        i + 2,
                         i + 1,
                         gap.render(),
                         two_r.render()
@@ -116,11 +115,11 @@ pub fn u_in_h<S: Scalar>(case: &Case<S>) -> R {
             return Err(Violation::new(
                 ID,
                 format!(
-                    "t = {}: particles {} and {} touch but u = {} ≠ {}",
+                    "t = {}: pair ({j}, {}) touches but u[{j}] = {} ≠ u[{}] = {}",
                     t.render(),
                     j + 1,
-                    j + 2,
                     s.velocities[j].render(),
+                    j + 1,
                     s.velocities[j + 1].render()
                 ),
             ));
@@ -179,8 +178,10 @@ pub fn proj_u_micro_literal<S: Scalar>(case: &Case<S>) -> R {
                         return Err(Violation::new(
                             ID,
                             format!(
-                                "t = {}: particle {i} is in J_k = ⟦{j_k}, {j_k}⟧, L_k = 0: the printed mean (1/L_k) Σ_{{l=1}}^{{L_k}} is 0/0, while u_{i}(t) = {}",
+                                "t = {}: particle [{}] is in J_k = ⟦{j_k}, {j_k}⟧ (paper's numbering: i = {i}), L_k = 0: the printed mean (1/L_k) Σ_{{l=1}}^{{L_k}} is 0/0, while u[{}](t) = {}",
                                 t.render(),
+                                i - 1,
+                                i - 1,
                                 s.velocities[i - 1].render()
                             ),
                         ));
@@ -193,9 +194,11 @@ pub fn proj_u_micro_literal<S: Scalar>(case: &Case<S>) -> R {
                 return Err(Violation::new(
                     ID,
                     format!(
-                        "t = {}: printed formula gives u_{i} = {} but u_{i}(t) = {}",
+                        "t = {}: printed formula (paper's numbering: i = {i}) gives u[{}] = {} but u[{}](t) = {}",
                         t.render(),
+                        i - 1,
                         printed.render(),
+                        i - 1,
                         s.velocities[i - 1].render()
                     ),
                 ));
@@ -239,10 +242,9 @@ fn orthogonal_to_h<S: Scalar>(case: &Case<S>, id: &'static str, subtract_x: bool
                 return Err(Violation::new(
                     id,
                     format!(
-                        "t = {}: w = indicator of the cluster of particles {}..{} ∈ H_x(t), ⟨{}, w⟩ = {} ≠ 0",
+                        "t = {}: w = indicator of the cluster of particles [{first}..{}] ∈ H_x(t), ⟨{}, w⟩ = {} ≠ 0",
                         t.render(),
-                        first + 1,
-                        first + size,
+                        first + size - 1,
                         if subtract_x { "x⁰ + t u⁰ − x(t)" } else { "x⁰ + t u⁰" },
                         d.render()
                     ),

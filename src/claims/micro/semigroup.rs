@@ -96,14 +96,12 @@ fn contacts_grow<S: Scalar>(case: &Case<S>, id: &'static str, from_zero: bool) -
                 return Err(Violation::new(
                     id,
                     format!(
-                        "particles {} and {} are in contact at s = {} but not at t = {} (u⁰ ∈ C_x⁰ \\ H_x⁰: u⁰_{} = {} < u⁰_{} = {})",
+                        "pair ({j}, {}) is in contact at s = {} but not at t = {} (u⁰ ∈ C_x⁰ \\ H_x⁰: u⁰[{j}] = {} < u⁰[{}] = {})",
                         j + 1,
-                        j + 2,
                         ps.render(),
                         t.render(),
-                        j + 1,
                         case.data().velocities()[*j].render(),
-                        j + 2,
+                        j + 1,
                         case.data().velocities()[j + 1].render()
                     ),
                 ));

@@ -39,6 +39,7 @@ use super::eulerian::{
 };
 use super::surd::Surd;
 use crate::error::Error;
+use crate::progress::{Progress, Silent};
 use crate::scalar::Scalar;
 use crate::scene::{Scene, SceneKind};
 
@@ -179,14 +180,18 @@ pub fn n_values(opts: &ConvergeOptions) -> Vec<usize> {
 
 /// Runs the study on a `[macro]` scene (see the module documentation).
 pub fn converge(scene: &Scene, opts: &ConvergeOptions) -> Result<ConvergenceReport, Error> {
-    converge_with_progress(scene, opts, &mut |_| {})
+    converge_with_progress(scene, opts, &Silent)
 }
 
-/// [`converge`], calling `progress` after each row.
+/// [`converge`], telling `progress` which N is being computed (one step per
+/// N, and one for the engine check) and asking it between two N whether to
+/// stop: when [`Progress::cancelled`] says so, the study ends early and the
+/// report holds the rows computed so far (the caller, which asked for the
+/// stop, says so).
 pub fn converge_with_progress(
     scene: &Scene,
     opts: &ConvergeOptions,
-    progress: &mut dyn FnMut(&Row),
+    progress: &dyn Progress,
 ) -> Result<ConvergenceReport, Error> {
     let SceneKind::Macro { datum, .. } = &scene.kind else {
         return Err(Error::Unsupported {
@@ -263,20 +268,41 @@ pub fn converge_with_progress(
     }
     let mut rows = Vec::new();
     let mut residual_columns = Vec::new();
+    let checked = opts.n_max > opts.exact_max && ns.iter().any(|&n| n <= opts.exact_max);
+    let steps = ns.len() + usize::from(checked);
+    progress.stage(
+        &format!(
+            "{}: N = {} … {}",
+            scene.name.as_deref().unwrap_or("scene"),
+            ns[0],
+            ns[ns.len() - 1]
+        ),
+        Some(steps as u64),
+    );
     for n in ns {
+        if progress.cancelled() {
+            break;
+        }
         let engine = if n <= opts.exact_max {
             Engine::Exact
         } else {
             Engine::Float
         };
+        progress.note(&format!(
+            "{}: N = {n} ({})",
+            scene.name.as_deref().unwrap_or("scene"),
+            engine.name()
+        ));
         let (row, res) = run_n(&ctx, n, engine)?;
-        progress(&row);
+        progress.advance(1);
         rows.push(row);
         residual_columns.push(res);
     }
     let engine_check = match rows.iter().rev().find(|r| r.engine == Engine::Exact) {
-        Some(r) if opts.n_max > opts.exact_max => {
+        Some(r) if opts.n_max > opts.exact_max && !progress.cancelled() => {
+            progress.note(&format!("engine check: N = {} on f64", r.n));
             let (f, _) = run_n(&ctx, r.n, Engine::Float)?;
+            progress.advance(1);
             let differences = Quantity::ALL
                 .iter()
                 .filter_map(|&q| {

@@ -58,6 +58,7 @@ use crate::fast::kernel::{blocks_at, IntegerData};
 use crate::fast::merge::IntegerTrajectory;
 use crate::generate::{initial_data, Limits, SplitMix64};
 use crate::initial::InitialData;
+use crate::progress::{Progress, Silent};
 use crate::projection::{isotonic, pava_blocks, shifted_free_flight};
 use crate::scalar::Scalar;
 use crate::trajectory::Trajectory;
@@ -294,6 +295,20 @@ impl Acc {
 /// Runs the benchmark at time `t` (`t` small: few clusters; `t` large: few
 /// large clusters).
 pub fn run(opts: &BenchOptions, t: &BigRational, scripts: &Path) -> BenchReport {
+    run_with_progress(opts, t, scripts, &Silent)
+}
+
+/// [`run`], telling `progress` which repetition and which method is being
+/// timed (one step per repetition, warm-up included, and one for the
+/// peers). Between two repetitions it asks [`Progress::cancelled`]: on a
+/// stop the report holds the repetitions done so far (the warm-up's
+/// figures when the stop came right after it) and no peers.
+pub fn run_with_progress(
+    opts: &BenchOptions,
+    t: &BigRational,
+    scripts: &Path,
+    progress: &dyn Progress,
+) -> BenchReport {
     let n = opts.n.max(1);
     let nf = n as f64;
     let names = [
@@ -319,7 +334,24 @@ pub fn run(opts: &BenchOptions, t: &BigRational, scripts: &Path) -> BenchReport 
     // One untimed warm-up repetition (on its own scene) unless measuring
     // memory: see [`Memory`].
     let warmups = usize::from(!opts.memory);
-    for rep in 0..opts.reps.max(1) + warmups {
+    let rounds = opts.reps.max(1) + warmups;
+    progress.stage(
+        &format!("N = {n}: repetitions"),
+        Some((rounds + usize::from(opts.peers)) as u64),
+    );
+    let mut stopped = false;
+    for rep in 0..rounds {
+        if progress.cancelled() {
+            stopped = true;
+            break;
+        }
+        let round = if rep < warmups {
+            "warm-up".to_string()
+        } else {
+            format!("repetition {}/{}", rep + 1 - warmups, rounds - warmups)
+        };
+        let doing = |method: &str| progress.note(&format!("N = {n}, {round}: {method}"));
+        doing("f64, integer kernel, adaptive");
         if rep == warmups && warmups > 0 {
             acc.iter_mut().for_each(|a| {
                 a.ns.clear();
@@ -355,6 +387,7 @@ pub fn run(opts: &BenchOptions, t: &BigRational, scripts: &Path) -> BenchReport 
         acc[at("adaptive")].note = format!("adaptive on the same scene: {:?}", a.path);
         acc[at("adaptive")].push(ns / nf, mib);
 
+        doing("integer kernel on 30- and 100-digit decimals");
         let big = IntegerData::new(&decimal_scene(&data, 30));
         let (ns, mib, b) = measured(|| blocks_at(&big, t));
         acc[at("exact_bigint")].note =
@@ -375,6 +408,7 @@ pub fn run(opts: &BenchOptions, t: &BigRational, scripts: &Path) -> BenchReport 
             format!("adaptive on the 100-digit scene: {}", path_note(&a.path));
         acc[at("adaptive_bigdata")].push(ns / nf, mib);
 
+        doing("generic PAVA on BigRational");
         let small = scene(naive_n, 5000 + rep as u64);
         let ys = shifted_free_flight(&small, t);
         let (ns, mib, out) = measured(|| pava_blocks(&ys, Some(small.velocities())));
@@ -384,6 +418,7 @@ pub fn run(opts: &BenchOptions, t: &BigRational, scripts: &Path) -> BenchReport 
         );
         acc[at("bigrational_naive")].push(ns / naive_n as f64, mib);
         if opts.events {
+            doing("event-driven histories");
             let (ns, mib, traj) = measured(|| IntegerTrajectory::new(&data));
             acc[at("events")].note = format!(
                 "full exact event-driven trajectory, integer engine ({:?}): {} clusters formed at {} instants, times kept as exact unreduced fractions",
@@ -436,6 +471,7 @@ pub fn run(opts: &BenchOptions, t: &BigRational, scripts: &Path) -> BenchReport 
             }
         }
         peer_inputs.push(y);
+        progress.advance(1);
     }
     acc[at("f64")].note = "generic PAVA on f64 (per-particle output)".into();
     let ours = names
@@ -448,7 +484,8 @@ pub fn run(opts: &BenchOptions, t: &BigRational, scripts: &Path) -> BenchReport 
             note: a.note,
         })
         .collect();
-    let peers = if opts.peers {
+    let peers = if opts.peers && !stopped {
+        progress.note(&format!("N = {n}: the Python peers"));
         run_peers(&peer_inputs, scripts)
     } else {
         vec![]
