@@ -5,6 +5,7 @@
 use num_rational::BigRational;
 
 use crate::claims::{check_case, registry, Case};
+use crate::fast::battery::Similarity;
 use crate::generate::{initial_data, Limits};
 
 /// Fuzz target `claims`: decode arbitrary bytes into admissible initial
@@ -89,38 +90,211 @@ pub fn lean_toml(bytes: &[u8]) {
     }
 }
 
-/// Fuzz target `kernels`: the oracle battery ([`crate::fast::battery`])
-/// on every exact engine of [`crate::fast::engine::ENGINES`]. The first two
-/// bytes pick a scale `2^s` and an offset `2^o + 1/3` (so that the data land
-/// in every integer width of [`crate::fast::kernel`]: `i128`, 256-bit,
-/// `BigInt`), the rest decode into admissible data (N ≤ 40); then, at the
-/// collision instants (exact ties) and between them, every engine must equal
-/// the generic `BigRational` projection, and every history engine the
-/// generic event-driven merge. Panics on any difference.
+/// Fuzz target `kernels`: the oracle battery ([`crate::fast::battery`]) on
+/// every exact engine of [`crate::fast::engine::ENGINES`], through a
+/// similarity ([`crate::fast::battery::check_similar`]). The first three
+/// bytes pick the similarity `x ↦ a·x + b` ([`similarity`]) that puts the
+/// data in every integer width of [`crate::fast::kernel`] (`i128`, 256-bit,
+/// 512-bit, `BigInt`) and of [`crate::fast::merge`] (`i64`, `i128`, the
+/// generic fallback); the rest decode into small admissible data
+/// (N ≤ [`KERNELS_MAX_N`]). The generic `BigRational` oracles run on the
+/// small data, at the collision instants (exact ties) and between them
+/// ([`KERNELS_PROBES`] instants); every other engine runs on the image of
+/// the data and must answer the image of the oracles' answer. Panics on any
+/// difference.
 pub fn kernels(bytes: &[u8]) {
-    use num_bigint::BigInt;
-    use num_traits::One;
-    let (scale, offset) = match bytes {
-        [a, b, ..] => (u32::from(*a) % 200, u32::from(*b) % 330),
-        _ => (0, 0),
-    };
+    let (head, rest) = bytes.split_at(bytes.len().min(3));
+    let similarity = similarity(head);
     let data = initial_data(
-        bytes.get(2..).unwrap_or(&[]),
+        rest,
         Limits {
-            max_n: 40,
+            max_n: KERNELS_MAX_N,
             max_den: 8,
             max_speed: 16,
         },
     );
-    let s = BigRational::from_integer(BigInt::one() << scale);
-    let o = BigRational::from_integer(BigInt::one() << offset)
-        + BigRational::new(BigInt::one(), BigInt::from(3));
-    let x = data.positions().iter().map(|x| x * &s + &o).collect();
-    let u = data.velocities().iter().map(|u| u * &s).collect();
-    let Ok(data) = crate::InitialData::new(data.radius() * &s, x, u) else {
-        panic!("scaling and shifting admissible data must keep it admissible");
+    if let Err(m) =
+        crate::fast::battery::check_similar(&data, &similarity, Some(KERNELS_PROBES)).map(drop)
+    {
+        panic!("{m}\n(similarity {similarity}, on {data:?})");
+    }
+}
+
+/// The largest N of the `kernels` target: the generic `BigRational` oracles
+/// cost `O(N)` gcds per time, and 12 particles already make chains of
+/// simultaneous collisions (the decoder's groups) and ties.
+pub const KERNELS_MAX_N: usize = 12;
+
+/// The collision instants probed per input by the `kernels` target (the
+/// first, the last and spread between them, each with the midpoint before
+/// it; with 0 and a time after the last: at most `2·3 + 2` times).
+pub const KERNELS_PROBES: usize = 3;
+
+/// The similarity `x ↦ a·x + b` of the `kernels` target, from (up to) three
+/// bytes. Byte 0 picks the class: the identity, then powers of 3 (dense
+/// bits, so that carries cross every limb) up to ~63, ~127, ~254 and ~523
+/// bits — the ranges of `i64`/`i128`, 256-bit, 512-bit and `BigInt`
+/// scaled values — and powers of 2 up to 2^330. Byte 1 is the exponent of
+/// the ratio `a` (its inverse when byte 2 is odd: wide denominators
+/// instead of wide numerators), byte 2 also the exponent and sign of the shift
+/// `b = ±c + 1/3` (the `1/3` makes the denominators of the positions and
+/// of the velocities differ).
+pub fn similarity(head: &[u8]) -> Similarity {
+    use num_bigint::BigInt;
+    use num_traits::{One, Pow};
+    let byte = |i: usize| head.get(i).copied().unwrap_or(0);
+    let (class, e, f) = (byte(0) % 8, u32::from(byte(1)), u32::from(byte(2)));
+    let (base, top): (u32, u32) = match class {
+        0 | 7 => return Similarity::identity(),
+        1 | 2 => (3, 40),
+        3 => (3, 80),
+        4 => (3, 160),
+        5 => (3, 330),
+        _ => (2, 330),
     };
-    if let Err(m) = crate::fast::battery::check_probes(&data, Some(6)).map(drop) {
-        panic!("{m}");
+    let power = |k: u32| BigRational::from_integer(Pow::pow(BigInt::from(base), k));
+    let mut ratio = power(e % (top + 1));
+    if f % 2 == 1 {
+        ratio = ratio.recip();
+    }
+    let mut shift = power((f >> 2) * top / 63);
+    if f & 2 != 0 {
+        shift = -shift;
+    }
+    shift += BigRational::new(BigInt::one(), BigInt::from(3));
+    Similarity::new(ratio, shift).unwrap_or_else(Similarity::identity)
+}
+
+#[cfg(test)]
+mod tests {
+    use std::collections::BTreeMap;
+
+    use super::*;
+    use crate::fast::adaptive::{adaptive_blocks_at, Path};
+    use crate::fast::kernel::{blocks_at, IntegerData};
+    use crate::fast::merge::IntegerTrajectory;
+    use crate::generate::SplitMix64;
+    use crate::trajectory::{probe_times, Trajectory};
+
+    /// A fixed corpus of the `kernels` target: random bytes of random
+    /// lengths (3 header bytes and up to 80 bytes of data).
+    fn corpus(len: usize) -> Vec<Vec<u8>> {
+        let mut rng = SplitMix64::new(29);
+        (0..len)
+            .map(|_| {
+                let n = 3 + (rng.next_u64() % 81) as usize;
+                rng.bytes(n)
+            })
+            .collect()
+    }
+
+    /// The kernel widths the image data of `bytes` reach at the target's
+    /// probe times, and the number of particles.
+    fn widths(bytes: &[u8]) -> (std::collections::BTreeSet<String>, usize) {
+        let (head, rest) = bytes.split_at(bytes.len().min(3));
+        let small = initial_data(
+            rest,
+            Limits {
+                max_n: KERNELS_MAX_N,
+                max_den: 8,
+                max_speed: 16,
+            },
+        );
+        let d = IntegerData::new(&similarity(head).data(&small));
+        let times = probe_times(&Trajectory::new(small.clone()), Some(KERNELS_PROBES));
+        let seen = times
+            .iter()
+            .map(|t| format!("{:?}", blocks_at(&d, t).width()))
+            .collect();
+        (seen, small.n())
+    }
+
+    /// The committed seeds of `tests/fuzz_inputs/kernels/` reach the width
+    /// in their name (`seed-long`: the largest N).
+    #[test]
+    fn seeds_reach_their_widths() {
+        let dir =
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fuzz_inputs/kernels");
+        let read = |name: &str| std::fs::read(dir.join(name)).expect("a committed seed");
+        for (name, width) in [
+            ("seed-i128", "I128"),
+            ("seed-i256", "I256"),
+            ("seed-i512", "I512"),
+            ("seed-big", "Big"),
+        ] {
+            let (seen, _) = widths(&read(name));
+            assert!(seen.contains(width), "{name} reaches {seen:?}");
+        }
+        assert_eq!(widths(&read("seed-long")).1, KERNELS_MAX_N);
+    }
+
+    /// How many inputs of a fixed corpus reach each path of each engine
+    /// (the kernel's width, the adaptive solver's path, the merge's
+    /// integer width) at the target's probe times, on the image data the
+    /// engines see. Every path must be reached: the similarity, not the
+    /// size of the data, brings the wide widths. `--nocapture` prints the
+    /// counts.
+    #[test]
+    fn kernels_reaches_every_engine_and_width() {
+        let mut reach: BTreeMap<String, usize> = BTreeMap::new();
+        let mut count = |key: String| *reach.entry(key).or_default() += 1;
+        let inputs = corpus(400);
+        for bytes in &inputs {
+            let (head, rest) = bytes.split_at(3);
+            let small = initial_data(
+                rest,
+                Limits {
+                    max_n: KERNELS_MAX_N,
+                    max_den: 8,
+                    max_speed: 16,
+                },
+            );
+            let image = similarity(head).data(&small);
+            let times = probe_times(&Trajectory::new(small.clone()), Some(KERNELS_PROBES));
+            let d = IntegerData::new(&image);
+            let mut seen = std::collections::BTreeSet::new();
+            for t in &times {
+                seen.insert(format!("kernel {:?}", blocks_at(&d, t).width()));
+                seen.insert(match adaptive_blocks_at(&d, t).path {
+                    Path::Integer(w) => format!("adaptive Integer({w:?})"),
+                    Path::Certified { exact, .. } if exact > 0 => {
+                        "adaptive Certified, some exact".into()
+                    }
+                    Path::Certified { .. } => "adaptive Certified, all f64".into(),
+                    Path::Exact(w) => format!("adaptive Exact({w:?})"),
+                });
+            }
+            seen.insert(format!(
+                "merge {:?}",
+                IntegerTrajectory::new(&image).engine()
+            ));
+            seen.into_iter().for_each(&mut count);
+            // The target itself passes on every input of the corpus.
+            kernels(bytes);
+        }
+        eprintln!("inputs reaching each path (of {}):", inputs.len());
+        for (path, n) in &reach {
+            eprintln!("  {path}: {n}");
+        }
+        for path in [
+            "kernel I128",
+            "kernel I256",
+            "kernel I512",
+            "kernel Big",
+            "adaptive Integer(I128)",
+            "adaptive Integer(I256)",
+            "adaptive Integer(I512)",
+            "adaptive Certified, all f64",
+            "adaptive Certified, some exact",
+            "adaptive Exact(Big)",
+            "merge Int64",
+            "merge Int128",
+            "merge BigRational",
+        ] {
+            assert!(
+                reach.get(path).is_some_and(|&n| n > 0),
+                "no input reaches {path}: {reach:?}"
+            );
+        }
     }
 }

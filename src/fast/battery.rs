@@ -18,7 +18,9 @@ use std::cell::OnceCell;
 use std::fmt;
 
 use num_rational::BigRational;
+use num_traits::{One, Signed, Zero};
 
+use crate::contact::Impulse;
 use crate::error::Error;
 use crate::fast::engine::{ExactEngine, GenericEvents, GenericProjection, Prepared, ENGINES};
 use crate::initial::InitialData;
@@ -86,6 +88,219 @@ pub fn check_engines(
     battery(engines, data, times, None)
 }
 
+/// A similarity of the line, `x ↦ ratio·x + shift` with `ratio > 0`. The
+/// sticky dynamics commute with it: the data `(ratio·r, ratio·x⁰ + shift,
+/// ratio·u⁰)` move as `x(t) ↦ ratio·x(t) + shift`, `u(t) ↦ ratio·u(t)`,
+/// `λ(t) ↦ ratio·λ(t)` (`λ` is linear in `u⁰ − u(t)`, `eq:dyn-micro`), with
+/// the same contact clusters and collision times — `K_N` (`df:KN`) is
+/// mapped onto itself for the scaled radius and the Euclidean projection
+/// commutes with similarities. [`check_similar`] runs the engines on the
+/// image of small data and compares them with the image of the oracle's
+/// answer on the small data: wide integers, the oracle on small ones.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Similarity {
+    ratio: BigRational,
+    shift: BigRational,
+}
+
+impl Similarity {
+    /// `x ↦ ratio·x + shift`; `None` unless `ratio > 0`.
+    pub fn new(ratio: BigRational, shift: BigRational) -> Option<Similarity> {
+        ratio.is_positive().then_some(Similarity { ratio, shift })
+    }
+    /// The identity.
+    pub fn identity() -> Similarity {
+        Similarity {
+            ratio: BigRational::one(),
+            shift: BigRational::zero(),
+        }
+    }
+    fn is_identity(&self) -> bool {
+        self.ratio.is_one() && self.shift.is_zero()
+    }
+    fn scaled(&self, v: &[BigRational]) -> Vec<BigRational> {
+        v.iter().map(|a| self.velocity(a)).collect()
+    }
+    /// The image of initial data (admissible again: gaps and the radius are
+    /// scaled by the same positive ratio, the velocity cone is a cone).
+    pub fn data(&self, d: &InitialData<BigRational>) -> InitialData<BigRational> {
+        let x = d.positions().iter().map(|a| self.position(a)).collect();
+        let image = InitialData::new(d.radius() * &self.ratio, x, self.scaled(d.velocities()));
+        debug_assert!(image.is_ok(), "a similarity keeps data admissible");
+        image.unwrap_or_else(|_| d.clone())
+    }
+    /// The image `ratio·x + shift` of a position.
+    pub fn position(&self, x: &BigRational) -> BigRational {
+        x * &self.ratio + &self.shift
+    }
+    /// The image `ratio·u` of a velocity (or of a multiplier `λ`).
+    pub fn velocity(&self, u: &BigRational) -> BigRational {
+        u * &self.ratio
+    }
+    /// Whether `image` is [`Similarity::position`]`(x)`, decided by
+    /// cross-multiplication (no gcd): with `ratio = p/q`, `shift = b/c`,
+    /// `x = n/d`, `image = m/e`: `m·q·d·c = (p·n·c + b·q·d)·e`.
+    fn maps_position(&self, x: &BigRational, image: &BigRational) -> bool {
+        let (p, q) = (self.ratio.numer(), self.ratio.denom());
+        let (b, c) = (self.shift.numer(), self.shift.denom());
+        let (n, d) = (x.numer(), x.denom());
+        let (m, e) = (image.numer(), image.denom());
+        m * q * d * c == (p * n * c + b * q * d) * e
+    }
+    /// Whether `image` is [`Similarity::velocity`]`(u)`: `m·q·d = p·n·e`.
+    fn maps_velocity(&self, u: &BigRational, image: &BigRational) -> bool {
+        let (p, q) = (self.ratio.numer(), self.ratio.denom());
+        image.numer() * q * u.denom() == p * u.numer() * image.denom()
+    }
+    /// The first field where `got` differs from the image of `want` (the
+    /// same time and clusters, positions mapped by the similarity,
+    /// velocities and multipliers scaled); compared by cross-multiplication,
+    /// formatted only at the difference.
+    fn state_diff(&self, want: &State<BigRational>, got: &State<BigRational>) -> Option<String> {
+        if want.t != got.t {
+            return Some(format!("t = {}, expected {}", got.t, want.t));
+        }
+        if self.is_identity() {
+            return list_diff("positions", &want.positions, &got.positions, |w| w.clone())
+                .or_else(|| {
+                    list_diff("velocities", &want.velocities, &got.velocities, |w| {
+                        w.clone()
+                    })
+                })
+                .or_else(|| {
+                    list_diff("multipliers", &want.multipliers, &got.multipliers, |w| {
+                        w.clone()
+                    })
+                })
+                .or_else(|| list_diff_debug("clusters", &want.clusters, &got.clusters));
+        }
+        let position = Image {
+            same: &|w, g| self.maps_position(w, g),
+            show: &|w| self.position(w),
+        };
+        let velocity = Image {
+            same: &|w, g| self.maps_velocity(w, g),
+            show: &|w| self.velocity(w),
+        };
+        list_diff_debug("clusters", &want.clusters, &got.clusters)
+            .or_else(|| position.diff("positions", &want.positions, &got.positions))
+            .or_else(|| velocity.diff("velocities", &want.velocities, &got.velocities))
+            .or_else(|| velocity.diff("multipliers", &want.multipliers, &got.multipliers))
+    }
+    /// The image of a history: the image data, the same join times, each
+    /// impulse's velocities scaled.
+    pub fn trajectory(&self, h: &Trajectory<BigRational>) -> Trajectory<BigRational> {
+        let impulses = h
+            .impulses()
+            .iter()
+            .map(|i| Impulse {
+                part_velocities: self.scaled(&i.part_velocities),
+                velocity: self.velocity(&i.velocity),
+                ..i.clone()
+            })
+            .collect();
+        Trajectory::from_parts(self.data(h.data()), h.join_times().to_vec(), impulses)
+    }
+}
+
+impl fmt::Display for Similarity {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "x ↦ ({})·x + ({})", self.ratio, self.shift)
+    }
+}
+
+/// How an expected value maps to the frame of the answer compared with it.
+struct Image<'a> {
+    /// Whether the answer `got` is the image of the expected `want`.
+    same: &'a dyn Fn(&BigRational, &BigRational) -> bool,
+    /// The image of `want`, for the message.
+    show: &'a dyn Fn(&BigRational) -> BigRational,
+}
+
+impl Image<'_> {
+    /// The first index where `got` is not the image of `want`, described.
+    fn diff(&self, field: &str, want: &[BigRational], got: &[BigRational]) -> Option<String> {
+        if let Some(i) = (0..want.len().min(got.len())).find(|&i| !(self.same)(&want[i], &got[i])) {
+            return Some(format!(
+                "{field}[{i}] = {}, expected {}",
+                got[i],
+                (self.show)(&want[i])
+            ));
+        }
+        (want.len() != got.len()).then(|| format!("{} {field}, expected {}", got.len(), want.len()))
+    }
+}
+
+/// The battery through a similarity: the oracles (the generic projection
+/// and the generic event merge, checked against each other) run on the
+/// small `data` at its probe times ([`probe_times`], `limit` instants);
+/// every other engine of [`ENGINES`] runs on `similarity`'s image of the
+/// data and must answer the image of the oracles' states and history
+/// ([`Similarity`], compared by cross-multiplication, no gcd). Wide
+/// integers reach the fast engines' wide widths while the `BigRational`
+/// oracle computes on small numbers. A history engine whose history is the
+/// image of the oracle's is not asked for states: they are
+/// [`Trajectory::at`] of the same parts, and the oracle's own states were
+/// compared with the projection's. Returns the oracle's history on `data`.
+pub fn check_similar(
+    data: &InitialData<BigRational>,
+    similarity: &Similarity,
+    limit: Option<usize>,
+) -> Result<Trajectory<BigRational>, Mismatch> {
+    let history = Trajectory::new(data.clone());
+    let times = probe_times(&history, limit);
+    let oracle = oracle_states(data, &times);
+    let generic: [&dyn ExactEngine; 1] = [&GenericEvents];
+    compare(
+        &generic,
+        data,
+        &times,
+        &oracle,
+        &|| &history,
+        HistoryStates::Unchecked,
+        &Similarity::identity(),
+    )?;
+    let fast: Vec<&dyn ExactEngine> = ENGINES
+        .iter()
+        .copied()
+        .filter(|e| e.name() != GenericProjection.name() && e.name() != GenericEvents.name())
+        .collect();
+    if similarity.is_identity() {
+        compare(
+            &fast,
+            data,
+            &times,
+            &oracle,
+            &|| &history,
+            HistoryStates::Checked,
+            similarity,
+        )?;
+    } else {
+        let image_history = similarity.trajectory(&history);
+        compare(
+            &fast,
+            image_history.data(),
+            &times,
+            &oracle,
+            &|| &image_history,
+            HistoryStates::Checked,
+            similarity,
+        )?;
+    }
+    Ok(history)
+}
+
+/// The generic projection's states of `data` at `times`: the oracle.
+fn oracle_states(
+    data: &InitialData<BigRational>,
+    times: &[BigRational],
+) -> Vec<Result<State<BigRational>, Error>> {
+    times
+        .iter()
+        .map(|t| projection::state_at(data, t))
+        .collect()
+}
+
 /// The battery. The oracles are computed once: the states of
 /// [`GenericProjection`] (which is then not compared with itself) and the
 /// history of [`GenericEvents`] (`known`, or computed when first needed;
@@ -98,10 +313,45 @@ fn battery(
 ) -> Result<(), Mismatch> {
     let lazy = OnceCell::new();
     let history = || known.unwrap_or_else(|| lazy.get_or_init(|| Trajectory::new(data.clone())));
-    let oracle: Vec<Result<State<BigRational>, Error>> = times
-        .iter()
-        .map(|t| projection::state_at(data, t))
-        .collect();
+    let oracle = oracle_states(data, times);
+    compare(
+        engines,
+        data,
+        times,
+        &oracle,
+        &history,
+        HistoryStates::Unchecked,
+        &Similarity::identity(),
+    )
+}
+
+/// Whether the states of the oracle's history, at the battery's times, are
+/// known to equal the generic projection's. A state of a history is a
+/// function of its data, join times and impulses ([`Trajectory::at`]), so
+/// once they are, a history engine whose history equals the oracle's
+/// (compared first, exactly) has those states too: they are not evaluated
+/// again.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum HistoryStates {
+    /// Compared ([`GenericEvents`] passed on these times).
+    Checked,
+    /// Not compared yet.
+    Unchecked,
+}
+
+/// Each engine (but the generic projection, the oracle itself) on `data`
+/// against the `oracle`'s states at `times` and, for a history engine,
+/// against the oracle's `history`; [`GenericEvents`] answers from that
+/// history instead of computing it again.
+fn compare<'h>(
+    engines: &[&dyn ExactEngine],
+    data: &InitialData<BigRational>,
+    times: &[BigRational],
+    oracle: &[Result<State<BigRational>, Error>],
+    history: &dyn Fn() -> &'h Trajectory<BigRational>,
+    mut history_states: HistoryStates,
+    similarity: &Similarity,
+) -> Result<(), Mismatch> {
     for engine in engines {
         let fail = |t: Option<&BigRational>, what: String| Mismatch {
             engine: engine.name(),
@@ -116,14 +366,18 @@ fn battery(
         } else {
             engine.prepare(data)
         };
+        let recorded = engine.name() == GenericEvents.name();
         if let Some(got) = prepared.trajectory() {
             if let Some(what) = history_diff(history(), got) {
                 return Err(fail(None, what));
             }
+            if !recorded && history_states == HistoryStates::Checked {
+                continue;
+            }
         }
-        for (t, want) in times.iter().zip(&oracle) {
+        for (t, want) in times.iter().zip(oracle) {
             let what = match (want, prepared.state_at(t)) {
-                (Ok(want), Ok(got)) => state_diff(want, &got),
+                (Ok(want), Ok(got)) => similarity.state_diff(want, &got),
                 (Err(_), Err(_)) => None,
                 (Ok(_), Err(e)) => Some(format!("an error ({e}), the oracle answers")),
                 (Err(e), Ok(_)) => Some(format!("an answer, the oracle fails ({e})")),
@@ -131,6 +385,9 @@ fn battery(
             if let Some(what) = what {
                 return Err(fail(Some(t), what));
             }
+        }
+        if recorded {
+            history_states = HistoryStates::Checked;
         }
     }
     Ok(())
@@ -148,8 +405,30 @@ impl Prepared for Recorded<'_> {
     }
 }
 
-/// The first index where two lists differ, described.
-fn list_diff<T: PartialEq + fmt::Debug>(field: &str, want: &[T], got: &[T]) -> Option<String> {
+/// The first index where two lists differ, described (values are
+/// formatted only there: the battery compares many and formats one).
+fn list_diff<T: PartialEq + fmt::Display>(
+    field: &str,
+    want: &[T],
+    got: &[T],
+    show: impl Fn(&T) -> T,
+) -> Option<String> {
+    if let Some(i) = (0..want.len().min(got.len())).find(|&i| want[i] != got[i]) {
+        return Some(format!(
+            "{field}[{i}] = {}, expected {}",
+            got[i],
+            show(&want[i])
+        ));
+    }
+    (want.len() != got.len()).then(|| format!("{} {field}, expected {}", got.len(), want.len()))
+}
+
+/// [`list_diff`] for values shown with `Debug`.
+fn list_diff_debug<T: PartialEq + fmt::Debug>(
+    field: &str,
+    want: &[T],
+    got: &[T],
+) -> Option<String> {
     if let Some(i) = (0..want.len().min(got.len())).find(|&i| want[i] != got[i]) {
         return Some(format!(
             "{field}[{i}] = {:?}, expected {:?}",
@@ -159,37 +438,13 @@ fn list_diff<T: PartialEq + fmt::Debug>(field: &str, want: &[T], got: &[T]) -> O
     (want.len() != got.len()).then(|| format!("{} {field}, expected {}", got.len(), want.len()))
 }
 
-/// The first field where two states differ.
-fn state_diff(want: &State<BigRational>, got: &State<BigRational>) -> Option<String> {
-    if want.t != got.t {
-        return Some(format!("t = {}, expected {}", got.t, want.t));
-    }
-    let show = |v: &[BigRational]| v.iter().map(ToString::to_string).collect::<Vec<_>>();
-    list_diff("positions", &show(&want.positions), &show(&got.positions))
-        .or_else(|| {
-            list_diff(
-                "velocities",
-                &show(&want.velocities),
-                &show(&got.velocities),
-            )
-        })
-        .or_else(|| {
-            list_diff(
-                "multipliers",
-                &show(&want.multipliers),
-                &show(&got.multipliers),
-            )
-        })
-        .or_else(|| list_diff("clusters", &want.clusters, &got.clusters))
-}
-
 /// The first difference between two histories.
 fn history_diff(want: &Trajectory<BigRational>, got: &Trajectory<BigRational>) -> Option<String> {
     if want.data() != got.data() {
         return Some("the rebuilt initial data differ".into());
     }
-    list_diff("impulses", want.impulses(), got.impulses())
-        .or_else(|| list_diff("join times", want.join_times(), got.join_times()))
+    list_diff_debug("impulses", want.impulses(), got.impulses())
+        .or_else(|| list_diff_debug("join times", want.join_times(), got.join_times()))
 }
 
 #[cfg(test)]
@@ -272,6 +527,82 @@ mod tests {
                 full.join_times().to_vec(),
                 impulses,
             )))
+        }
+    }
+
+    /// The similarities of the `kernels` fuzz target's kinds: wide
+    /// numerators, wide denominators, a negative shift.
+    fn similarities() -> Vec<Similarity> {
+        let three = |k: u32| BigRational::from_integer(num_bigint::BigInt::from(3).pow(k));
+        vec![
+            Similarity::new(three(90), q(1, 3)).unwrap(),
+            Similarity::new(three(40).recip(), -three(70) + q(1, 3)).unwrap(),
+            Similarity::new(q(1 << 40, 1), three(200)).unwrap(),
+        ]
+    }
+
+    /// The theorem [`check_similar`] rests on, on the generic engines: the
+    /// projection and the event merge of the image data are the images of
+    /// those of the data (the comparison by cross-multiplication included).
+    #[test]
+    fn generic_engines_commute_with_similarities() {
+        let mut rng = SplitMix64::new(7);
+        for k in 0..30 {
+            let data = initial_data(
+                &rng.bytes(60),
+                Limits {
+                    max_n: 1 + k % 12,
+                    ..Limits::default()
+                },
+            );
+            let history = Trajectory::new(data.clone());
+            for sim in similarities() {
+                let image = sim.data(&data);
+                let image_history = Trajectory::new(image.clone());
+                assert_eq!(
+                    history_diff(&sim.trajectory(&history), &image_history),
+                    None
+                );
+                for t in probe_times(&history, None) {
+                    let want = projection::state_at(&data, &t).unwrap();
+                    let got = projection::state_at(&image, &t).unwrap();
+                    assert_eq!(sim.state_diff(&want, &got), None, "case {k}, {sim}");
+                }
+            }
+        }
+    }
+
+    /// The comparison through a similarity can fail: one position, one
+    /// velocity or one multiplier off in the image is reported.
+    #[test]
+    fn a_wrong_image_is_caught() {
+        let data = InitialData::new(
+            q(1, 4),
+            vec![q(0, 1), q(1, 1), q(3, 1)],
+            vec![q(2, 1), q(0, 1), q(-1, 1)],
+        )
+        .unwrap();
+        let t = q(1, 1);
+        let want = projection::state_at(&data, &t).unwrap();
+        for sim in similarities() {
+            let image = projection::state_at(&sim.data(&data), &t).unwrap();
+            assert_eq!(sim.state_diff(&want, &image), None);
+            let mut bad = image.clone();
+            bad.positions[2] += q(1, 1);
+            let what = sim.state_diff(&want, &bad).unwrap();
+            assert!(what.starts_with("positions[2]"), "{what}");
+            let mut bad = image.clone();
+            bad.velocities[0] = -bad.velocities[0].clone();
+            assert!(sim
+                .state_diff(&want, &bad)
+                .unwrap()
+                .starts_with("velocities[0]"));
+            let mut bad = image.clone();
+            bad.multipliers[0] += q(1, 7);
+            assert!(sim
+                .state_diff(&want, &bad)
+                .unwrap()
+                .starts_with("multipliers[0]"));
         }
     }
 
