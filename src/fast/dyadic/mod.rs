@@ -219,12 +219,20 @@ impl Dyadic {
         }
         let c = a.checked_mul(self.two_r)?;
         let (xs, us) = (&self.x, &self.u);
-        let runs = pava_words(self.n(), |i| {
-            (
-                a.wrapping_mul(xs[i]).wrapping_add(b.wrapping_mul(us[i])),
-                us[i],
-            )
-        });
+        let runs = if a == 1 && b > 0 && b.count_ones() == 1 {
+            // The common case (2r and t dyadic, the positions' scale the
+            // finer): `Y_i = X̃_i + U_i 2^j`, a shift for a product.
+            let j = b.trailing_zeros();
+            debug_assert_eq!(1i128 << j, b);
+            pava_words(self.n(), |i| (xs[i].wrapping_add(us[i] << j), us[i]))
+        } else {
+            pava_words(self.n(), |i| {
+                (
+                    a.wrapping_mul(xs[i]).wrapping_add(b.wrapping_mul(us[i])),
+                    us[i],
+                )
+            })
+        };
         Some(DyadicBlocks {
             d: self,
             runs,
