@@ -26,6 +26,7 @@ use sticky::fast::dyadic::Dyadic;
 use sticky::fast::engine;
 use sticky::fast::kernel::{self, IntegerData};
 use sticky::fast::stream::Lean;
+use sticky::progress::Progress;
 use sticky::scene::{Scene as SceneFile, SceneKind};
 use sticky::{Error, InitialData};
 
@@ -154,17 +155,20 @@ impl Inner {
     }
 
     /// The exact state at `t`: the dyadic path's or the streaming path's
-    /// blocks when they answer, the integer kernel otherwise (the same
-    /// state: the library's tests compare them).
-    pub fn answer(&self, t: &BigRational) -> Result<Answer, Error> {
+    /// blocks when they answer, the blockwise projection otherwise (the same
+    /// state: the library's tests compare them), which polls `stop` and
+    /// ends with [`Error::Interrupted`] on Ctrl-C.
+    pub fn answer(&self, t: &BigRational, stop: &dyn Progress) -> Result<Answer, Error> {
         if let Some(blocks) = self.dyadic.as_ref().and_then(|d| d.blocks_at(t)) {
-            return Ok(Answer::from_dyadic(&blocks));
+            return Answer::from_dyadic(&blocks, stop);
         }
         if let Some(blocks) = self.lean.as_ref().and_then(|l| l.blocks_at(t)) {
             return Ok(Answer::from_blocks(&blocks));
         }
-        let state = kernel::state_at(self.scaled()?, t)?;
-        Ok(Answer::from_state(state))
+        let data = &self.scene()?.data;
+        engine::check_work_watched(data, &engine::Blockwise)?;
+        let state = sticky::blockwise::state_at(data, t, stop)?;
+        Answer::from_state(state, stop)
     }
 
     /// The exact state at `t`, every value a `BigRational` (for the exact
@@ -449,10 +453,10 @@ impl Scene {
         let answers = interrupt::run_sized(py, steps, move |stop| -> Result<Vec<Answer>, Error> {
             let mut out = Vec::with_capacity(times.len());
             for t in &times {
-                if sticky::progress::Progress::cancelled(stop) {
+                if stop.cancelled() {
                     break;
                 }
-                out.push(inner.answer(t)?);
+                out.push(inner.answer(t, stop)?);
             }
             Ok(out)
         })?

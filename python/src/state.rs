@@ -11,7 +11,8 @@ use pyo3::types::{PyDict, PyList};
 use sticky::cluster::Cluster;
 use sticky::fast::dyadic::DyadicBlocks;
 use sticky::fast::stream::{Exact, LeanBlocks};
-use sticky::Scalar;
+use sticky::progress::Progress;
+use sticky::{Error, Scalar};
 
 use crate::convert;
 use crate::scene::{py_error, Inner};
@@ -79,32 +80,50 @@ impl Answer {
     /// The nearest doubles from the dyadic path's blocks (the exact values
     /// are computed again when asked for); when an intermediate leaves
     /// `i128`, the exact state rounded (and kept).
-    pub fn from_dyadic(b: &DyadicBlocks<'_>) -> Answer {
+    pub fn from_dyadic(b: &DyadicBlocks<'_>, stop: &dyn Progress) -> Result<Answer, Error> {
         match b.nearest() {
-            Some(nearest) => Answer {
+            Some(nearest) => Ok(Answer {
                 t: b.t().clone(),
                 positions: nearest.positions,
                 velocities: nearest.velocities,
                 multipliers: nearest.multipliers,
                 clusters: b.clusters(),
                 exact: None,
-            },
-            None => Answer::from_state(b.exact_state()),
+            }),
+            None => Answer::from_state(b.exact_state(), stop),
         }
     }
 
     /// The nearest doubles of an exact state, which is kept.
-    pub fn from_state(s: sticky::State<BigRational>) -> Answer {
-        Answer {
+    pub fn from_state(s: sticky::State<BigRational>, stop: &dyn Progress) -> Result<Answer, Error> {
+        // Rounding big fractions is long work of its own: it polls `stop`
+        // every `ROUNDING_CHUNK` values.
+        let round = |v: &[BigRational]| -> Result<Vec<f64>, Error> {
+            let mut out = Vec::with_capacity(v.len());
+            for chunk in v.chunks(ROUNDING_CHUNK) {
+                if stop.cancelled() {
+                    return Err(Error::Interrupted {
+                        during: "the rounding to doubles",
+                    });
+                }
+                out.extend(convert::nearest(chunk));
+            }
+            Ok(out)
+        };
+        Ok(Answer {
             t: s.t.clone(),
-            positions: convert::nearest(&s.positions),
-            velocities: convert::nearest(&s.velocities),
-            multipliers: convert::nearest(&s.multipliers),
+            positions: round(&s.positions)?,
+            velocities: round(&s.velocities)?,
+            multipliers: round(&s.multipliers)?,
             clusters: s.clusters.clone(),
             exact: Some(s),
-        }
+        })
     }
 }
+
+/// Values rounded between two polls of [`Progress::cancelled`] on the
+/// general path.
+const ROUNDING_CHUNK: usize = 4096;
 
 /// The state of the particles at one time t: positions x(t), velocities
 /// u(t) (right derivatives: after the collisions at t), multipliers λ(t)

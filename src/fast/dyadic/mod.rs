@@ -51,7 +51,7 @@ use crate::cluster::{runs, Cluster};
 use crate::fast::kernel::{pava_words, size_bits, Run};
 use crate::fast::stream::Nearest;
 use crate::state::State;
-use round::Split;
+use round::{Divisor, Split};
 
 /// Bits of `|v|` (0 for 0).
 fn bits(v: u128) -> u64 {
@@ -219,12 +219,20 @@ impl Dyadic {
         }
         let c = a.checked_mul(self.two_r)?;
         let (xs, us) = (&self.x, &self.u);
-        let runs = pava_words(self.n(), |i| {
-            (
-                a.wrapping_mul(xs[i]).wrapping_add(b.wrapping_mul(us[i])),
-                us[i],
-            )
-        });
+        let runs = if a == 1 && b > 0 && b.count_ones() == 1 {
+            // The common case (2r and t dyadic, the positions' scale the
+            // finer): `Y_i = X̃_i + U_i 2^j`, a shift for a product.
+            let j = b.trailing_zeros();
+            debug_assert_eq!(1i128 << j, b);
+            pava_words(self.n(), |i| (xs[i].wrapping_add(us[i] << j), us[i]))
+        } else {
+            pava_words(self.n(), |i| {
+                (
+                    a.wrapping_mul(xs[i]).wrapping_add(b.wrapping_mul(us[i])),
+                    us[i],
+                )
+            })
+        };
         Some(DyadicBlocks {
             d: self,
             runs,
@@ -309,26 +317,30 @@ impl DyadicBlocks<'_> {
                     out.positions.push(x);
                 }
             } else {
+                let den = Divisor::new(den);
                 for m in 0..k {
-                    out.positions.push(round::nearest(num_at(m)?, den, ey));
+                    out.positions.push(round::nearest_by(num_at(m)?, &den, ey));
                 }
             }
             let u = round::nearest(r.su, k, eu);
             out.velocities.extend(std::iter::repeat_n(u, k as usize));
-            // λ of the m-th pair of the block: (k Σ_{j ≤ m} U_j − m S_U) 2^{eu} / (k N);
-            // the last pair of a block (m = k) is 0.
-            let den = k.checked_mul(big_n)?;
-            let mut prefix = 0i128;
-            for m in 1..=k {
-                let i = first + m as usize - 1;
-                if i + 1 >= n {
-                    break;
+            // λ of the m-th pair of the block: (k Σ_{j ≤ m} U_j − m S_U) 2^{eu} / (k N),
+            // with one prepared divisor per block (no division per pair);
+            // the last pair of a block (m = k, a gap) is exactly 0.
+            if k > 1 {
+                let den = Divisor::new(k.checked_mul(big_n)?);
+                let mut prefix = 0i128;
+                for m in 1..k {
+                    prefix = prefix.checked_add(self.d.u[first + m as usize - 1])?;
+                    let num = ki
+                        .checked_mul(prefix)?
+                        .checked_sub(i128::from(m).checked_mul(r.su)?)?;
+                    out.multipliers.push(round::nearest_by(num, &den, eu));
                 }
-                prefix = prefix.checked_add(self.d.u[i])?;
-                let num = ki
-                    .checked_mul(prefix)?
-                    .checked_sub(i128::from(m).checked_mul(r.su)?)?;
-                out.multipliers.push(round::nearest(num, den, eu));
+                debug_assert_eq!(prefix + self.d.u[first + k as usize - 1], r.su);
+            }
+            if first + (k as usize) < n {
+                out.multipliers.push(0.0);
             }
             first += k as usize;
         }

@@ -55,6 +55,98 @@ pub fn nearest(num: i128, den: u64, exp: i64) -> f64 {
     }
 }
 
+/// A 64-bit divisor prepared for many divisions (one machine division,
+/// then two multiplications per quotient): the reciprocal of Möller and
+/// Granlund ("Improved division by invariant integers", 2011, algorithm 4).
+/// With `d' = d 2^sh` normalised (top bit set) and
+/// `v = ⌊(2^128 − 1)/d'⌋ − 2^64`, the quotient of a 128-bit `u` whose high
+/// word is below `d'` is an estimate from `v u₁` off by at most two, which
+/// two comparisons correct; the remainder comes out with it, so the result
+/// is checked exactly (`q d + r = u`, `0 ≤ r < d`).
+#[derive(Debug, Clone, Copy)]
+pub struct Divisor {
+    /// `d`.
+    d: u64,
+    /// `d' = d 2^sh`, top bit set.
+    norm: u64,
+    /// `sh`.
+    shift: u32,
+    /// `v = ⌊(2^128 − 1)/d'⌋ − 2^64`.
+    reciprocal: u64,
+}
+
+impl Divisor {
+    /// `d > 0`: one machine division.
+    pub fn new(d: u64) -> Divisor {
+        debug_assert!(d > 0);
+        let shift = d.leading_zeros();
+        let norm = d << shift;
+        // (2^128 − 1)/d' lies in (2^64, 2^65): its low word is v.
+        let reciprocal = (u128::MAX / u128::from(norm)) as u64;
+        Divisor {
+            d,
+            norm,
+            shift,
+            reciprocal,
+        }
+    }
+
+    /// `d`.
+    pub fn get(&self) -> u64 {
+        self.d
+    }
+
+    /// `(⌊u/d⌋, u mod d)` for `u < d 2^64` (the quotient fits 64 bits).
+    pub fn div_rem(&self, u: u128) -> (u64, u64) {
+        debug_assert!(u < u128::from(self.d) << 64);
+        // u 2^sh < d' 2^64: the high word u₁ is below d'.
+        let un = u << self.shift;
+        let (u1, u0) = ((un >> 64) as u64, un as u64);
+        let d = self.norm;
+        let p = u128::from(self.reciprocal) * u128::from(u1);
+        let est = p.wrapping_add((u128::from(u1) << 64) | u128::from(u0));
+        let est = est.wrapping_add(1 << 64);
+        let (mut q, lo) = ((est >> 64) as u64, est as u64);
+        let mut r = u0.wrapping_sub(q.wrapping_mul(d));
+        if r > lo {
+            q = q.wrapping_sub(1);
+            r = r.wrapping_add(d);
+        }
+        if r >= d {
+            q = q.wrapping_add(1);
+            r -= d;
+        }
+        debug_assert_eq!(u128::from(q) * u128::from(d) + u128::from(r), un);
+        (q, r >> self.shift)
+    }
+}
+
+/// [`nearest`] with a prepared divisor: no machine division.
+pub fn nearest_by(num: i128, den: &Divisor, exp: i64) -> f64 {
+    let d = den.get();
+    if num == 0 || d.is_power_of_two() {
+        return nearest(num, d, exp);
+    }
+    let a = num.unsigned_abs();
+    // As in `nearest`: a' = ⌊a 2^s⌋ with 63 + bits(d) bits, below d 2^64.
+    let bits_d = 64 - i64::from(d.leading_zeros());
+    let bits_a = 128 - i64::from(a.leading_zeros());
+    let s = 63 + bits_d - bits_a;
+    let (a2, lost) = if s >= 0 {
+        (a << s, false)
+    } else {
+        let r = (-s) as u32;
+        (a >> r, a & ((1u128 << r) - 1) != 0)
+    };
+    let (q, rem) = den.div_rem(a2);
+    let magnitude = round_scaled(u128::from(q), lost || rem != 0, exp - s);
+    if num < 0 {
+        -magnitude
+    } else {
+        magnitude
+    }
+}
+
 /// The nearest double of `(q + ρ) 2^e` with `q ≥ 2^53` (so that at least
 /// one bit of `q` is dropped) and `0 ≤ ρ < 1`, `sticky` telling `ρ > 0`.
 pub fn round_scaled(q: u128, sticky: bool, e: i64) -> f64 {
@@ -315,6 +407,69 @@ mod tests {
             }
         }
         assert!(answered > 19_000, "{answered}");
+    }
+
+    /// The prepared divisor gives the machine's quotient and remainder at
+    /// the edges (`u` just below `d 2^64`, `d` a power of two, `d = 1`,
+    /// `d = 2^64 − 1`) and on random data; `nearest_by` is `nearest`.
+    #[test]
+    fn prepared_divisors_divide_exactly() {
+        let mut rng = SplitMix64::new(0xd1f);
+        let mut ds = vec![1u64, 2, 3, 7, 1 << 63, u64::MAX, (1 << 63) + 1, 1_000_000];
+        for _ in 0..1_000 {
+            ds.push((rng.next_u64() >> (rng.next_u64() % 64)).max(1));
+            ds.push((1 << 63) + rng.next_u64() % 256);
+            ds.push(u64::MAX - rng.next_u64() % 256);
+        }
+        for d in ds {
+            let div = Divisor::new(d);
+            let top = (u128::from(d) << 64) - 1;
+            let mut us = vec![0u128, 1, top, top - 1, u128::from(d), u128::from(d) - 1];
+            for _ in 0..50 {
+                let u = (u128::from(rng.next_u64()) << 64 | u128::from(rng.next_u64())) % (top + 1);
+                us.push(u >> (rng.next_u64() % 128));
+                // Exact multiples with a large quotient: the estimate is
+                // then one short with a remainder of exactly d (the second
+                // correction's equality case).
+                let q = u128::from(u64::MAX - rng.next_u64() % 16);
+                let q2 = u128::from(rng.next_u64());
+                let d = u128::from(d);
+                us.extend([q * d, q2 * d, q * d + d - 1, q2 * d + d - 1]);
+            }
+            for u in us {
+                let want = ((u / u128::from(d)) as u64, (u % u128::from(d)) as u64);
+                assert_eq!(div.div_rem(u), want, "{u} / {d}");
+            }
+            for _ in 0..20 {
+                let nb = rng.next_u64() % 127 + 1;
+                let num = ((u128::from(rng.next_u64()) << 64 | u128::from(rng.next_u64()))
+                    >> (128 - nb)) as i128;
+                let num = if rng.next_u64() % 2 == 0 { num } else { -num };
+                let exp = (rng.next_u64() % 2400) as i64 - 1200;
+                assert_eq!(
+                    nearest_by(num, &div, exp).to_bits(),
+                    nearest(num, d, exp).to_bits(),
+                    "{num} 2^{exp} / {d}"
+                );
+            }
+        }
+        // Midpoints whose remainder alone breaks the tie, through the oracle.
+        for d in [
+            (1u64 << 63) - 25,
+            3 << 61 | 1,
+            1_000_000_007 << 32 | 5,
+            12_345,
+        ] {
+            let div = Divisor::new(d);
+            for k in 0..20i128 {
+                let mid = (1i128 << 53) + 2 * k + 1;
+                let base = (mid * i128::from(d)) << 9;
+                for num in [base + 1, base - 1, base, -base - 1] {
+                    let want = oracle(num, d, -53 - 9);
+                    assert_eq!(nearest_by(num, &div, -62).to_bits(), want.to_bits());
+                }
+            }
+        }
     }
 
     #[test]
