@@ -47,8 +47,8 @@ use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{Signed, ToPrimitive, Zero};
 
-use crate::cluster::{runs, Cluster};
-use crate::fast::kernel::{pava_words, size_bits, Run};
+use crate::cluster::Cluster;
+use crate::fast::kernel::{i128_clusters, pava_words, size_bits, Run};
 use crate::fast::stream::Nearest;
 use crate::state::State;
 use round::{Divisor, Split};
@@ -394,26 +394,7 @@ impl DyadicBlocks<'_> {
     /// The contact clusters of `x(t)` (`df:Omega-micro`): runs of blocks
     /// with equal `x̃` (cross-multiplied sums, exact by the kernel's bound).
     pub fn clusters(&self) -> Vec<Cluster> {
-        let blocks = runs(self.runs.len(), |j| {
-            let (a, b) = (&self.runs[j], &self.runs[j + 1]);
-            a.sy.wrapping_mul(i128::from(b.k)) == b.sy.wrapping_mul(i128::from(a.k))
-        });
-        let mut first = 0usize;
-        blocks
-            .into_iter()
-            .map(|c| {
-                let size: u64 = self.runs[c.first..c.first + c.size]
-                    .iter()
-                    .map(|r| r.k)
-                    .sum();
-                let start = first;
-                first += size as usize;
-                Cluster {
-                    first: start,
-                    size: size as usize,
-                }
-            })
-            .collect()
+        i128_clusters(&self.runs)
     }
 }
 

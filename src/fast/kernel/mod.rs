@@ -204,6 +204,30 @@ pub(crate) struct Run<W, V = W> {
     pub(crate) su: V,
 }
 
+/// The contact clusters of `x(t)` (`df:Omega-micro`) from `i128` block
+/// sums: runs of adjacent blocks with equal `x̃ = ΣY/k`, compared by
+/// cross-multiplication. Exact under the bound the callers proved before
+/// their PAVA (`|ΣY|·k` fits `i128`), so the wrapping products never wrap.
+pub(crate) fn i128_clusters(blocks: &[Run<i128>]) -> Vec<Cluster> {
+    let equal = runs(blocks.len(), |j| {
+        let (a, b) = (&blocks[j], &blocks[j + 1]);
+        a.sy.wrapping_mul(i128::from(b.k)) == b.sy.wrapping_mul(i128::from(a.k))
+    });
+    let mut first = 0usize;
+    equal
+        .into_iter()
+        .map(|c| {
+            let size: u64 = blocks[c.first..c.first + c.size].iter().map(|r| r.k).sum();
+            let start = first;
+            first += size as usize;
+            Cluster {
+                first: start,
+                size: size as usize,
+            }
+        })
+        .collect()
+}
+
 /// The block sums in the width the loop ran on.
 #[derive(Debug, Clone)]
 pub(crate) enum Sums {

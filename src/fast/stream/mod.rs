@@ -32,10 +32,10 @@ use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{Signed, ToPrimitive, Zero};
 
-use crate::cluster::{runs, Cluster};
+use crate::cluster::Cluster;
 use crate::columns::{f64_small, read_csv_small, read_npy_small, Small};
 use crate::fast::int::gcd;
-use crate::fast::kernel::{pava_words, size_bits, Run};
+use crate::fast::kernel::{i128_clusters, pava_words, size_bits, Run};
 use crate::fast::scaling::{scale_pairs, small_word};
 use crate::scene::{column_scene, inline_scene, MAX_NUMBER_BITS, MAX_SCENE_BYTES};
 
@@ -591,26 +591,7 @@ impl LeanBlocks<'_> {
     /// The contact clusters of `x(t)` (`df:Omega-micro`): runs of blocks
     /// with equal `x̃` (cross-multiplied sums, exact by the kernel's bound).
     pub fn clusters(&self) -> Vec<Cluster> {
-        let blocks = runs(self.runs.len(), |j| {
-            let (a, b) = (&self.runs[j], &self.runs[j + 1]);
-            a.sy.wrapping_mul(i128::from(b.k)) == b.sy.wrapping_mul(i128::from(a.k))
-        });
-        let mut first = 0usize;
-        blocks
-            .into_iter()
-            .map(|c| {
-                let size: u64 = self.runs[c.first..c.first + c.size]
-                    .iter()
-                    .map(|r| r.k)
-                    .sum();
-                let start = first;
-                first += size as usize;
-                Cluster {
-                    first: start,
-                    size: size as usize,
-                }
-            })
-            .collect()
+        i128_clusters(&self.runs)
     }
 }
 
