@@ -501,8 +501,8 @@ pub fn json(entries: &[Entry]) -> String {
 
 /// The index convention of the ledger's texts, said once at the top of the
 /// table and of `CLAIMS.md` (issue 28 item 5: every program output indexes
-/// particles from 0). [`super::FromPaper`] turns the paper's subscripts into
-/// these indices.
+/// particles from 0). The crate-private `FromPaper` of the claims module
+/// turns the paper's subscripts into these indices.
 pub const NUMBERING: &str = "Indices: quoted statements (the `>` lines of CLAIMS.md, the `statement` fields of `--json`) keep the paper's numbering, particles 1…N and λ_i for the pair (i, i+1); everything the program writes (witnesses, violations, measured notes) indexes from 0 as `sticky run --json` does: particles x[0] … x[N−1], pair (i, i+1), λ[i] the multiplier of pair (i, i+1) (the paper's λ_{i+1}; λ[−1] = λ[N−1] = 0 at the ends), x[−1] the artificial particle of section 3 (the paper's x_0). A formula with a symbolic i (x_i, λ_{i−1}) is in the paper's notation, and a text that gives a paper index says \"paper's numbering\".";
 
 /// The ledger as a Markdown document (`CLAIMS.md`). It contains no
