@@ -20,6 +20,7 @@ use std::fmt;
 use num_rational::BigRational;
 use num_traits::{One, Signed, Zero};
 
+use crate::checked::{exactly, CheckedRatio};
 use crate::contact::Impulse;
 use crate::error::Error;
 use crate::fast::engine::{ExactEngine, GenericEvents, GenericProjection, Prepared, ENGINES};
@@ -247,19 +248,14 @@ pub fn check_similar(
     similarity: &Similarity,
     limit: Option<usize>,
 ) -> Result<Trajectory<BigRational>, Mismatch> {
-    let history = Trajectory::new(data.clone());
-    let times = probe_times(&history, limit);
-    let oracle = oracle_states(data, &times);
-    let generic: [&dyn ExactEngine; 1] = [&GenericEvents];
-    compare(
-        &generic,
-        data,
-        &times,
-        &oracle,
-        &|| &history,
-        HistoryStates::Unchecked,
-        &Similarity::identity(),
-    )?;
+    let Oracles {
+        history,
+        times,
+        states: oracle,
+    } = match word_oracles(data, limit) {
+        Some(oracles) => oracles?,
+        None => big_oracles(data, limit)?,
+    };
     let fast: Vec<&dyn ExactEngine> = ENGINES
         .iter()
         .copied()
@@ -288,6 +284,104 @@ pub fn check_similar(
         )?;
     }
     Ok(history)
+}
+
+/// The oracles of [`check_similar`] on the small data: the generic event
+/// merge's history, the probe times, and the generic projection's states
+/// there (already compared with the history's states).
+struct Oracles {
+    history: Trajectory<BigRational>,
+    times: Vec<BigRational>,
+    states: Vec<Result<State<BigRational>, Error>>,
+}
+
+/// The oracles over `BigRational`: the generic event merge checked against
+/// the generic projection at the probe times.
+fn big_oracles(data: &InitialData<BigRational>, limit: Option<usize>) -> Result<Oracles, Mismatch> {
+    let history = Trajectory::new(data.clone());
+    let times = probe_times(&history, limit);
+    let states = oracle_states(data, &times);
+    let generic: [&dyn ExactEngine; 1] = [&GenericEvents];
+    compare(
+        &generic,
+        data,
+        &times,
+        &states,
+        &|| &history,
+        HistoryStates::Unchecked,
+        &Similarity::identity(),
+    )?;
+    Ok(Oracles {
+        history,
+        times,
+        states,
+    })
+}
+
+/// [`big_oracles`] computed by the same generic code on machine words
+/// ([`CheckedRatio`]: every operation checked), then widened: `None` when
+/// a value does not fit or an operation overflows — then the caller
+/// computes over `BigRational`. The small decoded data of the `kernels`
+/// fuzz target always fit; `BigRational`'s gcds under the fuzzer's
+/// comparison tracing were most of an input's time.
+fn word_oracles(
+    data: &InitialData<BigRational>,
+    limit: Option<usize>,
+) -> Option<Result<Oracles, Mismatch>> {
+    let (history, times, states, events) = exactly(|| {
+        let words = data.convert::<CheckedRatio>()?.ok()?;
+        let history = Trajectory::new(words.clone());
+        let times = probe_times(&history, limit);
+        let states: Vec<_> = times
+            .iter()
+            .map(|t| projection::state_at(&words, t))
+            .collect();
+        let events: Vec<_> = times.iter().map(|t| history.at(t)).collect();
+        Some((history, times, states, events))
+    })??;
+    let big = |v: &CheckedRatio| v.to_big();
+    let state = |s: Result<State<CheckedRatio>, Error>| {
+        s.map(|s| State {
+            t: big(&s.t),
+            positions: s.positions.iter().map(big).collect(),
+            velocities: s.velocities.iter().map(big).collect(),
+            multipliers: s.multipliers.iter().map(big).collect(),
+            clusters: s.clusters,
+        })
+    };
+    let times: Vec<BigRational> = times.iter().map(big).collect();
+    let states: Vec<_> = states.into_iter().map(state).collect();
+    for ((t, want), got) in times.iter().zip(&states).zip(events.into_iter().map(state)) {
+        if let Some(what) = state_check(want, got, &Similarity::identity()) {
+            return Some(Err(Mismatch {
+                engine: GenericEvents.name(),
+                t: Some(t.clone()),
+                what,
+            }));
+        }
+    }
+    let impulses = history
+        .impulses()
+        .iter()
+        .map(|i| Impulse {
+            t: big(&i.t),
+            cluster: i.cluster,
+            parts: i.parts.clone(),
+            part_velocities: i.part_velocities.iter().map(big).collect(),
+            velocity: big(&i.velocity),
+            n: i.n,
+        })
+        .collect();
+    let join_times = history
+        .join_times()
+        .iter()
+        .map(|j| j.as_ref().map(big))
+        .collect();
+    Some(Ok(Oracles {
+        history: Trajectory::from_parts(data.clone(), join_times, impulses),
+        times,
+        states,
+    }))
 }
 
 /// The generic projection's states of `data` at `times`: the oracle.
@@ -376,13 +470,7 @@ fn compare<'h>(
             }
         }
         for (t, want) in times.iter().zip(oracle) {
-            let what = match (want, prepared.state_at(t)) {
-                (Ok(want), Ok(got)) => similarity.state_diff(want, &got),
-                (Err(_), Err(_)) => None,
-                (Ok(_), Err(e)) => Some(format!("an error ({e}), the oracle answers")),
-                (Err(e), Ok(_)) => Some(format!("an answer, the oracle fails ({e})")),
-            };
-            if let Some(what) = what {
+            if let Some(what) = state_check(want, prepared.state_at(t), similarity) {
                 return Err(fail(Some(t), what));
             }
         }
@@ -391,6 +479,21 @@ fn compare<'h>(
         }
     }
     Ok(())
+}
+
+/// How an engine's answer `got` differs from the image of the oracle's
+/// answer `want` (`None`: it does not).
+fn state_check(
+    want: &Result<State<BigRational>, Error>,
+    got: Result<State<BigRational>, Error>,
+    similarity: &Similarity,
+) -> Option<String> {
+    match (want, got) {
+        (Ok(want), Ok(got)) => similarity.state_diff(want, &got),
+        (Err(_), Err(_)) => None,
+        (Ok(_), Err(e)) => Some(format!("an error ({e}), the oracle answers")),
+        (Err(e), Ok(_)) => Some(format!("an answer, the oracle fails ({e})")),
+    }
 }
 
 /// The generic history already computed, answering as [`GenericEvents`].
@@ -621,6 +724,48 @@ mod tests {
                 panic!("case {k}: {m}");
             }
         }
+    }
+
+    /// The machine-word oracles answer on the `kernels` target's small
+    /// data, exactly what the `BigRational` oracles answer.
+    #[test]
+    fn word_oracles_equal_big_oracles_on_small_data() {
+        let mut rng = SplitMix64::new(43);
+        for k in 0..80 {
+            let data = initial_data(
+                &rng.bytes(80),
+                Limits {
+                    max_n: 1 + k % 12,
+                    max_den: 8,
+                    max_speed: 16,
+                },
+            );
+            let words = word_oracles(&data, Some(3))
+                .expect("small data fit machine words")
+                .unwrap();
+            let big = big_oracles(&data, Some(3)).unwrap();
+            assert_eq!(history_diff(&big.history, &words.history), None, "case {k}");
+            assert_eq!(big.times, words.times, "case {k}");
+            assert_eq!(big.states, words.states, "case {k}");
+        }
+    }
+
+    /// Data whose words overflow (denominators near 2^62, whose sums do
+    /// not fit) get no machine-word answer; the battery then computes over
+    /// `BigRational` and still passes.
+    #[test]
+    fn words_that_overflow_fall_back_to_big_rationals() {
+        let d = (1_i64 << 61) + 1;
+        let wide = |n: i64| BigRational::new(n.into(), d.into());
+        let data = InitialData::new(
+            q(1, 1024),
+            vec![q(0, 1), q(1, 1) + wide(1), q(3, 1)],
+            vec![q(1, 1), wide(3), q(-1, 3)],
+        )
+        .unwrap();
+        assert!(word_oracles(&data, Some(3)).is_none());
+        let history = check_similar(&data, &Similarity::identity(), Some(3)).unwrap();
+        assert!(!history.impulses().is_empty());
     }
 
     /// The battery can fail: a contact at `t = 0` that separates is two
