@@ -35,7 +35,7 @@ use crate::error::Error;
 use crate::gcd;
 use crate::initial::InitialData;
 use crate::progress::Progress;
-use crate::projection::{pools, shifted_free_flight};
+use crate::projection::pools;
 use crate::state::State;
 
 /// Steps (particles) between two polls of [`Progress::cancelled`] and two
@@ -113,6 +113,24 @@ fn poll(progress: &dyn Progress, step: usize) -> Result<(), Error> {
     Ok(())
 }
 
+/// The translated free flight `ỹ_i = x̃⁰_i + t u⁰_i`, the values of
+/// [`crate::projection::shifted_free_flight`], polling `progress`: on
+/// hostile denominators each term is a big reduction, and a long state
+/// must stop on Ctrl-C here too.
+fn free_flight(
+    data: &InitialData<BigRational>,
+    t: &BigRational,
+    progress: &dyn Progress,
+) -> Result<Vec<BigRational>, Error> {
+    let shifted = data.shifted_positions();
+    let mut y = Vec::with_capacity(shifted.len());
+    for (i, (x, u)) in shifted.into_iter().zip(data.velocities()).enumerate() {
+        poll(progress, i)?;
+        y.push(x + &(t.clone() * u));
+    }
+    Ok(y)
+}
+
 /// The lexicographic PAVA on `(ỹ_i, u⁰_i)` (module documentation).
 fn pava(
     y: &[BigRational],
@@ -120,6 +138,9 @@ fn pava(
     progress: &dyn Progress,
 ) -> Result<Vec<Block>, Error> {
     let mut stack: Vec<Block> = Vec::new();
+    // One particle can pool many blocks, each pooling a big addition: the
+    // pools are polled too (without counting them as steps done).
+    let mut pooled = 0usize;
     for (i, (yi, ui)) in y.iter().zip(u0).enumerate() {
         poll(progress, i)?;
         let mut cur = Block {
@@ -136,6 +157,12 @@ fn pava(
             if !joins {
                 stack.push(top);
                 break;
+            }
+            pooled += 1;
+            if pooled % POLL_STEPS == 0 && progress.cancelled() {
+                return Err(Error::Interrupted {
+                    during: "the state's computation",
+                });
             }
             cur = Block {
                 first: top.first,
@@ -225,8 +252,9 @@ pub fn state_at(
     }
     let n = data.n();
     let u0 = data.velocities();
+    progress.stage("free flight", Some(n as u64));
+    let y = free_flight(data, t, progress)?;
     progress.stage("projection", Some(n as u64));
-    let y = shifted_free_flight(data, t);
     let blocks = pava(&y, u0, progress)?;
     progress.stage("positions, velocities, multipliers", Some(n as u64));
     let two_r = data.two_r();
@@ -353,5 +381,73 @@ mod tests {
             Err(Error::Interrupted { .. })
         ));
         assert!(state_at(&data, &q(-1, 1), &Silent).is_err());
+    }
+
+    /// The free flight polls too: a watcher that asks to stop at once
+    /// stops the work before the PAVA's stage begins.
+    #[test]
+    fn stops_during_the_free_flight() {
+        struct Stop(std::sync::Mutex<Vec<String>>);
+        impl Progress for Stop {
+            fn stage(&self, name: &str, _total: Option<u64>) {
+                self.0.lock().unwrap().push(name.to_string());
+            }
+            fn cancelled(&self) -> bool {
+                true
+            }
+        }
+        let n = 3 * POLL_STEPS as i64;
+        let data = InitialData::new(
+            q(1, 2),
+            (0..n).map(|i| q(3 * i, 1)).collect(),
+            (0..n).map(|i| q(1, i + 1)).collect(),
+        )
+        .unwrap();
+        let stop = Stop(Default::default());
+        assert!(matches!(
+            state_at(&data, &q(5, 1), &stop),
+            Err(Error::Interrupted { .. })
+        ));
+        assert_eq!(stop.0.lock().unwrap().as_slice(), ["free flight"]);
+    }
+
+    /// The pools are polled too: the last particle below all the others
+    /// pools every block in one step, and a watcher that asks to stop only
+    /// after the PAVA's two step polls is heard inside those pools.
+    #[test]
+    fn stops_inside_the_pools_of_one_step() {
+        struct Late {
+            stage: std::sync::Mutex<String>,
+            calls: std::sync::atomic::AtomicUsize,
+        }
+        impl Progress for Late {
+            fn stage(&self, name: &str, _total: Option<u64>) {
+                *self.stage.lock().unwrap() = name.to_string();
+            }
+            fn cancelled(&self) -> bool {
+                if *self.stage.lock().unwrap() != "projection" {
+                    return false;
+                }
+                let calls = self.calls.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
+                calls >= 2
+            }
+        }
+        let n = 3 * POLL_STEPS as i64;
+        let mut x: Vec<BigRational> = (0..n - 1).map(|i| q(3 * i, 1)).collect();
+        x.push(q(3 * n, 1));
+        let mut u = vec![q(0, 1); n as usize - 1];
+        u.push(q(-1000 * n, 1));
+        let data = InitialData::new(q(1, 2), x, u).unwrap();
+        let late = Late {
+            stage: Default::default(),
+            calls: Default::default(),
+        };
+        assert!(matches!(
+            state_at(&data, &q(1, 1), &late),
+            Err(Error::Interrupted { .. })
+        ));
+        // Without the watcher the same state is one block.
+        let s = state_at(&data, &q(1, 1), &Silent).unwrap();
+        assert_eq!(s.clusters.len(), 1);
     }
 }
