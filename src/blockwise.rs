@@ -360,6 +360,17 @@ mod tests {
         assert_eq!(s.clusters, vec![Cluster { first: 0, size: 2 }]);
     }
 
+    /// `n` particles `x_i = 3i`, `r = 1/2`, `u_i = 1/(i + 1)`: the hostile
+    /// scene's denominators 1 … n, without its alternating signs.
+    fn spread_denominators(n: i64) -> InitialData<BigRational> {
+        InitialData::new(
+            q(1, 2),
+            (0..n).map(|i| q(3 * i, 1)).collect(),
+            (0..n).map(|i| q(1, i + 1)).collect(),
+        )
+        .unwrap()
+    }
+
     /// A watcher that has asked to stop gets [`Error::Interrupted`].
     #[test]
     fn stops_when_cancelled() {
@@ -369,13 +380,7 @@ mod tests {
                 true
             }
         }
-        let n = 3 * POLL_STEPS as i64;
-        let data = InitialData::new(
-            q(1, 2),
-            (0..n).map(|i| q(3 * i, 1)).collect(),
-            (0..n).map(|i| q(1, i + 1)).collect(),
-        )
-        .unwrap();
+        let data = spread_denominators(3 * POLL_STEPS as i64);
         assert!(matches!(
             state_at(&data, &q(5, 1), &Stop),
             Err(Error::Interrupted { .. })
@@ -396,13 +401,7 @@ mod tests {
                 true
             }
         }
-        let n = 3 * POLL_STEPS as i64;
-        let data = InitialData::new(
-            q(1, 2),
-            (0..n).map(|i| q(3 * i, 1)).collect(),
-            (0..n).map(|i| q(1, i + 1)).collect(),
-        )
-        .unwrap();
+        let data = spread_denominators(3 * POLL_STEPS as i64);
         let stop = Stop(Default::default());
         assert!(matches!(
             state_at(&data, &q(5, 1), &stop),

@@ -11,6 +11,42 @@
 //! compared with half a unit of the last place, and it is exactly half only
 //! when the dropped bits of `q` are `10…0` and `ρ = 0`.
 
+/// A numerator scaled for one machine division by `den`: `a2 = ⌊a 2^s⌋`.
+struct Normalised {
+    /// `⌊a 2^s⌋`, of `63 + bits(den)` bits.
+    a2: u128,
+    /// Bits of `a` shifted out (`s < 0`) were not all zero.
+    lost: bool,
+    /// The scale `s`.
+    s: i64,
+}
+
+/// Scales `a > 0` to `63 + bits(den)` bits, so that the quotient
+/// `q = ⌊a2/den⌋` lies in `[2^62, 2^64)` (one machine division). For
+/// `s < 0` the bits of `a` shifted out are below `q`'s last unit: `a/den`
+/// is `(q + ρ) 2^(−s)` with `ρ > 0` exactly when the remainder or those
+/// bits are not zero.
+fn normalise(a: u128, den: u64) -> Normalised {
+    debug_assert!(a > 0 && den > 0);
+    let bits_d = 64 - i64::from(den.leading_zeros());
+    let bits_a = 128 - i64::from(a.leading_zeros());
+    let s = 63 + bits_d - bits_a;
+    if s >= 0 {
+        Normalised {
+            a2: a << s,
+            lost: false,
+            s,
+        }
+    } else {
+        let r = (-s) as u32;
+        Normalised {
+            a2: a >> r,
+            lost: a & ((1u128 << r) - 1) != 0,
+            s,
+        }
+    }
+}
+
 /// The nearest double of `num · 2^exp / den` (round to nearest, ties to
 /// even; `±∞` when the value rounds beyond the largest finite double, `0.0`
 /// for `num = 0`). `den` must be positive.
@@ -30,21 +66,8 @@ pub fn nearest(num: i128, den: u64, exp: i64) -> f64 {
             exp - i64::from(s) - i64::from(den.trailing_zeros()),
         )
     } else {
-        // a' = ⌊a 2^s⌋ with 63 + bits(den) bits: the quotient q = ⌊a'/den⌋
-        // lies in [2^62, 2^64) (one machine division), and for s < 0 the
-        // bits of a shifted out are below q's last unit: a/den is
-        // (q + ρ) 2^(−s) with ρ > 0 exactly when the remainder or those
-        // bits are not zero.
         let d = u128::from(den);
-        let bits_d = 64 - i64::from(den.leading_zeros());
-        let bits_a = 128 - i64::from(a.leading_zeros());
-        let s = 63 + bits_d - bits_a;
-        let (a2, lost) = if s >= 0 {
-            (a << s, false)
-        } else {
-            let r = (-s) as u32;
-            (a >> r, a & ((1u128 << r) - 1) != 0)
-        };
+        let Normalised { a2, lost, s } = normalise(a, den);
         let q = a2 / d;
         round_scaled(q, lost || a2 != q.wrapping_mul(d), exp - s)
     };
@@ -128,16 +151,7 @@ pub fn nearest_by(num: i128, den: &Divisor, exp: i64) -> f64 {
         return nearest(num, d, exp);
     }
     let a = num.unsigned_abs();
-    // As in `nearest`: a' = ⌊a 2^s⌋ with 63 + bits(d) bits, below d 2^64.
-    let bits_d = 64 - i64::from(d.leading_zeros());
-    let bits_a = 128 - i64::from(a.leading_zeros());
-    let s = 63 + bits_d - bits_a;
-    let (a2, lost) = if s >= 0 {
-        (a << s, false)
-    } else {
-        let r = (-s) as u32;
-        (a >> r, a & ((1u128 << r) - 1) != 0)
-    };
+    let Normalised { a2, lost, s } = normalise(a, d);
     let (q, rem) = den.div_rem(a2);
     let magnitude = round_scaled(u128::from(q), lost || rem != 0, exp - s);
     if num < 0 {
