@@ -35,11 +35,11 @@ type Q = BigRational;
 const NO_MUTANT: &[(&str, &str)] = &[
     ("thm:main#sampling-mass", "reads no engine output: a property of the quantile sampling of fixed data (x⁰_{i+1} − x⁰_i ≥ 1/N from ρ⁰ ≤ 1); a broken sampling is caught by the exact quantiles written in src/quantile.rs's tests (x0(9/16) = 13/16, …)"),
     ("thm:main#sampling-contacts (corrected)", "reads no engine output: the printed form fails (counterexample) and the corrected one reads the same fixed samples with the one-sided limits of U⁰; a broken U⁰ is caught by the exact values in src/quantile.rs's tests (u0(9/16) = −1, …)"),
-    ("app:uniqueness#free-collision", "reads no engine output: a closed formula of Appendix C (t* = η/2) on the exact two-block data; a broken formula is caught by the exact X^f = w + η/2 it is compared with, and by tests/limit.rs::appendix_c_as_printed"),
-    ("app:uniqueness#sticky-pressure (corrected)", "reads no engine output: the printed P¹ fails (counterexample); the corrected weight is compared with the continuum Λ's jump by app:uniqueness#sticky-pressure-is-continuum, whose mutant is above, and with every eq:PDE-Lagr-2 finding in tests/limit.rs::appendix_c_as_printed"),
-    ("app:uniqueness#rebound-pressure", "reads no engine output: a closed formula of Appendix C (no engine computes the rebound); tests/limit.rs::appendix_c_as_printed asserts each of its eq:PDE-Lagr-2 findings for five η"),
-    ("app:uniqueness#projection-selects-sticky", "reads no engine output: two closed-form continuations of Appendix C against the projection principle; tests/limit.rs::appendix_c_as_printed asserts the rebound fails eq:velocity-projection and eq:Lagr-1 for five η"),
-    ("app:uniqueness#rebound-oleinik", "reads no engine output: a closed formula of Appendix C; tests/limit.rs::appendix_c_as_printed asserts eq:Oleinik-Lagr holds for the rebound exactly when η < 1 (five η)"),
+    ("app:uniqueness#free-collision", "reads no engine output: a closed formula of Appendix C (t* = η/2) on the exact two-block data; a broken formula is caught by the exact X^f = w + η/2 it is compared with, and by tests/limit/appendix_c.rs::appendix_c_as_printed"),
+    ("app:uniqueness#sticky-pressure (corrected)", "reads no engine output: the printed P¹ fails (counterexample); the corrected weight is compared with the continuum Λ's jump by app:uniqueness#sticky-pressure-is-continuum, whose mutant is above, and with every eq:PDE-Lagr-2 finding in tests/limit/appendix_c.rs::appendix_c_as_printed"),
+    ("app:uniqueness#rebound-pressure", "reads no engine output: a closed formula of Appendix C (no engine computes the rebound); tests/limit/appendix_c.rs::appendix_c_as_printed asserts each of its eq:PDE-Lagr-2 findings for five η"),
+    ("app:uniqueness#projection-selects-sticky", "reads no engine output: two closed-form continuations of Appendix C against the projection principle; tests/limit/appendix_c.rs::appendix_c_as_printed asserts the rebound fails eq:velocity-projection and eq:Lagr-1 for five η"),
+    ("app:uniqueness#rebound-oleinik", "reads no engine output: a closed formula of Appendix C; tests/limit/appendix_c.rs::appendix_c_as_printed asserts eq:Oleinik-Lagr holds for the rebound exactly when η < 1 (five η)"),
 ];
 
 /// Claims reported as identities (their checker passes for any consistent
