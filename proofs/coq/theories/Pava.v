@@ -92,20 +92,26 @@ Definition Rep (seg : list Q) (b : block) : Prop :=
   seg <> [] /\ bsum b == qsum seg /\ Z.of_nat (length seg) = Z.pos (bsize b) /\
   Pooled seg.
 
-(** Adjacent blocks of a stack (top first) have non-decreasing means. *)
-Fixpoint Ordered (stack : list block) : Prop :=
+(** Adjacent blocks of a stack (top first) are in the order [le]:
+    [le below top]. *)
+Fixpoint OrderedBy (le : block -> block -> Prop) (stack : list block) : Prop :=
   match stack with
-  | top :: ((below :: _) as rest) =>
-      bsum below * psize top <= bsum top * psize below /\ Ordered rest
+  | top :: ((below :: _) as rest) => le below top /\ OrderedBy le rest
   | _ => True
   end.
 
 (** The same, left to right. *)
-Fixpoint Chain (bs : list block) : Prop :=
+Fixpoint ChainBy (le : block -> block -> Prop) (bs : list block) : Prop :=
   match bs with
-  | b1 :: ((b2 :: _) as rest) => bsum b1 * psize b2 <= bsum b2 * psize b1 /\ Chain rest
+  | b1 :: ((b2 :: _) as rest) => le b1 b2 /\ ChainBy le rest
   | _ => True
   end.
+
+(** PAVA's order on blocks: non-decreasing means, cross-multiplied. *)
+Definition MeanLe (a b : block) : Prop := bsum a * psize b <= bsum b * psize a.
+
+Notation Ordered := (OrderedBy MeanLe).
+Notation Chain := (ChainBy MeanLe).
 
 Lemma psize_pos (b : block) : 0 < psize b.
 Proof. unfold psize, Qlt. simpl. lia. Qed.
@@ -212,65 +218,6 @@ Proof.
       pose proof (qn_nonneg j). lra.
 Qed.
 
-(** Pushing a block on a stack keeps the invariant; the segments of the new
-    stack spell the old ones followed by the new block's. *)
-Lemma push_inv (stack : list block) (segs : list (list Q)) (cur : block) (seg : list Q) :
-  Forall2 Rep segs stack -> Ordered stack -> Rep seg cur ->
-  exists segs', Forall2 Rep segs' (push stack cur) /\ Ordered (push stack cur) /\
-    concat (rev segs') = concat (rev segs) ++ seg.
-Proof.
-  revert segs cur seg.
-  induction stack as [|top rest IH]; intros segs cur seg Hf Ho Hr.
-  - inversion Hf; subst. exists [seg]. simpl.
-    split; [constructor; [exact Hr|constructor]|split; [exact I|apply app_nil_r]].
-  - inversion Hf as [|st b srest rest' Hst Hsrest]; subst. simpl.
-    destruct (pools top cur) eqn:Hp.
-    + assert (Ho' : Ordered rest) by (destruct rest; simpl in *; tauto).
-      destruct (IH srest (merge top cur) (st ++ seg) Hsrest Ho'
-                  (rep_merge _ _ _ _ Hst Hr Hp)) as (segs' & H1 & H2 & H3).
-      exists segs'. split; [exact H1|split; [exact H2|]].
-      rewrite H3. simpl. rewrite concat_app. simpl. rewrite app_nil_r, app_assoc. reflexivity.
-    + exists (seg :: st :: srest). split; [|split].
-      * constructor; [exact Hr|constructor; assumption].
-      * simpl. split; [apply pools_false; exact Hp|exact Ho].
-      * simpl. rewrite !concat_app. simpl. rewrite !app_nil_r. reflexivity.
-Qed.
-
-Lemma pava_stack_inv (stack : list block) (segs : list (list Q)) (es : list (Q * Q)) :
-  Forall2 Rep segs stack -> Ordered stack ->
-  exists segs', Forall2 Rep segs' (pava_stack stack es) /\ Ordered (pava_stack stack es) /\
-    concat (rev segs') = concat (rev segs) ++ map fst es.
-Proof.
-  revert stack segs. induction es as [|e es IH]; intros stack segs Hf Ho; simpl.
-  - exists segs. rewrite app_nil_r. auto.
-  - destruct (push_inv stack segs (single e) [fst e] Hf Ho (rep_single e))
-      as (segs1 & H1 & H2 & H3).
-    destruct (IH _ _ H1 H2) as (segs2 & G1 & G2 & G3).
-    exists segs2. repeat split; auto. rewrite G3, H3, <- app_assoc. reflexivity.
-Qed.
-
-Lemma chain_snoc (l : list block) (a b : block) :
-  Chain (l ++ [a]) -> bsum a * psize b <= bsum b * psize a -> Chain (l ++ [a; b]).
-Proof.
-  induction l as [|x l IH]; intros Hc Hab.
-  - simpl. auto.
-  - destruct l as [|y l].
-    + simpl in *. tauto.
-    + simpl in Hc |- *. destruct Hc as [H1 H2]. split; [exact H1|].
-      apply IH; assumption.
-Qed.
-
-Lemma ordered_chain (stack : list block) : Ordered stack -> Chain (rev stack).
-Proof.
-  induction stack as [|top rest IH]; intro Ho.
-  - exact I.
-  - destruct rest as [|below rest].
-    + exact I.
-    + simpl in Ho. destruct Ho as [H1 H2].
-      specialize (IH H2). simpl in IH |- *.
-      rewrite <- app_assoc. simpl. apply chain_snoc; assumption.
-Qed.
-
 Lemma forall2_rev {A B} (R : A -> B -> Prop) (l1 : list A) (l2 : list B) :
   Forall2 R l1 l2 -> Forall2 R (rev l1) (rev l2).
 Proof.
@@ -279,18 +226,104 @@ Proof.
   - apply Forall2_app; [assumption|constructor; [assumption|constructor]].
 Qed.
 
+(** ** The stack's invariant, for any reading of a block
+
+    [R seg b] reads block [b] as the segment [seg] of the input, and [le] is
+    the order that two adjacent blocks left unpooled keep. When pooling
+    keeps [R] and refusing to pool gives [le], the stack stays ordered and
+    the final blocks spell the input. Used below for the means ([Rep],
+    [MeanLe]) and in RightDerivative.v for the mean pairs ([Rep2], [LexLe]). *)
+Section StackInvariant.
+  Context {A : Type} (R : list A -> block -> Prop) (le : block -> block -> Prop).
+  Hypothesis R_merge : forall sa sb a b,
+    R sa a -> R sb b -> pools a b = true -> R (sa ++ sb) (merge a b).
+  Hypothesis le_unpooled : forall a b, pools a b = false -> le a b.
+
+  (** Pushing a block on a stack keeps the invariant; the segments of the
+      new stack spell the old ones followed by the new block's. *)
+  Lemma push_invariant (stack : list block) (segs : list (list A)) (cur : block)
+    (seg : list A) :
+    Forall2 R segs stack -> OrderedBy le stack -> R seg cur ->
+    exists segs', Forall2 R segs' (push stack cur) /\ OrderedBy le (push stack cur) /\
+      concat (rev segs') = concat (rev segs) ++ seg.
+  Proof.
+    revert segs cur seg.
+    induction stack as [|top rest IH]; intros segs cur seg Hf Ho Hr.
+    - inversion Hf; subst. exists [seg]. simpl.
+      split; [constructor; [exact Hr|constructor]|split; [exact I|apply app_nil_r]].
+    - inversion Hf as [|st b srest rest' Hst Hsrest]; subst. simpl.
+      destruct (pools top cur) eqn:Hp.
+      + assert (Ho' : OrderedBy le rest) by (destruct rest; simpl in *; tauto).
+        destruct (IH srest (merge top cur) (st ++ seg) Hsrest Ho'
+                    (R_merge _ _ _ _ Hst Hr Hp)) as (segs' & H1 & H2 & H3).
+        exists segs'. split; [exact H1|split; [exact H2|]].
+        rewrite H3. simpl. rewrite concat_app. simpl. rewrite app_nil_r, app_assoc. reflexivity.
+      + exists (seg :: st :: srest). split; [|split].
+        * constructor; [exact Hr|constructor; assumption].
+        * simpl. split; [apply le_unpooled; exact Hp|exact Ho].
+        * simpl. rewrite !concat_app. simpl. rewrite !app_nil_r. reflexivity.
+  Qed.
+
+  Lemma chain_snoc (l : list block) (a b : block) :
+    ChainBy le (l ++ [a]) -> le a b -> ChainBy le (l ++ [a; b]).
+  Proof.
+    induction l as [|x l IH]; intros Hc Hab.
+    - simpl. auto.
+    - destruct l as [|y l].
+      + simpl in *. tauto.
+      + simpl in Hc |- *. destruct Hc as [H1 H2]. split; [exact H1|].
+        apply IH; assumption.
+  Qed.
+
+  Lemma ordered_chain (stack : list block) : OrderedBy le stack -> ChainBy le (rev stack).
+  Proof.
+    induction stack as [|top rest IH]; intro Ho.
+    - exact I.
+    - destruct rest as [|below rest].
+      + exact I.
+      + simpl in Ho. destruct Ho as [H1 H2].
+        specialize (IH H2). simpl in IH |- *.
+        rewrite <- app_assoc. simpl. apply chain_snoc; assumption.
+  Qed.
+
+  (** [f e] is what the input's entry [e] contributes to a segment. *)
+  Variable f : Q * Q -> A.
+  Hypothesis R_single : forall e, R [f e] (single e).
+
+  Lemma pava_stack_invariant (stack : list block) (segs : list (list A)) (es : list (Q * Q)) :
+    Forall2 R segs stack -> OrderedBy le stack ->
+    exists segs', Forall2 R segs' (pava_stack stack es) /\
+      OrderedBy le (pava_stack stack es) /\ concat (rev segs') = concat (rev segs) ++ map f es.
+  Proof.
+    revert stack segs. induction es as [|e es IH]; intros stack segs Hf Ho; simpl.
+    - exists segs. rewrite app_nil_r. auto.
+    - destruct (push_invariant stack segs (single e) [f e] Hf Ho (R_single e))
+        as (segs1 & H1 & H2 & H3).
+      destruct (IH _ _ H1 H2) as (segs2 & G1 & G2 & G3).
+      exists segs2. split; [exact G1|split; [exact G2|]].
+      rewrite G3, H3, <- app_assoc. reflexivity.
+  Qed.
+
+  (** The blocks of PAVA read as consecutive segments spelling the input,
+      in the order [le]. *)
+  Lemma pava_blocks_invariant (es : list (Q * Q)) :
+    exists segs, Forall2 R segs (pava_blocks es) /\ ChainBy le (pava_blocks es) /\
+      concat segs = map f es.
+  Proof.
+    destruct (pava_stack_invariant [] [] es (Forall2_nil _) I) as (segs & H1 & H2 & H3).
+    exists (rev segs). unfold pava_blocks. split; [|split].
+    - apply forall2_rev. exact H1.
+    - apply ordered_chain. exact H2.
+    - rewrite H3. reflexivity.
+  Qed.
+End StackInvariant.
+
 (** The blocks of PAVA represent consecutive segments spelling the input,
     with non-decreasing means. *)
 Lemma pava_blocks_inv (es : list (Q * Q)) :
   exists segs, Forall2 Rep segs (pava_blocks es) /\ Chain (pava_blocks es) /\
     concat segs = map fst es.
-Proof.
-  destruct (pava_stack_inv [] [] es (Forall2_nil _) I) as (segs & H1 & H2 & H3).
-  exists (rev segs). unfold pava_blocks. repeat split.
-  - apply forall2_rev. exact H1.
-  - apply ordered_chain. exact H2.
-  - rewrite H3. reflexivity.
-Qed.
+Proof. exact (pava_blocks_invariant Rep MeanLe rep_merge pools_false fst rep_single es). Qed.
 
 (** ** From the invariant to the KKT conditions *)
 

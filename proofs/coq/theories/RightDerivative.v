@@ -127,17 +127,7 @@ Definition Rep2 (seg : list (Q * Q)) (b : block) : Prop :=
 Definition LexLe (a b : block) : Prop :=
   lexnn (bsum b * psize a - bsum a * psize b) (bsum_u b * psize a - bsum_u a * psize b).
 
-Fixpoint Ordered2 (stack : list block) : Prop :=
-  match stack with
-  | top :: ((below :: _) as rest) => LexLe below top /\ Ordered2 rest
-  | _ => True
-  end.
-
-Fixpoint Chain2 (bs : list block) : Prop :=
-  match bs with
-  | b1 :: ((b2 :: _) as rest) => LexLe b1 b2 /\ Chain2 rest
-  | _ => True
-  end.
+Notation Chain2 := (ChainBy LexLe).
 
 Lemma pools_true2 (a b : block) : pools a b = true -> LexLe b a.
 Proof.
@@ -226,74 +216,13 @@ Proof.
     apply merge_right2; [lra|exact HnB|lra|exact Qb|exact Hp'].
 Qed.
 
-Lemma push_inv2 (stack : list block) (segs : list (list (Q * Q))) (cur : block)
-  (seg : list (Q * Q)) :
-  Forall2 Rep2 segs stack -> Ordered2 stack -> Rep2 seg cur ->
-  exists segs', Forall2 Rep2 segs' (push stack cur) /\ Ordered2 (push stack cur) /\
-    concat (rev segs') = concat (rev segs) ++ seg.
-Proof.
-  revert segs cur seg.
-  induction stack as [|top rest IH]; intros segs cur seg Hf Ho Hr.
-  - inversion Hf; subst. exists [seg]. simpl.
-    split; [constructor; [exact Hr|constructor]|split; [exact I|apply app_nil_r]].
-  - inversion Hf as [|st b srest rest' Hst Hsrest]; subst. simpl.
-    destruct (pools top cur) eqn:Hp.
-    + assert (Ho' : Ordered2 rest) by (destruct rest; simpl in *; tauto).
-      destruct (IH srest (merge top cur) (st ++ seg) Hsrest Ho'
-                  (rep2_merge _ _ _ _ Hst Hr Hp)) as (segs' & H1 & H2 & H3).
-      exists segs'. split; [exact H1|split; [exact H2|]].
-      rewrite H3. simpl. rewrite concat_app. simpl. rewrite app_nil_r, app_assoc. reflexivity.
-    + exists (seg :: st :: srest). split; [|split].
-      * constructor; [exact Hr|constructor; assumption].
-      * simpl. split; [apply pools_false2; exact Hp|exact Ho].
-      * simpl. rewrite !concat_app. simpl. rewrite !app_nil_r. reflexivity.
-Qed.
-
-Lemma pava_stack_inv2 (stack : list block) (segs : list (list (Q * Q))) (es : list (Q * Q)) :
-  Forall2 Rep2 segs stack -> Ordered2 stack ->
-  exists segs', Forall2 Rep2 segs' (pava_stack stack es) /\
-    Ordered2 (pava_stack stack es) /\ concat (rev segs') = concat (rev segs) ++ es.
-Proof.
-  revert stack segs. induction es as [|e es IH]; intros stack segs Hf Ho; simpl.
-  - exists segs. rewrite app_nil_r. auto.
-  - destruct (push_inv2 stack segs (single e) [e] Hf Ho (rep2_single e))
-      as (segs1 & H1 & H2 & H3).
-    destruct (IH _ _ H1 H2) as (segs2 & G1 & G2 & G3).
-    exists segs2. split; [exact G1|split; [exact G2|]].
-    rewrite G3, H3, <- app_assoc. reflexivity.
-Qed.
-
-Lemma chain2_snoc (l : list block) (a b : block) :
-  Chain2 (l ++ [a]) -> LexLe a b -> Chain2 (l ++ [a; b]).
-Proof.
-  induction l as [|x l IH]; intros Hc Hab.
-  - simpl. auto.
-  - destruct l as [|y l].
-    + simpl in *. tauto.
-    + simpl in Hc |- *. destruct Hc as [H1 H2]. split; [exact H1|].
-      apply IH; assumption.
-Qed.
-
-Lemma ordered2_chain (stack : list block) : Ordered2 stack -> Chain2 (rev stack).
-Proof.
-  induction stack as [|top rest IH]; intro Ho.
-  - exact I.
-  - destruct rest as [|below rest].
-    + exact I.
-    + simpl in Ho. destruct Ho as [H1 H2].
-      specialize (IH H2). simpl in IH |- *.
-      rewrite <- app_assoc. simpl. apply chain2_snoc; assumption.
-Qed.
-
 Lemma pava_blocks_inv2 (es : list (Q * Q)) :
   exists segs, Forall2 Rep2 segs (pava_blocks es) /\ Chain2 (pava_blocks es) /\
     concat segs = es.
 Proof.
-  destruct (pava_stack_inv2 [] [] es (Forall2_nil _) I) as (segs & H1 & H2 & H3).
-  exists (rev segs). unfold pava_blocks. split; [|split].
-  - apply forall2_rev. exact H1.
-  - apply ordered2_chain. exact H2.
-  - rewrite H3. reflexivity.
+  destruct (pava_blocks_invariant Rep2 LexLe rep2_merge pools_false2 (fun e => e) rep2_single es)
+    as (segs & H1 & H2 & H3).
+  exists segs. rewrite map_id in H3. auto.
 Qed.
 
 (** ** The blocks evaluated at [y + h u] *)
@@ -370,7 +299,7 @@ Proof.
                (fun h => 0 <= (bsum b2 * psize b1 - bsum b1 * psize b2)
                               + h * (bsum_u b2 * psize b1 - bsum_u b1 * psize b2) /\
                          Chain (map (block_at h) (b2 :: bs)))).
-      * intros h [H1 H2]. cbn [map Chain]. split; [|exact H2].
+      * intros h [H1 H2]. cbn [map ChainBy]. split; [|exact H2]. unfold MeanLe.
         unfold psize in *. cbn [block_at bsum bsize]. fold (psize b1). fold (psize b2).
         fold (psize b1) in H1. fold (psize b2) in H1.
         setoid_replace ((bsum b1 + h * bsum_u b1) * psize b2)
