@@ -24,35 +24,38 @@
 //! The kernel's width bound (`b_Y + b_K ≤ 127`) holds for the sums of every
 //! contiguous range of entries, so it covers the joined blocks too.
 
-use crate::fast::kernel::{pava_words, pools, Run};
+use super::pava::pava as pava_columns;
+use crate::fast::kernel::{pools, Run};
 
 /// Below this many entries one thread does everything (a thread costs
 /// tens of microseconds to start).
 pub(crate) const PARALLEL_MIN: usize = 1 << 16;
 
-/// PAVA on the pairs `item(0) … item(n − 1)`: [`pava_words`]'s blocks,
-/// computed on the two halves by two threads when `n ≥ parallel_min`.
+/// PAVA on the pairs `(y(x_i, u_i), u_i)`: the blocks of
+/// [`crate::fast::kernel::pava_words`], computed on the two halves by two
+/// threads when `n ≥ parallel_min`.
 pub(crate) fn pava(
-    n: usize,
+    xs: &[i128],
+    us: &[i128],
     parallel_min: usize,
-    item: impl Fn(usize) -> (i128, i128) + Sync,
+    y: impl Fn(i128, i128) -> i128 + Sync,
 ) -> Vec<Run<i128>> {
+    let n = xs.len().min(us.len());
     if n < parallel_min.max(2) {
-        return pava_words(n, &item);
+        return pava_columns(xs, us, &y);
     }
     let h = n / 2;
-    let item = &item;
+    let (y, (xl, xr), (ul, ur)) = (&y, xs.split_at(h), us.split_at(h));
     let (mut left, right) = std::thread::scope(|s| {
-        let worker =
-            std::thread::Builder::new().spawn_scoped(s, move || pava_words(n - h, |i| item(h + i)));
-        let left = pava_words(h, item);
+        let worker = std::thread::Builder::new().spawn_scoped(s, move || pava_columns(xr, ur, y));
+        let left = pava_columns(xl, ul, y);
         let right = match worker {
             Ok(handle) => match handle.join() {
                 Ok(right) => right,
                 Err(panic) => std::panic::resume_unwind(panic),
             },
             // No second thread to be had: this one does the work.
-            Err(_) => pava_words(n - h, |i| item(h + i)),
+            Err(_) => pava_columns(xr, ur, y),
         };
         (left, right)
     });
@@ -154,17 +157,21 @@ pub(crate) fn fill_by_halves(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::fast::kernel::pava_words;
     use crate::generate::SplitMix64;
 
-    /// The two-thread PAVA against the one-thread one on `pairs`, split at
-    /// every point `h` the data allow (through `parallel_min`, the split is
-    /// always `n / 2`: so the pairs are also cut at every length).
+    /// The two-thread PAVA and the one-thread [`pava_columns`] against the
+    /// kernel's [`pava_words`] on `pairs` cut at every length (the split is
+    /// always at `n / 2`).
     fn same_blocks(pairs: &[(i128, i128)]) {
         for len in 1..=pairs.len() {
             let p = &pairs[..len];
             let want = pava_words(len, |i| p[i]);
-            let got = pava(len, 2, |i| p[i]);
+            let (ys, us): (Vec<i128>, Vec<i128>) = p.iter().copied().unzip();
+            let got = pava(&ys, &us, 2, |y, _| y);
             assert_eq!(got, want, "{p:?}");
+            let one = pava(&ys, &us, usize::MAX, |y, _| y);
+            assert_eq!(one, want, "one thread, {p:?}");
         }
     }
 

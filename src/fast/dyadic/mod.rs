@@ -42,6 +42,7 @@
 //! doubles, bit for bit.
 
 mod halves;
+mod pava;
 pub mod round;
 
 use std::sync::Arc;
@@ -235,15 +236,10 @@ impl Dyadic {
             // finer): `Y_i = X̃_i + U_i 2^j`, a shift for a product.
             let j = b.trailing_zeros();
             debug_assert_eq!(1i128 << j, b);
-            halves::pava(self.n(), parallel_min, |i| {
-                (xs[i].wrapping_add(us[i] << j), us[i])
-            })
+            halves::pava(xs, us, parallel_min, |x, u| x.wrapping_add(u << j))
         } else {
-            halves::pava(self.n(), parallel_min, |i| {
-                (
-                    a.wrapping_mul(xs[i]).wrapping_add(b.wrapping_mul(us[i])),
-                    us[i],
-                )
+            halves::pava(xs, us, parallel_min, |x, u| {
+                a.wrapping_mul(x).wrapping_add(b.wrapping_mul(u))
             })
         };
         Some(DyadicBlocks {
@@ -370,16 +366,25 @@ impl DyadicBlocks {
             if den_y == 1 {
                 // x_i 2^{−ey} = ⌊S/k⌋ + C i + (S mod k)/k: one division per
                 // block, none per particle (`round::nearest_plus`).
+                // Runs of values in one binade at once
+                // (`round::nearest_plus_run`), the others one by one.
                 let split = Split::new(r.sy, k);
                 let mut w = split.floor.checked_add(self.c.checked_mul(first_i)?)?;
-                for (m, x) in (0..k).zip(block.iter_mut()) {
-                    if m > 0 {
-                        w = w.checked_add(self.c)?;
+                let mut m = 0usize;
+                while m < block.len() {
+                    let mut done = round::nearest_plus_run(w, self.c, &split, ey, &mut block[m..]);
+                    if done == 0 {
+                        block[m] = match round::nearest_plus(w, &split, ey) {
+                            Some(x) => x,
+                            None => round::nearest(num_at(m as u64)?, den, ey),
+                        };
+                        done = 1;
                     }
-                    *x = match round::nearest_plus(w, &split, ey) {
-                        Some(x) => x,
-                        None => round::nearest(num_at(m)?, den, ey),
-                    };
+                    m += done;
+                    if m < block.len() {
+                        let moved = self.c.checked_mul(i128::try_from(done).ok()?)?;
+                        w = w.checked_add(moved)?;
+                    }
                 }
             } else {
                 let den = Divisor::new(den);
