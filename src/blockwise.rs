@@ -122,11 +122,17 @@ fn free_flight(
     t: &BigRational,
     progress: &dyn Progress,
 ) -> Result<Vec<BigRational>, Error> {
-    let shifted = data.shifted_positions();
-    let mut y = Vec::with_capacity(shifted.len());
-    for (i, (x, u)) in shifted.into_iter().zip(data.velocities()).enumerate() {
+    // `x̃⁰_i = x⁰_i − 2r i` term by term inside the polled loop (as
+    // [`crate::initial::shift`] computes it): on hostile data the shift
+    // alone is half a second of reductions.
+    let two_r = data.two_r();
+    let mut offset = BigRational::zero();
+    let mut y = Vec::with_capacity(data.n());
+    for (i, (x, u)) in data.positions().iter().zip(data.velocities()).enumerate() {
         poll(progress, i)?;
-        y.push(x + &(t.clone() * u));
+        let shifted = x.clone() - &offset;
+        offset += &two_r;
+        y.push(shifted + &(t.clone() * u));
     }
     Ok(y)
 }

@@ -160,7 +160,7 @@ impl Inner {
     /// ends with [`Error::Interrupted`] on Ctrl-C.
     pub fn answer(&self, t: &BigRational, stop: &dyn Progress) -> Result<Answer, Error> {
         if let Some(blocks) = self.dyadic.as_ref().and_then(|d| d.blocks_at(t)) {
-            return Answer::from_dyadic(&blocks, stop);
+            return Answer::from_dyadic(blocks, stop);
         }
         if let Some(blocks) = self.lean.as_ref().and_then(|l| l.blocks_at(t)) {
             return Ok(Answer::from_blocks(&blocks));

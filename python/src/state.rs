@@ -1,5 +1,10 @@
 //! `sticky.State`: the state at one time, as numpy arrays of the nearest
-//! doubles at once and as exact `fractions.Fraction` lists on demand.
+//! doubles and as exact `fractions.Fraction` lists on demand.
+//!
+//! On the dyadic path only the positions are rounded when the state is
+//! made (they are what a projection gives); the velocities and the
+//! multipliers are rounded from the kept blocks on first access, then
+//! cached.
 
 use std::sync::{Arc, OnceLock};
 
@@ -17,14 +22,17 @@ use sticky::{Error, Scalar};
 use crate::convert;
 use crate::scene::{py_error, Inner};
 
-/// What an engine answered at one time: the nearest doubles and the
-/// clusters, and the exact state when the engine gave it whole.
+/// What an engine answered at one time: the nearest doubles of the
+/// positions (and of the rest when they came with them), the clusters, the
+/// dyadic path's blocks to round the rest from later, and the exact state
+/// when the engine gave it whole.
 pub struct Answer {
     t: BigRational,
     positions: Vec<f64>,
-    velocities: Vec<f64>,
-    multipliers: Vec<f64>,
+    velocities: Option<Vec<f64>>,
+    multipliers: Option<Vec<f64>>,
     clusters: Vec<Cluster>,
+    blocks: Option<DyadicBlocks>,
     exact: Option<sticky::State<BigRational>>,
 }
 
@@ -70,24 +78,27 @@ impl Answer {
         Answer {
             t: b.t().clone(),
             positions: nearest.positions,
-            velocities: nearest.velocities,
-            multipliers: nearest.multipliers,
+            velocities: Some(nearest.velocities),
+            multipliers: Some(nearest.multipliers),
             clusters: b.clusters(),
+            blocks: None,
             exact: None,
         }
     }
 
-    /// The nearest doubles from the dyadic path's blocks (the exact values
+    /// The nearest doubles of the positions from the dyadic path's blocks,
+    /// which are kept for the velocities and multipliers (the exact values
     /// are computed again when asked for); when an intermediate leaves
     /// `i128`, the exact state rounded (and kept).
-    pub fn from_dyadic(b: &DyadicBlocks<'_>, stop: &dyn Progress) -> Result<Answer, Error> {
-        match b.nearest() {
-            Some(nearest) => Ok(Answer {
+    pub fn from_dyadic(b: DyadicBlocks, stop: &dyn Progress) -> Result<Answer, Error> {
+        match b.positions() {
+            Some(positions) => Ok(Answer {
                 t: b.t().clone(),
-                positions: nearest.positions,
-                velocities: nearest.velocities,
-                multipliers: nearest.multipliers,
+                positions,
+                velocities: None,
+                multipliers: None,
                 clusters: b.clusters(),
+                blocks: Some(b),
                 exact: None,
             }),
             None => Answer::from_state(b.exact_state(), stop),
@@ -113,9 +124,10 @@ impl Answer {
         Ok(Answer {
             t: s.t.clone(),
             positions: round(&s.positions)?,
-            velocities: round(&s.velocities)?,
-            multipliers: round(&s.multipliers)?,
+            velocities: Some(round(&s.velocities)?),
+            multipliers: Some(round(&s.multipliers)?),
             clusters: s.clusters.clone(),
+            blocks: None,
             exact: Some(s),
         })
     }
@@ -130,16 +142,28 @@ const ROUNDING_CHUNK: usize = 4096;
 /// (λ_1 … λ_{N-1} of the paper's eq:dyn-micro; entry i belongs to the pair
 /// (i, i+1), indices from 0) and contact clusters. `positions`,
 /// `velocities`, `multipliers` are numpy float64 arrays of the nearest
-/// doubles; `exact_positions()` and its siblings give the exact values.
+/// doubles (the velocities and multipliers computed on first access);
+/// `exact_positions()` and its siblings give the exact values.
 #[pyclass(module = "sticky", frozen)]
 pub struct State {
     scene: Arc<Inner>,
     t: BigRational,
     positions: Py<PyArray1<f64>>,
-    velocities: Py<PyArray1<f64>>,
-    multipliers: Py<PyArray1<f64>>,
+    velocities: OnceLock<Py<PyArray1<f64>>>,
+    multipliers: OnceLock<Py<PyArray1<f64>>>,
     clusters: Vec<Cluster>,
+    /// The dyadic path's blocks, for the arrays not yet computed.
+    blocks: Option<DyadicBlocks>,
     exact: OnceLock<sticky::State<BigRational>>,
+}
+
+/// Which of the arrays rounded on first access.
+#[derive(Debug, Clone, Copy)]
+enum Later {
+    /// u(t).
+    Velocities,
+    /// λ(t).
+    Multipliers,
 }
 
 impl State {
@@ -149,15 +173,56 @@ impl State {
         if let Some(s) = a.exact {
             let _ = exact.set(s);
         }
+        let array = |v: Option<Vec<f64>>| {
+            let cell = OnceLock::new();
+            if let Some(v) = v {
+                let _ = cell.set(PyArray1::from_vec(py, v).unbind());
+            }
+            cell
+        };
         Ok(State {
             scene,
             t: a.t,
             positions: PyArray1::from_vec(py, a.positions).unbind(),
-            velocities: PyArray1::from_vec(py, a.velocities).unbind(),
-            multipliers: PyArray1::from_vec(py, a.multipliers).unbind(),
+            velocities: array(a.velocities),
+            multipliers: array(a.multipliers),
             clusters: a.clusters,
+            blocks: a.blocks,
             exact,
         })
+    }
+
+    /// The array `which`, rounded on first access (GIL released) from the
+    /// kept blocks, or from the exact state when the blocks leave machine
+    /// words; cached.
+    fn later<'py>(&self, py: Python<'py>, which: Later) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let cell = match which {
+            Later::Velocities => &self.velocities,
+            Later::Multipliers => &self.multipliers,
+        };
+        if let Some(a) = cell.get() {
+            return Ok(a.bind(py).clone());
+        }
+        let blocks = &self.blocks;
+        let rounded = py.detach(|| {
+            blocks.as_ref().and_then(|b| match which {
+                Later::Velocities => b.velocities(),
+                Later::Multipliers => b.multipliers(),
+            })
+        });
+        let values = match rounded {
+            Some(v) => v,
+            None => {
+                let s = self.exact(py)?;
+                let v = match which {
+                    Later::Velocities => &s.velocities,
+                    Later::Multipliers => &s.multipliers,
+                };
+                py.detach(|| convert::nearest(v))
+            }
+        };
+        let array = PyArray1::from_vec(py, values).unbind();
+        Ok(cell.get_or_init(|| array).bind(py).clone())
     }
 
     /// The exact state (computed again on first use for the streaming
@@ -192,17 +257,18 @@ impl State {
         self.positions.bind(py).clone()
     }
 
-    /// u(t) (right derivative): numpy float64 array of nearest doubles.
+    /// u(t) (right derivative): numpy float64 array of nearest doubles
+    /// (computed on first access, then cached).
     #[getter]
-    fn velocities<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        self.velocities.bind(py).clone()
+    fn velocities<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        self.later(py, Later::Velocities)
     }
 
     /// λ(t), N - 1 values (entry i: the pair (i, i+1)): numpy float64
-    /// array of nearest doubles.
+    /// array of nearest doubles (computed on first access, then cached).
     #[getter]
-    fn multipliers<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        self.multipliers.bind(py).clone()
+    fn multipliers<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        self.later(py, Later::Multipliers)
     }
 
     /// The contact clusters of x(t), left to right, as (first, size) pairs

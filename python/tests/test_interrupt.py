@@ -99,3 +99,16 @@ def test_claims_stop_on_ctrl_c():
     # The ledger stops between two claims (the whole run takes a minute).
     left = wait_until_no_worker(20.0)
     assert workers() == 0, f"the ledger still runs {left:.1f} s after Ctrl-C"
+
+
+def test_state_on_the_general_path_stops_on_ctrl_c():
+    # The hostile scene takes neither the dyadic nor the streaming path:
+    # `blockwise::state_at`, ~2 s at this size. The signal comes early,
+    # where the work guard's lcm and the free flight's shift once ran
+    # unpolled for ~0.5 s.
+    scene = hostile(300_000)
+    delay, busy = interrupt_during(lambda: scene.state(1), after=0.1)
+    assert busy == 1, "state() had ended before the signal: the test proves nothing"
+    assert delay < 1.0, f"KeyboardInterrupt came {delay:.2f} s after SIGINT"
+    left = wait_until_no_worker(5.0)
+    assert left < 0.3, f"the worker still ran {left:.2f} s after Ctrl-C"

@@ -345,25 +345,24 @@ fn check_work_capped(
         .ok()
         .and_then(|v| v.trim().parse::<u64>().ok())
         .unwrap_or(default_cap);
-    let cost = Cost::of(data);
     let local = [GenericProjection.name(), Blockwise.name()].contains(&engine.name());
-    let words = if local {
-        cost.largest_denominator_bits
+    // The engines on local denominators need only the largest one: the
+    // running lcm of `Cost::of` (up to 2^16 bits, over a second on hostile
+    // data, and not interruptible) is computed for the others alone.
+    let (bits, cost) = if local {
+        (largest_denominator_bits(data), None)
     } else {
-        cost.common_denominator.bits()
-    }
-    .div_ceil(64);
+        let cost = Cost::of(data);
+        (cost.common_denominator.bits(), Some(cost))
+    };
+    let words = bits.div_ceil(64);
     let work = (data.n() as u64).saturating_mul(words.saturating_mul(words));
     if work <= cap {
         return Ok(());
     }
-    let what = if local {
-        format!(
-            "a largest single denominator of {} bits",
-            cost.largest_denominator_bits
-        )
-    } else {
-        format!("a common denominator of {}", cost.common_denominator)
+    let what = match cost {
+        None => format!("a largest single denominator of {bits} bits"),
+        Some(cost) => format!("a common denominator of {}", cost.common_denominator),
     };
     Err(Error::Unsupported {
         message: format!(

@@ -41,14 +41,18 @@
 //! generic projection and the doubles with the exact values' nearest
 //! doubles, bit for bit.
 
+mod halves;
+mod pava;
 pub mod round;
+
+use std::sync::Arc;
 
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{Signed, ToPrimitive, Zero};
 
 use crate::cluster::Cluster;
-use crate::fast::kernel::{i128_clusters, pava_words, size_bits, Run};
+use crate::fast::kernel::{i128_clusters, size_bits, Run};
 use crate::fast::stream::Nearest;
 use crate::state::State;
 use round::{Divisor, Split};
@@ -102,8 +106,10 @@ fn split_odd(q: &BigRational) -> Option<(u64, u64, u64)> {
 #[derive(Debug, Clone)]
 pub struct Dyadic {
     radius: BigRational,
-    x: Vec<i128>,
-    u: Vec<i128>,
+    /// `X̃_i` (shared with the [`DyadicBlocks`] of every time).
+    x: Arc<[i128]>,
+    /// `U_i`.
+    u: Arc<[i128]>,
     ex: i64,
     eu: i64,
     b_odd: u64,
@@ -174,8 +180,8 @@ impl Dyadic {
             radius,
             x_bits: max_bits(&x),
             u_bits: max_bits(&u),
-            x,
-            u,
+            x: x.into(),
+            u: u.into(),
             ex,
             eu,
             b_odd,
@@ -196,7 +202,13 @@ impl Dyadic {
     /// The exact PAVA blocks at `t ≥ 0` on `i128` sums; `None` when `t < 0`,
     /// its terms do not fit 64 bits, or the kernel's `i128` bound does not
     /// hold at `t` (the caller then takes another path).
-    pub fn blocks_at(&self, t: &BigRational) -> Option<DyadicBlocks<'_>> {
+    pub fn blocks_at(&self, t: &BigRational) -> Option<DyadicBlocks> {
+        self.blocks_with(t, halves::PARALLEL_MIN)
+    }
+
+    /// [`Self::blocks_at`], on two threads from `parallel_min` entries on
+    /// (the PAVA now, the outputs later).
+    fn blocks_with(&self, t: &BigRational, parallel_min: usize) -> Option<DyadicBlocks> {
         if t.is_negative() {
             return None;
         }
@@ -224,17 +236,15 @@ impl Dyadic {
             // finer): `Y_i = X̃_i + U_i 2^j`, a shift for a product.
             let j = b.trailing_zeros();
             debug_assert_eq!(1i128 << j, b);
-            pava_words(self.n(), |i| (xs[i].wrapping_add(us[i] << j), us[i]))
+            halves::pava(xs, us, parallel_min, |x, u| x.wrapping_add(u << j))
         } else {
-            pava_words(self.n(), |i| {
-                (
-                    a.wrapping_mul(xs[i]).wrapping_add(b.wrapping_mul(us[i])),
-                    us[i],
-                )
+            halves::pava(xs, us, parallel_min, |x, u| {
+                a.wrapping_mul(x).wrapping_add(b.wrapping_mul(u))
             })
         };
         Some(DyadicBlocks {
-            d: self,
+            d: self.clone(),
+            parallel_min,
             runs,
             t: t.clone(),
             ey,
@@ -245,10 +255,13 @@ impl Dyadic {
 }
 
 /// The PAVA blocks of a [`Dyadic`] scene at one time, and the state they
-/// give.
-#[derive(Debug)]
-pub struct DyadicBlocks<'a> {
-    d: &'a Dyadic,
+/// give (each output computed when asked for: the blocks hold everything
+/// it needs, the scene's columns shared).
+#[derive(Debug, Clone)]
+pub struct DyadicBlocks {
+    d: Dyadic,
+    /// Outputs are filled by two threads from this many particles on.
+    parallel_min: usize,
     runs: Vec<Run<i128>>,
     t: BigRational,
     ey: i64,
@@ -267,7 +280,7 @@ fn exact(num: BigInt, den: BigInt, exp: i64) -> BigRational {
     }
 }
 
-impl DyadicBlocks<'_> {
+impl DyadicBlocks {
     /// The time.
     pub fn t(&self) -> &BigRational {
         &self.t
@@ -283,19 +296,68 @@ impl DyadicBlocks<'_> {
     /// not fit `i128` or a denominator 64 bits (then round
     /// [`Self::exact_state`]).
     pub fn nearest(&self) -> Option<Nearest> {
-        let n = self.n();
-        let (ey, eu) = (self.ey, self.d.eu);
+        Some(Nearest {
+            positions: self.positions()?,
+            velocities: self.velocities()?,
+            multipliers: self.multipliers()?,
+        })
+    }
+
+    /// `x(t)` rounded to the nearest doubles ([`Self::nearest`]'s).
+    pub fn positions(&self) -> Option<Vec<f64>> {
         let den_y = self.d.b_odd.checked_mul(self.q_odd)?;
+        let n = self.n();
+        halves::fill_by_halves(&self.runs, n, n, self.parallel_min, |runs, first, out| {
+            self.fill_positions(runs, first, den_y, out)
+        })
+    }
+
+    /// `u(t)` rounded to the nearest doubles ([`Self::nearest`]'s).
+    pub fn velocities(&self) -> Option<Vec<f64>> {
+        let n = self.n();
+        let eu = self.d.eu;
+        halves::fill_by_halves(&self.runs, n, n, self.parallel_min, |runs, _, out| {
+            let mut o = 0usize;
+            for r in runs {
+                // u_i = S_U 2^{eu} / k (eq:proj-u-micro), one value per block.
+                let u = round::nearest(r.su, r.k, eu);
+                let k = r.k as usize;
+                out.get_mut(o..o + k)?.fill(u);
+                o += k;
+            }
+            Some(())
+        })
+    }
+
+    /// `λ(t)` rounded to the nearest doubles ([`Self::nearest`]'s).
+    pub fn multipliers(&self) -> Option<Vec<f64>> {
+        let n = self.n();
         let big_n = u64::try_from(n).ok()?;
-        let mut out = Nearest {
-            positions: Vec::with_capacity(n),
-            velocities: Vec::with_capacity(n),
-            multipliers: Vec::with_capacity(n.saturating_sub(1)),
-        };
-        let mut first = 0usize;
-        for r in &self.runs {
+        halves::fill_by_halves(
+            &self.runs,
+            n,
+            n.saturating_sub(1),
+            self.parallel_min,
+            |runs, first, out| self.fill_multipliers(runs, first, big_n, out),
+        )
+    }
+
+    /// The positions of the particles of `runs` (the first one is particle
+    /// `first`) into `out`.
+    fn fill_positions(
+        &self,
+        runs: &[Run<i128>],
+        first: usize,
+        den_y: u64,
+        out: &mut [f64],
+    ) -> Option<()> {
+        let ey = self.ey;
+        let mut first = first;
+        let mut o = 0usize;
+        for r in runs {
             let k = r.k;
             let ki = i128::from(k);
+            let block = out.get_mut(o..o + k as usize)?;
             // x_i = (S + k C i) 2^{ey} / (k b_o q_o), i = first, first + 1, …
             let den = k.checked_mul(den_y)?;
             let step = ki.checked_mul(self.c)?;
@@ -304,47 +366,78 @@ impl DyadicBlocks<'_> {
             if den_y == 1 {
                 // x_i 2^{−ey} = ⌊S/k⌋ + C i + (S mod k)/k: one division per
                 // block, none per particle (`round::nearest_plus`).
+                // Runs of values in one binade at once
+                // (`round::nearest_plus_run`), the others one by one.
                 let split = Split::new(r.sy, k);
                 let mut w = split.floor.checked_add(self.c.checked_mul(first_i)?)?;
-                for m in 0..k {
-                    if m > 0 {
-                        w = w.checked_add(self.c)?;
+                let mut m = 0usize;
+                while m < block.len() {
+                    let mut done = round::nearest_plus_run(w, self.c, &split, ey, &mut block[m..]);
+                    if done == 0 {
+                        block[m] = match round::nearest_plus(w, &split, ey) {
+                            Some(x) => x,
+                            None => round::nearest(num_at(m as u64)?, den, ey),
+                        };
+                        done = 1;
                     }
-                    let x = match round::nearest_plus(w, &split, ey) {
-                        Some(x) => x,
-                        None => round::nearest(num_at(m)?, den, ey),
-                    };
-                    out.positions.push(x);
+                    m += done;
+                    if m < block.len() {
+                        let moved = self.c.checked_mul(i128::try_from(done).ok()?)?;
+                        w = w.checked_add(moved)?;
+                    }
                 }
             } else {
                 let den = Divisor::new(den);
-                for m in 0..k {
-                    out.positions.push(round::nearest_by(num_at(m)?, &den, ey));
+                for (m, x) in (0..k).zip(block.iter_mut()) {
+                    *x = round::nearest_by(num_at(m)?, &den, ey);
                 }
             }
-            let u = round::nearest(r.su, k, eu);
-            out.velocities.extend(std::iter::repeat_n(u, k as usize));
+            first += k as usize;
+            o += k as usize;
+        }
+        Some(())
+    }
+
+    /// The multipliers of the pairs from `first` on, block by block over
+    /// `runs`, into `out` (the last pair of a block, a gap, is `0`).
+    fn fill_multipliers(
+        &self,
+        runs: &[Run<i128>],
+        first: usize,
+        big_n: u64,
+        out: &mut [f64],
+    ) -> Option<()> {
+        let (n, eu) = (self.n(), self.d.eu);
+        let mut first = first;
+        let mut o = 0usize;
+        for r in runs {
+            let k = r.k;
+            let ki = i128::from(k);
             // λ of the m-th pair of the block: (k Σ_{j ≤ m} U_j − m S_U) 2^{eu} / (k N),
             // with one prepared divisor per block (no division per pair);
             // the last pair of a block (m = k, a gap) is exactly 0.
             if k > 1 {
                 let den = Divisor::new(k.checked_mul(big_n)?);
+                let us = self.d.u.get(first..first + k as usize)?;
+                let block = out.get_mut(o..o + k as usize - 1)?;
                 let mut prefix = 0i128;
-                for m in 1..k {
-                    prefix = prefix.checked_add(self.d.u[first + m as usize - 1])?;
+                for ((m, &u), l) in (1..k).zip(us).zip(block.iter_mut()) {
+                    prefix = prefix.checked_add(u)?;
                     let num = ki
                         .checked_mul(prefix)?
                         .checked_sub(i128::from(m).checked_mul(r.su)?)?;
-                    out.multipliers.push(round::nearest_by(num, &den, eu));
+                    *l = round::nearest_by(num, &den, eu);
                 }
-                debug_assert_eq!(prefix + self.d.u[first + k as usize - 1], r.su);
-            }
-            if first + (k as usize) < n {
-                out.multipliers.push(0.0);
+                debug_assert_eq!(prefix + us[k as usize - 1], r.su);
             }
             first += k as usize;
+            o += k as usize - 1;
+            if first < n {
+                *out.get_mut(o)? = 0.0;
+                o += 1;
+            }
         }
-        Some(out)
+        Some(())
     }
 
     /// The exact state (`prop:proj-micro`): every value in lowest terms,

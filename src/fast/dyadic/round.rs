@@ -268,16 +268,23 @@ impl Split {
         let ki = i128::from(k);
         let floor = s.div_euclid(ki);
         let rem = s.wrapping_sub(floor.wrapping_mul(ki)) as u64;
-        let whole = rem == 0;
+        if rem == 0 {
+            return Split::of(floor, Fraction64::ZERO);
+        }
+        Split::of(floor, Fraction64::new(rem, k))
+    }
+
+    /// `floor + up`, the fraction `up` given to 64 bits.
+    pub(crate) fn of(floor: i128, up: Fraction64) -> Split {
+        let whole = up.bits == 0 && !up.sticky;
         if whole {
             return Split {
                 floor,
-                up: Fraction64::ZERO,
+                up,
                 down: Fraction64::ZERO,
                 whole,
             };
         }
-        let up = Fraction64::new(rem, k);
         // f = (B + δ)/2^64, 0 ≤ δ < 1, B ≥ 1 when δ = 0: 1 − f is
         // (!B + (1 − δ))/2^64 when δ > 0, (!B + 1)/2^64 when δ = 0.
         let down = Fraction64 {
@@ -320,6 +327,88 @@ pub fn nearest_plus(w: i128, split: &Split, exp: i64) -> Option<f64> {
         round_scaled(v, g.sticky, exp - 64)
     };
     Some(if negative { -magnitude } else { magnitude })
+}
+
+/// [`nearest_plus`] of `w + m c` for `m = 0, 1, …` into `out`, as long as
+/// the values keep the sign and the binade of the first (the rounding is
+/// then the same shift of the same kind of integer, done without a
+/// normalisation per value); returns how many were written, `0` when the
+/// first value is not a normal double above 1 unit (the caller rounds it
+/// with [`nearest_plus`] and asks again from the next). `c ≥ 0`.
+///
+/// With `|w + f| = i + g` (`i` an integer, `g` the fraction) and
+/// `2^(b−1) ≤ i < 2^b`, the double keeps 53 bits: for `b ≤ 53` all of `i`
+/// and the top `53 − b` bits of `g`, so that whether it rounds up depends
+/// on `g` alone (and on the parity of `i` when `b = 53` and `g` is exactly
+/// one half); for `b > 53` the top 53 bits of `i`, `g` only a sticky bit.
+pub fn nearest_plus_run(w: i128, c: i128, split: &Split, exp: i64, out: &mut [f64]) -> usize {
+    const HALF: u64 = 1 << 63;
+    let negative = w < 0;
+    let (i, g) = match (negative, split.whole) {
+        (_, true) => (w.unsigned_abs(), Fraction64::ZERO),
+        (false, false) => (w.unsigned_abs(), split.up),
+        (true, false) => (w.unsigned_abs() - 1, split.down),
+    };
+    if i == 0 || c < 0 {
+        return 0;
+    }
+    let b = 128 - i.leading_zeros();
+    let top = i64::from(b) - 1 + exp;
+    if !(-1022..=1023).contains(&top) {
+        return 0;
+    }
+    // The binade's bounds; the magnitude moves by `c` away from zero for
+    // `w ≥ 0`, towards it for `w < 0`.
+    let (lo, hi) = (1u128 << (b - 1), u128::MAX >> (128 - b));
+    let step = c.unsigned_abs();
+    let next = |i: u128| -> Option<u128> {
+        let j = if negative {
+            i.checked_sub(step)?
+        } else {
+            i.checked_add(step)?
+        };
+        (lo..=hi).contains(&j).then_some(j)
+    };
+    // The sign bit, and the exponent field less the implicit bit: adding
+    // the 53-bit kept part (and a carry out of it) gives the double.
+    let sign = if negative { 1u64 << 63 } else { 0 };
+    let base = (((top + 1023) as u64) << 52) - (1 << 52);
+    let mut i = i;
+    let mut filled = 0;
+    if b <= 53 {
+        let s = 53 - b;
+        let g_top = if s == 0 { 0 } else { g.bits >> (64 - s) };
+        let dropped = g.bits << s;
+        let above = dropped > HALF || (dropped == HALF && g.sticky);
+        let tie = dropped == HALF && !g.sticky;
+        for o in out.iter_mut() {
+            let kept = ((i as u64) << s) | g_top;
+            let up = above || (tie && kept & 1 == 1);
+            *o = f64::from_bits(sign | (base + kept + u64::from(up)));
+            filled += 1;
+            match next(i) {
+                Some(j) => i = j,
+                None => break,
+            }
+        }
+    } else {
+        let sh = b - 53;
+        let mask = (1u128 << sh) - 1;
+        let half = 1u128 << (sh - 1);
+        let g_nonzero = g.bits != 0 || g.sticky;
+        for o in out.iter_mut() {
+            let kept = (i >> sh) as u64;
+            let rest = i & mask;
+            let up = rest > half || (rest == half && (g_nonzero || kept & 1 == 1));
+            *o = f64::from_bits(sign | (base + kept + u64::from(up)));
+            filled += 1;
+            match next(i) {
+                Some(j) => i = j,
+                None => break,
+            }
+        }
+    }
+    filled
 }
 
 /// `2^e` as a double, for `−1074 ≤ e ≤ 1023`.
@@ -421,6 +510,112 @@ mod tests {
             }
         }
         assert!(answered > 19_000, "{answered}");
+    }
+
+    /// The values `w + m c + f`, `m < len`, rounded as the positions of a
+    /// block are: runs by [`nearest_plus_run`], the rest one by one.
+    fn by_runs(w: i128, c: i128, split: &Split, exp: i64, len: usize) -> (Vec<f64>, usize) {
+        let mut out = vec![f64::NAN; len];
+        let (mut m, mut w, mut in_runs) = (0, w, 0);
+        while m < len {
+            let mut done = nearest_plus_run(w, c, split, exp, &mut out[m..]);
+            in_runs += done;
+            if done == 0 {
+                out[m] = nearest_plus(w, split, exp).unwrap_or(f64::NAN);
+                done = 1;
+            }
+            m += done;
+            w += c * done as i128;
+        }
+        (out, in_runs)
+    }
+
+    /// A random fraction of 64 bits, often with its last set bit where a
+    /// rounding looks (ties), the sticky bit random.
+    fn random_fraction(rng: &mut SplitMix64) -> Fraction64 {
+        let bits = match rng.next_u64() % 4 {
+            0 => 0,
+            1 => {
+                let p = rng.next_u64() % 64;
+                (rng.next_u64() >> p << p) | (1 << p)
+            }
+            2 => 1 << 63,
+            _ => rng.next_u64(),
+        };
+        Fraction64 {
+            bits,
+            sticky: rng.next_u64() % 2 == 0,
+        }
+    }
+
+    /// Runs in one binade round as [`nearest_plus`] does, value by value,
+    /// on both sides of zero, across binades, near the ends of the normal
+    /// range, on ties decided by the sticky bit or by parity; and as the
+    /// exact values' nearest doubles on split means.
+    #[test]
+    fn runs_in_a_binade_round_as_each_value() {
+        let mut rng = SplitMix64::new(0x7a1);
+        let (mut in_runs, mut values) = (0, 0);
+        for case in 0..20_000 {
+            let nb = rng.next_u64() % 120;
+            let w = ((u128::from(rng.next_u64()) << 64 | u128::from(rng.next_u64()))
+                >> (128 - nb.max(1))) as i128;
+            let w = if rng.next_u64() % 2 == 0 { w } else { -w };
+            let c = match rng.next_u64() % 4 {
+                0 => 0,
+                1 => 1 + (rng.next_u64() % 4) as i128,
+                2 => (rng.next_u64() >> (rng.next_u64() % 64)) as i128,
+                _ => 1i128 << (rng.next_u64() % 60),
+            };
+            let exp = match rng.next_u64() % 4 {
+                0 => (rng.next_u64() % 200) as i64 - 100,
+                1 => -1022 - (rng.next_u64() % 140) as i64,
+                2 => 1024 - (rng.next_u64() % 140) as i64,
+                _ => -64 - (rng.next_u64() % 20) as i64,
+            };
+            let len = 1 + (rng.next_u64() % 40) as usize;
+            let split = if case % 2 == 0 {
+                Split::of(0, random_fraction(&mut rng))
+            } else {
+                Split::new((rng.next_u64() % 1000) as i128, 1 + rng.next_u64() % 8)
+            };
+            let (got, runs) = by_runs(w, c, &split, exp, len);
+            in_runs += runs;
+            values += len;
+            for (m, x) in got.iter().enumerate() {
+                let wm = w + c * m as i128;
+                let want = nearest_plus(wm, &split, exp).unwrap_or(f64::NAN);
+                assert_eq!(
+                    x.to_bits(),
+                    want.to_bits(),
+                    "w {wm}, c {c}, 2^{exp}, {split:?}"
+                );
+            }
+        }
+        assert!(in_runs * 2 > values, "{in_runs} of {values} in runs");
+        // Against the exact values: a block's positions from its sum.
+        for _ in 0..5_000 {
+            let k = 1 + rng.next_u64() % 16;
+            let s = (rng.next_u64() >> (rng.next_u64() % 64)) as i128 - (1 << 40);
+            let c = (rng.next_u64() % 5) as i128;
+            let exp = (rng.next_u64() % 200) as i64 - 150;
+            let split = Split::new(s, k);
+            let (got, _) = by_runs(split.floor, c, &split, exp, 12);
+            for (m, x) in got.iter().enumerate() {
+                let num = s + i128::from(k) * c * m as i128;
+                assert_eq!(x.to_bits(), oracle(num, k, exp).to_bits(), "{num} / {k}");
+            }
+        }
+        // A run stops at the binade's end and the next one starts there.
+        let (got, _) = by_runs((1 << 20) - 3, 1, &Split::new(1, 3), -10, 6);
+        let want: Vec<f64> = (0..6)
+            .map(|m| oracle(3 * ((1 << 20) - 3 + m) + 1, 3, -10))
+            .collect();
+        assert_eq!(got, want);
+        assert_eq!(
+            nearest_plus_run((1 << 20) - 3, 1, &Split::new(1, 3), -10, &mut [0.0; 6]),
+            3
+        );
     }
 
     /// The prepared divisor gives the machine's quotient and remainder at

@@ -72,6 +72,13 @@ fn check(radius: Option<BigRational>, xs: &[f64], us: &[f64], t: &BigRational) -
     let got = blocks.exact_state();
     assert_eq!(got, want, "exact state at t = {t}, x {xs:?}, u {us:?}");
     let near = blocks.nearest().expect("on words");
+    // Two threads from two particles on: the same blocks, the same doubles.
+    let halves = lean.blocks_with(t, 2).expect("the same bound");
+    assert_eq!(halves.runs, blocks.runs, "two-thread PAVA at t = {t}");
+    let near2 = halves.nearest().expect("on words");
+    assert_eq!(bits_of(&near2.positions), bits_of(&near.positions));
+    assert_eq!(bits_of(&near2.velocities), bits_of(&near.velocities));
+    assert_eq!(bits_of(&near2.multipliers), bits_of(&near.multipliers));
     assert_eq!(
         bits_of(&near.positions),
         nearest_of(&want.positions),
