@@ -143,21 +143,21 @@ struct Flight {
 /// reduced fraction per particle ([`reduced_flight`]).
 fn free_flight(
     data: &InitialData<BigRational>,
+    two_r: &BigRational,
     t: &BigRational,
     progress: &dyn Progress,
 ) -> Result<Flight, Error> {
-    let two_r = data.two_r();
     let positions = data
         .positions()
         .iter()
-        .chain(std::iter::once(&two_r))
+        .chain(std::iter::once(two_r))
         .map(|x| x.denom().magnitude());
     let velocities = data.velocities().iter().map(|u| u.denom().magnitude());
     match (
         common_denominator(positions),
         common_denominator(velocities),
     ) {
-        (Some(d), Some(e)) => common_flight(data, &two_r, t, &d, &e, progress),
+        (Some(d), Some(e)) => common_flight(data, two_r, t, &d, &e, progress),
         _ => reduced_flight(data, t, progress),
     }
 }
@@ -254,6 +254,17 @@ fn reduced_flight(
         flight.u.push(Sum::of(u));
     }
     Ok(flight)
+}
+
+/// `2r` in lowest terms without a gcd: `r = n/d` is, so `2n/d` is unless
+/// `d` is even, and then `n/(d/2)` is.
+fn double(r: &BigRational) -> BigRational {
+    let (n, d) = (r.numer(), r.denom());
+    if d.is_even() {
+        BigRational::new_raw(n.clone(), d / 2)
+    } else {
+        BigRational::new_raw(n * 2, d.clone())
+    }
 }
 
 /// The lexicographic PAVA on `(ỹ_i, u⁰_i)` (module documentation).
@@ -372,12 +383,13 @@ pub fn state_at(
         });
     }
     let n = data.n();
+    let two_r = double(data.radius());
+    debug_assert_eq!(two_r, data.two_r());
     progress.stage("free flight", Some(n as u64));
-    let flight = free_flight(data, t, progress)?;
+    let flight = free_flight(data, &two_r, t, progress)?;
     progress.stage("projection", Some(n as u64));
     let blocks = pava(&flight, progress)?;
     progress.stage("positions, velocities, multipliers", Some(n as u64));
-    let two_r = data.two_r();
     let mut positions = Vec::with_capacity(n);
     let mut velocities = Vec::with_capacity(n);
     let mut multipliers = Vec::with_capacity(n.saturating_sub(1));
