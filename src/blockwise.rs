@@ -384,7 +384,6 @@ pub fn state_at(
     }
     let n = data.n();
     let two_r = double(data.radius());
-    debug_assert_eq!(two_r, data.two_r());
     progress.stage("free flight", Some(n as u64));
     let flight = free_flight(data, &two_r, t, progress)?;
     progress.stage("projection", Some(n as u64));
