@@ -9,7 +9,12 @@
 //! [`pools`] decision), but a block keeps its sums `Σ ỹ` and `Σ u⁰` as
 //! numerators over the lcm of its members' denominators, never reduced:
 //! adding one particle costs a remainder by its (small) denominator, not a
-//! gcd of two big numbers. The answers are then reduced once per block:
+//! gcd of two big numbers. When the data share their denominators (the
+//! lcm of the positions' and of the velocities' is at most
+//! [`COMMON_EXTRA_BITS`] wider than the widest one: data scaled by one wide
+//! factor), the free flight is computed over those common denominators,
+//! numerators only, and the PAVA adds and compares numerators: no gcd
+//! before the answers. The answers are then reduced once per block:
 //!
 //! - every position of a block is its mean `P/Q` (one gcd) plus `2r·i`; with
 //!   `2r = a/b`, `x_i = (P b + a i Q)/(Q b)`, and since `gcd(P, Q) = 1` the
@@ -62,6 +67,13 @@ impl Sum {
     /// `self + other` over `lcm` of the denominators (`g` their gcd: a
     /// remainder by a word when one of them is small).
     fn add(self, other: &Sum) -> Sum {
+        if self.denom == other.denom {
+            // Over the data's common denominator (module documentation).
+            return Sum {
+                numer: self.numer + &other.numer,
+                denom: self.denom,
+            };
+        }
         let g = gcd::gcd(&self.denom, &other.denom);
         let to_other = &other.denom / &g;
         let to_self = &self.denom / &g;
@@ -84,6 +96,11 @@ impl Sum {
 /// positive): a product by a small number when one block is a single
 /// particle.
 fn cmp_means(a: &Sum, ka: usize, b: &Sum, kb: usize) -> Ordering {
+    if a.denom == b.denom {
+        let left = &a.numer * BigInt::from(kb);
+        let right = &b.numer * BigInt::from(ka);
+        return left.cmp(&right);
+    }
     let left = &a.numer * BigInt::from_biguint(Sign::Plus, &b.denom * BigUint::from(kb));
     let right = &b.numer * BigInt::from_biguint(Sign::Plus, &a.denom * BigUint::from(ka));
     left.cmp(&right)
@@ -113,47 +130,162 @@ fn poll(progress: &dyn Progress, step: usize) -> Result<(), Error> {
     Ok(())
 }
 
-/// The translated free flight `ỹ_i = x̃⁰_i + t u⁰_i`, the values of
-/// [`crate::projection::shifted_free_flight`], polling `progress`: on
-/// hostile denominators each term is a big reduction, and a long state
-/// must stop on Ctrl-C here too.
+/// The terms of the PAVA: the translated free flight `ỹ_i = x̃⁰_i + t u⁰_i`
+/// (the values of [`crate::projection::shifted_free_flight`]) and the
+/// velocities `u⁰_i`, each as a [`Sum`] of one term.
+struct Flight {
+    y: Vec<Sum>,
+    u: Vec<Sum>,
+}
+
+/// The free flight at `t`, polling `progress`: over the data's common
+/// denominators when they are small ([`common_denominator`]), else one
+/// reduced fraction per particle ([`reduced_flight`]).
 fn free_flight(
+    data: &InitialData<BigRational>,
+    two_r: &BigRational,
+    t: &BigRational,
+    progress: &dyn Progress,
+) -> Result<Flight, Error> {
+    let positions = data
+        .positions()
+        .iter()
+        .chain(std::iter::once(two_r))
+        .map(|x| x.denom().magnitude());
+    let velocities = data.velocities().iter().map(|u| u.denom().magnitude());
+    match (
+        common_denominator(positions),
+        common_denominator(velocities),
+    ) {
+        (Some(d), Some(e)) => common_flight(data, two_r, t, &d, &e, progress),
+        _ => reduced_flight(data, t, progress),
+    }
+}
+
+/// The lcm of `denoms` when it has at most [`COMMON_EXTRA_BITS`] more bits
+/// than the largest of them (data scaled by one factor, or with a few
+/// denominators); `None` when it grows past that (the hostile
+/// denominators `1 … n`), found by a running lcm that stops there. A
+/// denominator that divides the running lcm costs one remainder.
+fn common_denominator<'a>(denoms: impl Iterator<Item = &'a BigUint> + Clone) -> Option<BigUint> {
+    let widest = denoms.clone().map(BigUint::bits).max().unwrap_or(0);
+    let mut lcm = BigUint::one();
+    for d in denoms {
+        if *d == lcm || (&lcm % d).is_zero() {
+            continue;
+        }
+        lcm = gcd::lcm(&lcm, d);
+        if lcm.bits() > widest + COMMON_EXTRA_BITS {
+            return None;
+        }
+    }
+    Some(lcm)
+}
+
+/// How many bits the common denominator of [`common_denominator`] may have
+/// beyond the widest single denominator.
+const COMMON_EXTRA_BITS: u64 = 64;
+
+/// `n/d` as a numerator over `common`, a multiple of `d`.
+fn over(n: &BigInt, d: &BigUint, common: &BigUint) -> BigInt {
+    if d == common {
+        n.clone()
+    } else {
+        n * BigInt::from_biguint(Sign::Plus, common / d)
+    }
+}
+
+/// The free flight over common denominators, no gcd at all: with the
+/// positions and `2r` over `D`, the velocities over `E` and `t = p/q`,
+/// `ỹ_i = (q E (X_i − A i) + p D U_i) / (q D E)` — every term of the PAVA
+/// over one denominator, so that its additions and comparisons are of
+/// numerators only.
+fn common_flight(
+    data: &InitialData<BigRational>,
+    two_r: &BigRational,
+    t: &BigRational,
+    d: &BigUint,
+    e: &BigUint,
+    progress: &dyn Progress,
+) -> Result<Flight, Error> {
+    let q = t.denom().magnitude();
+    let a = over(two_r.numer(), two_r.denom().magnitude(), d);
+    let qe = BigInt::from_biguint(Sign::Plus, q * e);
+    let pd = t.numer() * BigInt::from_biguint(Sign::Plus, d.clone());
+    let denom = q * d * e;
+    let n = data.n();
+    let mut flight = Flight {
+        y: Vec::with_capacity(n),
+        u: Vec::with_capacity(n),
+    };
+    for (i, (x, u)) in data.positions().iter().zip(data.velocities()).enumerate() {
+        poll(progress, i)?;
+        let shifted = over(x.numer(), x.denom().magnitude(), d) - &a * BigInt::from(i);
+        let velocity = over(u.numer(), u.denom().magnitude(), e);
+        flight.y.push(Sum {
+            numer: &qe * shifted + &pd * &velocity,
+            denom: denom.clone(),
+        });
+        flight.u.push(Sum {
+            numer: velocity,
+            denom: e.clone(),
+        });
+    }
+    Ok(flight)
+}
+
+/// The free flight one reduced fraction per particle (on hostile
+/// denominators each term is a big reduction, and a long state must stop
+/// on Ctrl-C here too).
+fn reduced_flight(
     data: &InitialData<BigRational>,
     t: &BigRational,
     progress: &dyn Progress,
-) -> Result<Vec<BigRational>, Error> {
+) -> Result<Flight, Error> {
     // `x̃⁰_i = x⁰_i − 2r i` term by term inside the polled loop (as
     // [`crate::initial::shift`] computes it): on hostile data the shift
     // alone is half a second of reductions.
     let two_r = data.two_r();
+    let n = data.n();
     let mut offset = BigRational::zero();
-    let mut y = Vec::with_capacity(data.n());
+    let mut flight = Flight {
+        y: Vec::with_capacity(n),
+        u: Vec::with_capacity(n),
+    };
     for (i, (x, u)) in data.positions().iter().zip(data.velocities()).enumerate() {
         poll(progress, i)?;
         let shifted = x.clone() - &offset;
         offset += &two_r;
-        y.push(shifted + &(t.clone() * u));
+        flight.y.push(Sum::of(&(shifted + &(t.clone() * u))));
+        flight.u.push(Sum::of(u));
     }
-    Ok(y)
+    Ok(flight)
+}
+
+/// `2r` in lowest terms without a gcd: `r = n/d` is, so `2n/d` is unless
+/// `d` is even, and then `n/(d/2)` is.
+fn double(r: &BigRational) -> BigRational {
+    let (n, d) = (r.numer(), r.denom());
+    if d.is_even() {
+        BigRational::new_raw(n.clone(), d / 2)
+    } else {
+        BigRational::new_raw(n * 2, d.clone())
+    }
 }
 
 /// The lexicographic PAVA on `(ỹ_i, u⁰_i)` (module documentation).
-fn pava(
-    y: &[BigRational],
-    u0: &[BigRational],
-    progress: &dyn Progress,
-) -> Result<Vec<Block>, Error> {
+fn pava(flight: &Flight, progress: &dyn Progress) -> Result<Vec<Block>, Error> {
     let mut stack: Vec<Block> = Vec::new();
     // One particle can pool many blocks, each pooling a big addition: the
     // pools are polled too (without counting them as steps done).
     let mut pooled = 0usize;
-    for (i, (yi, ui)) in y.iter().zip(u0).enumerate() {
+    for (i, (yi, ui)) in flight.y.iter().zip(&flight.u).enumerate() {
         poll(progress, i)?;
         let mut cur = Block {
             first: i,
             size: 1,
-            sum_y: Sum::of(yi),
-            sum_u: Sum::of(ui),
+            sum_y: yi.clone(),
+            sum_u: ui.clone(),
         };
         while let Some(top) = stack.pop() {
             let joins = pools(
@@ -194,7 +326,7 @@ fn positions_of(
     let (a, b) = (two_r.numer(), two_r.denom());
     let denom = q * b;
     // Every common factor of `P b + a i Q` and `Q b` divides `m`.
-    let m = b * q.gcd(b);
+    let m = BigInt::from_biguint(Sign::Plus, gcd::gcd(q.magnitude(), b.magnitude())) * b;
     let pb = p * b;
     let aq = a * q;
     for i in block.first..block.first + block.size {
@@ -202,7 +334,8 @@ fn positions_of(
         let g = if m.is_one() {
             BigInt::one()
         } else {
-            numer.mod_floor(&m).gcd(&m)
+            let r = numer.mod_floor(&m);
+            BigInt::from_biguint(Sign::Plus, gcd::gcd(r.magnitude(), m.magnitude()))
         };
         let x = if g.is_one() {
             BigRational::new_raw(numer, denom.clone())
@@ -219,7 +352,7 @@ fn positions_of(
 /// caller): `(k A_m − m A_k)/(k N D)` with `u⁰_j = a_j / D` over the
 /// block's common denominator `D` (`eq:dyn-micro`).
 fn multipliers_of(
-    u0: &[BigRational],
+    u0: &[Sum],
     block: &Block,
     n: usize,
     progress: &dyn Progress,
@@ -235,8 +368,7 @@ fn multipliers_of(
     for (m, u) in members.iter().enumerate().take(block.size - 1) {
         poll(progress, *done)?;
         *done += 1;
-        let scale = d / u.denom().magnitude();
-        prefix += u.numer() * BigInt::from_biguint(Sign::Plus, scale);
+        prefix += over(&u.numer, &u.denom, d);
         let numer = &k * &prefix - BigInt::from(m + 1) * total;
         out.push(gcd::ratio(numer, denom.clone()));
     }
@@ -257,13 +389,12 @@ pub fn state_at(
         });
     }
     let n = data.n();
-    let u0 = data.velocities();
+    let two_r = double(data.radius());
     progress.stage("free flight", Some(n as u64));
-    let y = free_flight(data, t, progress)?;
+    let flight = free_flight(data, &two_r, t, progress)?;
     progress.stage("projection", Some(n as u64));
-    let blocks = pava(&y, u0, progress)?;
+    let blocks = pava(&flight, progress)?;
     progress.stage("positions, velocities, multipliers", Some(n as u64));
-    let two_r = data.two_r();
     let mut positions = Vec::with_capacity(n);
     let mut velocities = Vec::with_capacity(n);
     let mut multipliers = Vec::with_capacity(n.saturating_sub(1));
@@ -277,7 +408,7 @@ pub fn state_at(
             block.sum_u.mean(block.size),
             block.size,
         ));
-        multipliers_of(u0, block, n, progress, &mut done, &mut multipliers)?;
+        multipliers_of(&flight.u, block, n, progress, &mut done, &mut multipliers)?;
         multipliers.push(BigRational::zero());
         done += 1;
     }
@@ -329,6 +460,48 @@ mod tests {
                 let want = crate::projection::state_at(&data, &t).unwrap();
                 let got = state_at(&data, &t, &Silent).unwrap();
                 assert_eq!(got, want, "n = {n}, t = {t}");
+                lowest_terms(&got);
+            }
+        }
+    }
+
+    /// Data scaled by `3^-k` (wide denominators shared by every value, as
+    /// the `kernels` fuzz target makes them) take the common-denominator
+    /// free flight, the hostile denominators `1 … 60` the reduced one, and
+    /// both answer the generic projection's states.
+    #[test]
+    fn common_denominators_when_shared() {
+        let wide = BigRational::new(1.into(), num_traits::Pow::pow(BigInt::from(3), 200u32));
+        let small = InitialData::new(
+            q(1, 4),
+            vec![q(0, 1), q(1, 1), q(2, 1), q(19, 6), q(5, 1)],
+            vec![q(2, 1), q(1, 3), q(-1, 5), q(0, 1), q(-3, 7)],
+        )
+        .unwrap();
+        let scaled = InitialData::new(
+            small.radius() * &wide,
+            small
+                .positions()
+                .iter()
+                .map(|x| x * &wide + q(1, 3))
+                .collect(),
+            small.velocities().iter().map(|u| u * &wide).collect(),
+        )
+        .unwrap();
+        let denoms = |v: &[BigRational]| {
+            v.iter()
+                .map(|x| x.denom().magnitude().clone())
+                .collect::<Vec<_>>()
+        };
+        let shared = denoms(scaled.velocities());
+        assert!(common_denominator(shared.iter()).is_some());
+        let hostile = denoms(spread_denominators(60).velocities());
+        assert!(common_denominator(hostile.iter()).is_none());
+        for data in [&small, &scaled] {
+            for t in [q(0, 1), q(1, 3), q(2, 1), q(7, 2), q(100, 1)] {
+                let want = crate::projection::state_at(data, &t).unwrap();
+                let got = state_at(data, &t, &Silent).unwrap();
+                assert_eq!(got, want, "t = {t}");
                 lowest_terms(&got);
             }
         }

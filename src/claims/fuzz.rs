@@ -100,8 +100,10 @@ pub fn lean_toml(bytes: &[u8]) {
 /// (N ≤ [`KERNELS_MAX_N`]). The generic `BigRational` oracles run on the
 /// small data, at the collision instants (exact ties) and between them
 /// ([`KERNELS_PROBES`] instants); every other engine runs on the image of
-/// the data and must answer the image of the oracles' answer. Panics on any
-/// difference.
+/// the data and must answer the image of the oracles' answer — but the
+/// merge where it would run the generic `BigRational` event merge on more
+/// than [`KERNELS_GENERIC_MAX_N`] particles ([`kernels_asks`]). Panics on
+/// any difference.
 pub fn kernels(bytes: &[u8]) {
     let (head, rest) = bytes.split_at(bytes.len().min(3));
     let similarity = similarity(head);
@@ -113,11 +115,76 @@ pub fn kernels(bytes: &[u8]) {
             max_speed: 16,
         },
     );
-    if let Err(m) =
-        crate::fast::battery::check_similar(&data, &similarity, Some(KERNELS_PROBES)).map(drop)
+    if let Err(m) = crate::fast::battery::check_similar_asking(
+        &data,
+        &similarity,
+        Some(KERNELS_PROBES),
+        &kernels_asks,
+    )
+    .map(drop)
     {
         panic!("{m}\n(similarity {similarity}, on {data:?})");
     }
+}
+
+/// The largest N on which the `kernels` target asks the merge engine for
+/// image data wider than [`MERGE_WORD_BITS`]: the merge then runs the
+/// generic `BigRational` event merge, whose every operation is a gcd by
+/// `num-bigint`'s binary algorithm on the wide values (a third of an
+/// input's time at N ≤ 12). On small N it is still asked, so that its
+/// wide fallback stays checked.
+pub const KERNELS_GENERIC_MAX_N: usize = 6;
+
+/// Above this many bits ([`scaled_bits`]) the merge's scaled values
+/// cannot fit its `i128` words with the room its sums need (it takes them
+/// up to ~121 bits at N ≤ 12; the estimate is at most 7 bits above).
+pub const MERGE_WORD_BITS: u64 = 128;
+
+/// An upper bound of the bits of the integers `X_i = x̃⁰_i·D`, `U_i = u⁰_i·E`
+/// the merge scales the data to (`D`, `E` the common denominators of the
+/// translated positions and of the velocities), within a few bits: per
+/// column, the lcm of the denominators (`2r`'s with the positions') plus
+/// the largest `bits(numerator) − bits(denominator)`, plus the carries of
+/// `x⁰_i − 2r·i` (`i < 16`).
+pub fn scaled_bits(data: &crate::InitialData<BigRational>) -> u64 {
+    use num_bigint::BigUint;
+    use num_traits::{One, Zero};
+    let column = |values: &mut dyn Iterator<Item = (&BigRational, u64)>| -> u64 {
+        let mut lcm = BigUint::one();
+        let mut widest: i64 = 0;
+        for (q, extra) in values {
+            let d = q.denom().magnitude();
+            if !(&lcm % d).is_zero() {
+                lcm = crate::gcd::lcm(&lcm, d);
+            }
+            widest = widest.max((q.numer().bits() + extra) as i64 - d.bits() as i64);
+        }
+        (lcm.bits() as i64 + widest + 2).max(0) as u64
+    };
+    let two_r = data.two_r();
+    let x = column(
+        &mut data
+            .positions()
+            .iter()
+            .map(|q| (q, 0))
+            .chain(std::iter::once((&two_r, 4))),
+    );
+    let u = column(&mut data.velocities().iter().map(|q| (q, 0)));
+    x.max(u)
+}
+
+/// Whether the `kernels` target asks `engine` on the `image` data: every
+/// engine, but the merge on data wider than [`MERGE_WORD_BITS`] only up to
+/// [`KERNELS_GENERIC_MAX_N`] particles (issue 29: "the slow generic engine
+/// only on small N").
+pub fn kernels_asks(
+    engine: &dyn crate::fast::engine::ExactEngine,
+    image: &crate::InitialData<BigRational>,
+) -> bool {
+    use crate::fast::engine::{ExactEngine, Merge};
+    engine.name() != Merge.name()
+        || image.n() <= KERNELS_GENERIC_MAX_N
+        || scaled_bits(image) <= MERGE_WORD_BITS
 }
 
 /// The largest N of the `kernels` target: the generic `BigRational` oracles
@@ -264,10 +331,17 @@ mod tests {
                     Path::Exact(w) => format!("adaptive Exact({w:?})"),
                 });
             }
-            seen.insert(format!(
-                "merge {:?}",
-                IntegerTrajectory::new(&image).engine()
-            ));
+            // The merge is asked on every input where it computes on
+            // integers; left out only where it would run the generic
+            // `BigRational` merge on more than `KERNELS_GENERIC_MAX_N`.
+            let merge = IntegerTrajectory::new(&image).engine();
+            if kernels_asks(&crate::fast::engine::Merge, &image) {
+                seen.insert(format!("merge {merge:?}"));
+            } else {
+                assert_eq!(merge, crate::fast::merge::Engine::BigRational, "{bytes:?}");
+                assert!(image.n() > KERNELS_GENERIC_MAX_N);
+                seen.insert("merge BigRational, not asked".into());
+            }
             seen.into_iter().for_each(&mut count);
             // The target itself passes on every input of the corpus.
             kernels(bytes);
