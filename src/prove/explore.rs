@@ -587,7 +587,7 @@ pub fn explore(
         }
         if Instant::now() > deadline {
             result.verdict = Verdict::Unknown(format!(
-                "time limit of {} s reached after {} paths ({} still queued)",
+                "the time budget of {} s ran out between paths, after {} paths ({} still queued)",
                 limits.time.as_secs(),
                 result.paths,
                 stack.len() + 1
