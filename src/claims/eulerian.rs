@@ -47,7 +47,7 @@ fn binomial<S: Scalar>(m: usize, k: usize) -> S {
 /// of a state: every `Σ_i ((y_i + τ u_i)/L)^m` is a combination of them
 /// (binomial expansion), so one pass over the particles serves every test
 /// function of the same centre.
-fn power_sums<S: Scalar>(s: &State<S>, center: &S, d: usize) -> Vec<Vec<S>> {
+pub(crate) fn power_sums<S: Scalar>(s: &State<S>, center: &S, d: usize) -> Vec<Vec<S>> {
     let n = s.positions.len();
     // yp[j][i] = y_i^j, up[k][i] = u_i^k (j, k ≥ 1; the 0th powers are 1).
     let y: Vec<S> = s.positions.iter().map(|x| x.clone() - center).collect();
@@ -73,7 +73,7 @@ fn power_sums<S: Scalar>(s: &State<S>, center: &S, d: usize) -> Vec<Vec<S>> {
 /// `Σ_i Q(x_i(τ))` and `Σ_i u_i Q'(x_i(τ))` as polynomials in `τ`
 /// (`Q = ((x − c)/L)^m`, `x_i(τ) = x_i + τ u_i`) from the power sums:
 /// `Σ_k C(m,k) M[m−k][k] τ^k / L^m` and `Σ_k m C(m−1,k) M[m−1−k][k+1] τ^k / L^m`.
-fn moment_polys<S: Scalar>(sums: &[Vec<S>], scale: &S, m: u32) -> (Vec<S>, Vec<S>) {
+pub(crate) fn moment_polys<S: Scalar>(sums: &[Vec<S>], scale: &S, m: u32) -> (Vec<S>, Vec<S>) {
     let m = m as usize;
     let lm = (0..m).fold(S::one(), |p, _| p * scale);
     let s0 = (0..=m)
@@ -86,7 +86,7 @@ fn moment_polys<S: Scalar>(sums: &[Vec<S>], scale: &S, m: u32) -> (Vec<S>, Vec<S
 }
 
 /// `(B, B')` on `[a, b] ⊂ [t₀, t₁]` as polynomials in `τ = t − a`.
-fn bump<S: Scalar>(f: &TestFunction<S>, a: &S) -> (Vec<S>, Vec<S>) {
+pub(crate) fn bump<S: Scalar>(f: &TestFunction<S>, a: &S) -> (Vec<S>, Vec<S>) {
     let w = f.t1.clone() - &f.t0;
     let k = S::from_i64(4) / &(w.clone() * &w);
     let (p, q) = (a.clone() - &f.t0, f.t1.clone() - a);
@@ -134,13 +134,27 @@ impl<S: Scalar> Sums<'_, S> {
     }
 }
 
-/// `R_mass^N(φ)` over `[t₀, t₁]`, piece by piece (see the module
-/// documentation).
-fn mass_residual<S: Scalar>(
-    case: &Case<S>,
+/// The integrand of the piece starting at `a`, a polynomial in
+/// `τ = t − a`: `B'(τ) Σ_i Q(x_i(τ)) + B(τ) Σ_i u_i Q'(x_i(τ))` from the
+/// power sums of the state at `a`.
+pub(crate) fn piece_integrand<S: Scalar>(
     f: &TestFunction<S>,
-    sums: &mut Sums<'_, S>,
-) -> Result<S, Violation> {
+    sums: &[Vec<S>],
+    a: &S,
+    m: u32,
+) -> Vec<S> {
+    // Σ_i Q(x_i(τ)) and Σ_i u_i Q'(x_i(τ)), from the state at a.
+    let (s0, s1) = moment_polys(sums, &f.scale, m);
+    let (big_b, d_big_b) = bump(f, a);
+    let mut integrand = mul(&d_big_b, &s0);
+    add_into(&mut integrand, &mul(&big_b, &s1));
+    integrand
+}
+
+/// The cuts of `[t₀, t₁]` into the pieces of [`mass_residual`]: `t₀`, the
+/// collision instants strictly inside, `t₁` (also read by the prover's
+/// identity argument, `prove::telescope`).
+pub(crate) fn mass_cuts<S: Scalar>(case: &Case<S>, f: &TestFunction<S>) -> Vec<S> {
     let mut cuts = vec![f.t0.clone()];
     for imp in case.traj.impulses() {
         if imp.t > f.t0 && imp.t < f.t1 && cuts.last() != Some(&imp.t) {
@@ -148,15 +162,22 @@ fn mass_residual<S: Scalar>(
         }
     }
     cuts.push(f.t1.clone());
+    cuts
+}
+
+/// `R_mass^N(φ)` over `[t₀, t₁]`, piece by piece (see the module
+/// documentation).
+fn mass_residual<S: Scalar>(
+    case: &Case<S>,
+    f: &TestFunction<S>,
+    sums: &mut Sums<'_, S>,
+) -> Result<S, Violation> {
+    let cuts = mass_cuts(case, f);
     let m = f.degree;
     let mut total = S::zero();
     for w in cuts.windows(2) {
         let (a, b) = (&w[0], &w[1]);
-        // Σ_i Q(x_i(τ)) and Σ_i u_i Q'(x_i(τ)), from the state at a.
-        let (s0, s1) = moment_polys(sums.at(a)?, &f.scale, m);
-        let (big_b, d_big_b) = bump(f, a);
-        let mut integrand = mul(&d_big_b, &s0);
-        add_into(&mut integrand, &mul(&big_b, &s1));
+        let integrand = piece_integrand(f, sums.at(a)?, a, m);
         total = total + &integral(&integrand, &(b.clone() - a));
     }
     Ok(total / &S::from_usize(case.n()))
@@ -165,7 +186,7 @@ fn mass_residual<S: Scalar>(
 /// The test functions of the mass check: windows `[0, T]` and
 /// `[T/4, 3T/4]` (`T` the last probe time), degrees 2 and 3, centred at
 /// `x⁰_1`, scale 1.
-fn mass_tests<S: Scalar>(case: &Case<S>) -> Vec<TestFunction<S>> {
+pub(crate) fn mass_tests<S: Scalar>(case: &Case<S>) -> Vec<TestFunction<S>> {
     let Some(t_end) = case.times.last().filter(|t| **t > S::zero()) else {
         return Vec::new();
     };

@@ -96,7 +96,11 @@ fn sign_bit(q: &BigRational) -> u8 {
 /// One decision the solver was consulted for: a fingerprint of the
 /// comparison (to detect a program that does not replay identically) and
 /// the outcome taken.
+/// The outcome's bit `IMPLIED` is set when it was the only feasible one.
 type Decision = (u64, u8);
+
+/// The flag of a [`Decision`] whose outcome the path condition implied.
+const IMPLIED: u8 = 0x80;
 
 /// The state of one run of the program along one path.
 struct PathState {
@@ -109,8 +113,14 @@ struct PathState {
     model: Option<Vec<BigRational>>,
     /// Signs still possible for each normalised polynomial.
     masks: HashMap<Poly, u8>,
-    /// The path condition as SMT-LIB text (hypotheses first).
+    /// The path condition as SMT-LIB text (hypotheses first), as sent
+    /// with each query: without the decisions it already implied (their
+    /// other outcomes were all infeasible), which change no answer and
+    /// only slow the solver down.
     pc: Vec<String>,
+    /// The whole path condition, implied decisions included (for deciding
+    /// and solving a path to a violation, as asked before the lean `pc`).
+    full_pc: Vec<String>,
     /// The same path condition as polynomial constraints (for
     /// [`eliminate`], when the solver cannot decide a query on `pc`).
     cons: Vec<Constraint>,
@@ -143,7 +153,7 @@ pub fn fault(what: &str) {
 }
 
 impl PathState {
-    fn record(&mut self, np: &Poly, flipped: bool, rel: Rel, text: Option<String>) {
+    fn record(&mut self, np: &Poly, flipped: bool, rel: Rel, text: Option<String>, implied: bool) {
         let m = if flipped {
             flip(rel.mask())
         } else {
@@ -152,7 +162,10 @@ impl PathState {
         let e = self.masks.entry(np.clone()).or_insert(NEG | ZERO | POS);
         *e &= m;
         if let Some(t) = text {
-            self.pc.push(t);
+            if !implied {
+                self.pc.push(t.clone());
+            }
+            self.full_pc.push(t);
         }
     }
 
@@ -176,7 +189,7 @@ impl PathState {
             }
             1 => {
                 let k = candidates[0];
-                self.record(&np, flipped, outcomes[k], None);
+                self.record(&np, flipped, outcomes[k], None, true);
                 return k;
             }
             _ => {}
@@ -193,15 +206,22 @@ impl PathState {
         let ptext = p.smt(&self.names);
         let pos = self.taken.len();
         if pos < self.forced.len() {
-            let (f, k) = self.forced[pos];
+            let (f, taken) = self.forced[pos];
+            let (k, implied) = (taken & !IMPLIED, taken & IMPLIED != 0);
             if f != fingerprint || usize::from(k) >= outcomes.len() {
                 self.error.get_or_insert_with(|| {
                     "the program did not replay identically (non-deterministic decision)".into()
                 });
             }
             let k = usize::from(k).min(outcomes.len() - 1);
-            self.taken.push((fingerprint, k as u8));
-            self.record(&np, flipped, outcomes[k], Some(outcomes[k].smt(&ptext)));
+            self.taken.push((fingerprint, taken));
+            self.record(
+                &np,
+                flipped,
+                outcomes[k],
+                Some(outcomes[k].smt(&ptext)),
+                implied,
+            );
             self.cons.push(Constraint::Atom(Atom {
                 poly: p.clone(),
                 rel: outcomes[k],
@@ -219,6 +239,32 @@ impl PathState {
         let mut feasible: Vec<(usize, Option<Vec<BigRational>>)> = Vec::new();
         if let Some(k0) = model_k {
             feasible.push((k0, self.model.clone()));
+        }
+        // The outcomes the model does not take: usually all infeasible (the
+        // path condition decides the comparison). One query on their union
+        // settles that case; otherwise each is asked as before.
+        let others: Vec<usize> = candidates
+            .iter()
+            .copied()
+            .filter(|&k| Some(k) != model_k)
+            .collect();
+        if let (Some(k0), true) = (model_k, others.len() >= 2) {
+            if let Some(union) = union_rel(others.iter().map(|&k| outcomes[k])) {
+                self.queries += 1;
+                let q = union.smt(&ptext);
+                match self.solver.check(&self.pc, Some(&q)) {
+                    Ok(Sat::Unsat) => {
+                        // None of them is feasible: the model's outcome is
+                        // the only one, as a query on each would answer.
+                        self.take(&np, flipped, fingerprint, k0, outcomes, p);
+                        return k0;
+                    }
+                    Ok(_) => {}
+                    Err(e) => {
+                        self.error.get_or_insert(e.0);
+                    }
+                }
+            }
         }
         for (i, &k) in candidates.iter().enumerate() {
             if Some(k) == model_k {
@@ -266,18 +312,53 @@ impl PathState {
             return 0;
         };
         self.model = model;
+        // The only feasible outcome: the path condition implies it.
+        let implied = feasible.as_slice().is_empty();
         for (alt, m) in feasible {
             let mut prefix = self.taken.clone();
             prefix.push((fingerprint, alt as u8));
             self.branches.push((prefix, m));
         }
-        self.taken.push((fingerprint, k as u8));
-        self.record(&np, flipped, outcomes[k], Some(outcomes[k].smt(&ptext)));
+        let flag = if implied { IMPLIED } else { 0 };
+        self.taken.push((fingerprint, k as u8 | flag));
+        self.record(
+            &np,
+            flipped,
+            outcomes[k],
+            Some(outcomes[k].smt(&ptext)),
+            implied,
+        );
         self.cons.push(Constraint::Atom(Atom {
             poly: p.clone(),
             rel: outcomes[k],
         }));
         k
+    }
+
+    /// Takes the model's outcome `k` (the only feasible one) without
+    /// branching: the end of [`PathState::decide`] with no alternative.
+    fn take(
+        &mut self,
+        np: &Poly,
+        flipped: bool,
+        fingerprint: u64,
+        k: usize,
+        outcomes: &[Rel],
+        p: &Poly,
+    ) {
+        let ptext = p.smt(&self.names);
+        self.taken.push((fingerprint, k as u8 | IMPLIED));
+        self.record(
+            np,
+            flipped,
+            outcomes[k],
+            Some(outcomes[k].smt(&ptext)),
+            true,
+        );
+        self.cons.push(Constraint::Atom(Atom {
+            poly: p.clone(),
+            rel: outcomes[k],
+        }));
     }
 
     /// The query `path condition ∧ extra` asked again after eliminating the
@@ -329,6 +410,15 @@ impl PathState {
             _ => Ok((Sat::Unknown, None)),
         }
     }
+}
+
+/// The sign condition allowing exactly the signs allowed by one of
+/// `rels` (`Le` for `Lt` and `Eq`, …), when there is one.
+fn union_rel(rels: impl Iterator<Item = Rel>) -> Option<Rel> {
+    let mask = rels.fold(0, |m, r| m | r.mask());
+    [Rel::Lt, Rel::Le, Rel::Eq, Rel::Ne, Rel::Gt, Rel::Ge]
+        .into_iter()
+        .find(|r| r.mask() == mask)
 }
 
 /// `true` when the exact point satisfies every constraint.
@@ -559,6 +649,7 @@ pub fn explore(
         model: None,
         masks: base_masks.clone(),
         pc: base_pc.clone(),
+        full_pc: base_pc.clone(),
         cons: base_cons.clone(),
         solver,
         names: names.to_vec(),
@@ -587,7 +678,7 @@ pub fn explore(
         }
         if Instant::now() > deadline {
             result.verdict = Verdict::Unknown(format!(
-                "time limit of {} s reached after {} paths ({} still queued)",
+                "the time budget of {} s ran out between paths, after {} paths ({} still queued)",
                 limits.time.as_secs(),
                 result.paths,
                 stack.len() + 1
@@ -601,6 +692,7 @@ pub fn explore(
         st.branches.clear();
         st.masks = base_masks.clone();
         st.pc = base_pc.clone();
+        st.full_pc = base_pc.clone();
         st.cons = base_cons.clone();
         st.queries = 0;
         st.unknown_answers = 0;
@@ -662,7 +754,7 @@ pub fn explore(
             PathEnd::Violated(message) => {
                 result.queries += 1;
                 let mut reduced_point = None;
-                let answer = match st.solver.check(&st.pc, None) {
+                let answer = match st.solver.check(&st.full_pc, None) {
                     Ok(Sat::Unknown) => {
                         st.queries = 0;
                         let r = st.check_reduced(None);
@@ -700,7 +792,7 @@ pub fn explore(
                         break;
                     }
                     Sat::Sat => {
-                        let pc = st.pc.clone();
+                        let pc = st.full_pc.clone();
                         // A completed model of the reduced query satisfies
                         // the path condition when checked exactly.
                         let exact = reduced_point.filter(|m| satisfies(&st.cons, m));
@@ -735,4 +827,27 @@ pub fn explore(
     NAMES.with(|n| n.borrow_mut().clear());
     result.seconds = start.elapsed().as_secs_f64();
     Ok(result)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The union of outcomes asked in one query allows exactly their signs
+    /// (a wrong union, e.g. `Lt ∪ Eq` as `Lt`, would drop feasible paths).
+    #[test]
+    fn union_of_outcomes_is_exact() {
+        assert_eq!(union_rel([Rel::Lt, Rel::Eq].into_iter()), Some(Rel::Le));
+        assert_eq!(union_rel([Rel::Eq, Rel::Gt].into_iter()), Some(Rel::Ge));
+        assert_eq!(union_rel([Rel::Lt, Rel::Gt].into_iter()), Some(Rel::Ne));
+        assert_eq!(union_rel([Rel::Gt].into_iter()), Some(Rel::Gt));
+        assert_eq!(union_rel([Rel::Lt, Rel::Eq, Rel::Gt].into_iter()), None);
+        for a in [Rel::Lt, Rel::Le, Rel::Eq, Rel::Ne, Rel::Gt, Rel::Ge] {
+            for b in [Rel::Lt, Rel::Le, Rel::Eq, Rel::Ne, Rel::Gt, Rel::Ge] {
+                if let Some(u) = union_rel([a, b].into_iter()) {
+                    assert_eq!(u.mask(), a.mask() | b.mask());
+                }
+            }
+        }
+    }
 }
