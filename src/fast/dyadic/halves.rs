@@ -24,7 +24,7 @@
 //! The kernel's width bound (`b_Y + b_K ≤ 127`) holds for the sums of every
 //! contiguous range of entries, so it covers the joined blocks too.
 
-use super::pava::pava as pava_columns;
+use super::pava::{pava as pava_columns, widened, Sum};
 use crate::fast::kernel::{pools, Run};
 
 /// Below this many entries one thread does everything (a thread costs
@@ -34,19 +34,19 @@ pub(crate) const PARALLEL_MIN: usize = 1 << 16;
 /// PAVA on the pairs `(y(x_i, u_i), u_i)`: the blocks of
 /// [`crate::fast::kernel::pava_words`], computed on the two halves by two
 /// threads when `n ≥ parallel_min`.
-pub(crate) fn pava(
-    xs: &[i128],
-    us: &[i128],
+pub(crate) fn pava<T: Copy + Into<W> + Sync, W: Sum + Send>(
+    xs: &[T],
+    us: &[T],
     parallel_min: usize,
-    y: impl Fn(i128, i128) -> i128 + Sync,
+    y: impl Fn(T, T) -> W + Sync,
 ) -> Vec<Run<i128>> {
     let n = xs.len().min(us.len());
     if n < parallel_min.max(2) {
-        return pava_columns(xs, us, &y);
+        return widened(pava_columns(xs, us, &y));
     }
     let h = n / 2;
     let (y, (xl, xr), (ul, ur)) = (&y, xs.split_at(h), us.split_at(h));
-    let (mut left, right) = std::thread::scope(|s| {
+    let (left, right) = std::thread::scope(|s| {
         let worker = std::thread::Builder::new().spawn_scoped(s, move || pava_columns(xr, ur, y));
         let left = pava_columns(xl, ul, y);
         let right = match worker {
@@ -59,7 +59,9 @@ pub(crate) fn pava(
         };
         (left, right)
     });
-    join(&mut left, right);
+    // The join pools sums of blocks of both halves: on `i128`.
+    let mut left = widened(left);
+    join(&mut left, widened(right));
     left
 }
 
@@ -172,6 +174,12 @@ mod tests {
             assert_eq!(got, want, "{p:?}");
             let one = pava(&ys, &us, usize::MAX, |y, _| y);
             assert_eq!(one, want, "one thread, {p:?}");
+            // On `i64` columns and sums (the test values are small).
+            let ys64: Vec<i64> = ys.iter().map(|&v| v as i64).collect();
+            let us64: Vec<i64> = us.iter().map(|&v| v as i64).collect();
+            assert_eq!(pava(&ys64, &us64, 2, |y, _| y), want, "i64, {p:?}");
+            let one = pava(&ys64, &us64, usize::MAX, |y, _| y);
+            assert_eq!(one, want, "i64, one thread, {p:?}");
         }
     }
 

@@ -55,6 +55,7 @@ use crate::cluster::Cluster;
 use crate::fast::kernel::{i128_clusters, size_bits, Run};
 use crate::fast::stream::Nearest;
 use crate::state::State;
+use pava::Sum;
 use round::{Divisor, Split};
 
 /// Bits of `|v|` (0 for 0).
@@ -101,15 +102,71 @@ fn split_odd(q: &BigRational) -> Option<(u64, u64, u64)> {
     Some((a, o, s))
 }
 
-/// A scene of doubles on `i128` columns over dyadic scales (module
+/// Bits of `|v|` up to which the columns are stored as `i64`: `|v| < 2^63`.
+const NARROW_BITS: u64 = 63;
+
+/// The scaled columns `X̃_i`, `U_i` (shared with the [`DyadicBlocks`] of
+/// every time): on `i64` when every value fits, which halves the memory the
+/// PAVA reads (grid data), on `i128` otherwise. The PAVA's `Y_i`, sums and
+/// blocks are `i128` either way, under the same width bound.
+#[derive(Debug, Clone)]
+enum Columns {
+    /// Every `|X̃_i|`, `|U_i|` has at most [`NARROW_BITS`] bits.
+    Narrow { x: Arc<[i64]>, u: Arc<[i64]> },
+    /// Some value has more.
+    Wide { x: Arc<[i128]>, u: Arc<[i128]> },
+}
+
+impl Columns {
+    /// The columns, narrow when `x_bits` and `u_bits` (the bits of the
+    /// largest `|X̃_i|` and `|U_i|`) are at most [`NARROW_BITS`].
+    fn new(x: Vec<i128>, u: Vec<i128>, x_bits: u64, u_bits: u64) -> Columns {
+        if x_bits <= NARROW_BITS && u_bits <= NARROW_BITS {
+            // Exact: |v| < 2^63 fits i64.
+            let narrow = |v: Vec<i128>| -> Arc<[i64]> {
+                v.into_iter()
+                    .map(|w| {
+                        debug_assert!(i64::try_from(w).is_ok());
+                        w as i64
+                    })
+                    .collect()
+            };
+            Columns::Narrow {
+                x: narrow(x),
+                u: narrow(u),
+            }
+        } else {
+            Columns::Wide {
+                x: x.into(),
+                u: u.into(),
+            }
+        }
+    }
+
+    /// N.
+    fn len(&self) -> usize {
+        match self {
+            Columns::Narrow { x, .. } => x.len(),
+            Columns::Wide { x, .. } => x.len(),
+        }
+    }
+
+    /// `U_i` (`None` past the end).
+    fn u(&self, i: usize) -> Option<i128> {
+        match self {
+            Columns::Narrow { u, .. } => u.get(i).map(|&v| i128::from(v)),
+            Columns::Wide { u, .. } => u.get(i).copied(),
+        }
+    }
+}
+
+/// A scene of doubles on integer columns over dyadic scales (module
 /// documentation): `x̃⁰_i = X̃_i 2^{ex} / b_o`, `u⁰_i = U_i 2^{eu}`.
 #[derive(Debug, Clone)]
 pub struct Dyadic {
     radius: BigRational,
-    /// `X̃_i` (shared with the [`DyadicBlocks`] of every time).
-    x: Arc<[i128]>,
-    /// `U_i`.
-    u: Arc<[i128]>,
+    /// `X̃_i` and `U_i`.
+    columns: Columns,
     ex: i64,
     eu: i64,
     b_odd: u64,
@@ -176,12 +233,12 @@ impl Dyadic {
             }
         }
         let max_bits = |v: &[i128]| v.iter().map(|w| bits(w.unsigned_abs())).max().unwrap_or(0);
+        let (x_bits, u_bits) = (max_bits(&x), max_bits(&u));
         Some(Dyadic {
             radius,
-            x_bits: max_bits(&x),
-            u_bits: max_bits(&u),
-            x: x.into(),
-            u: u.into(),
+            x_bits,
+            u_bits,
+            columns: Columns::new(x, u, x_bits, u_bits),
             ex,
             eu,
             b_odd,
@@ -191,7 +248,30 @@ impl Dyadic {
 
     /// N.
     pub fn n(&self) -> usize {
-        self.x.len()
+        self.columns.len()
+    }
+
+    /// Whether the columns are stored as `i64` ([`Columns`]).
+    #[cfg(test)]
+    fn is_narrow(&self) -> bool {
+        matches!(self.columns, Columns::Narrow { .. })
+    }
+
+    /// The same scene on `i128` columns (tests compare the two widths).
+    #[cfg(test)]
+    fn widened(&self) -> Dyadic {
+        let widen = |v: &[i64]| -> Arc<[i128]> { v.iter().map(|&w| i128::from(w)).collect() };
+        let columns = match &self.columns {
+            Columns::Narrow { x, u } => Columns::Wide {
+                x: widen(x),
+                u: widen(u),
+            },
+            wide => wide.clone(),
+        };
+        Dyadic {
+            columns,
+            ..self.clone()
+        }
     }
 
     /// The radius r.
@@ -230,17 +310,16 @@ impl Dyadic {
             return None;
         }
         let c = a.checked_mul(self.two_r)?;
-        let (xs, us) = (&self.x, &self.u);
-        let runs = if a == 1 && b > 0 && b.count_ones() == 1 {
-            // The common case (2r and t dyadic, the positions' scale the
-            // finer): `Y_i = X̃_i + U_i 2^j`, a shift for a product.
-            let j = b.trailing_zeros();
-            debug_assert_eq!(1i128 << j, b);
-            halves::pava(xs, us, parallel_min, |x, u| x.wrapping_add(u << j))
-        } else {
-            halves::pava(xs, us, parallel_min, |x, u| {
-                a.wrapping_mul(x).wrapping_add(b.wrapping_mul(u))
-            })
+        // The same bound on 63 bits: the PAVA on `i64` sums (`A`, `B`
+        // then fit `i64` too, each term of `Y_i` being below `2^{b_Y − 1}`).
+        let narrow_sums = b_y + b_k <= NARROW_BITS && self.u_bits + b_k <= NARROW_BITS;
+        let ab64 = i64::try_from(a).ok().zip(i64::try_from(b).ok());
+        let runs = match (&self.columns, ab64) {
+            (Columns::Narrow { x, u }, Some((a, b))) if narrow_sums => {
+                pava_ab(x, u, a, b, parallel_min)
+            }
+            (Columns::Narrow { x, u }, _) => pava_ab(x, u, a, b, parallel_min),
+            (Columns::Wide { x, u }, _) => pava_ab(x, u, a, b, parallel_min),
         };
         Some(DyadicBlocks {
             d: self.clone(),
@@ -250,6 +329,31 @@ impl Dyadic {
             ey,
             q_odd,
             c,
+        })
+    }
+}
+
+/// The PAVA on `(Y_i, U_i)`, `Y_i = A X̃_i + B U_i`, on either width of
+/// columns ([`Columns`]) and of sums ([`Sum`]: `W` must hold the sums and
+/// their products by block sizes, and `A`, `B`).
+fn pava_ab<T: Copy + Into<W> + Sync, W: Sum + Send + Sync>(
+    xs: &[T],
+    us: &[T],
+    a: W,
+    b: W,
+    parallel_min: usize,
+) -> Vec<Run<i128>> {
+    let b_wide: i128 = b.into();
+    if a == W::size(1) && b_wide > 0 && b_wide.count_ones() == 1 {
+        // The common case (2r and t dyadic, the positions' scale the
+        // finer): `Y_i = X̃_i + U_i 2^j`, a shift for a product.
+        let j = b_wide.trailing_zeros();
+        halves::pava(xs, us, parallel_min, |x, u| {
+            x.into().plus(u.into().shifted(j))
+        })
+    } else {
+        halves::pava(xs, us, parallel_min, |x, u| {
+            a.times(x.into()).plus(b.times(u.into()))
         })
     }
 }
@@ -268,6 +372,27 @@ pub struct DyadicBlocks {
     q_odd: u64,
     /// `C = A R`: `x_i = (S + k C i) 2^{ey} / (k b_o q_o)`.
     c: i128,
+}
+
+/// The multipliers of one block of `k = us.len() ≥ 2` entries with
+/// `S_U = su`, into `out` (its first `k − 1` pairs): the `m`-th is
+/// `(k Σ_{j ≤ m} U_j − m S_U) 2^{eu} / (k N)` (`eq:dyn-micro`), `den = k N`.
+fn block_multipliers<T: Copy + Into<i128>>(
+    us: &[T],
+    su: i128,
+    den: &Divisor,
+    eu: i64,
+    out: &mut [f64],
+) -> Option<()> {
+    let ki = i128::try_from(us.len()).ok()?;
+    let mut prefix = 0i128;
+    for ((m, &u), l) in (1i128..).zip(us).zip(out.iter_mut()) {
+        prefix = prefix.checked_add(u.into())?;
+        let num = ki.checked_mul(prefix)?.checked_sub(m.checked_mul(su)?)?;
+        *l = round::nearest_by(num, den, eu);
+    }
+    debug_assert_eq!(prefix + us.last().map_or(0, |&u| u.into()), su);
+    Some(())
 }
 
 /// `num 2^exp / den` in lowest terms.
@@ -412,23 +537,21 @@ impl DyadicBlocks {
         let mut o = 0usize;
         for r in runs {
             let k = r.k;
-            let ki = i128::from(k);
             // λ of the m-th pair of the block: (k Σ_{j ≤ m} U_j − m S_U) 2^{eu} / (k N),
             // with one prepared divisor per block (no division per pair);
             // the last pair of a block (m = k, a gap) is exactly 0.
             if k > 1 {
                 let den = Divisor::new(k.checked_mul(big_n)?);
-                let us = self.d.u.get(first..first + k as usize)?;
                 let block = out.get_mut(o..o + k as usize - 1)?;
-                let mut prefix = 0i128;
-                for ((m, &u), l) in (1..k).zip(us).zip(block.iter_mut()) {
-                    prefix = prefix.checked_add(u)?;
-                    let num = ki
-                        .checked_mul(prefix)?
-                        .checked_sub(i128::from(m).checked_mul(r.su)?)?;
-                    *l = round::nearest_by(num, &den, eu);
+                let range = first..first + k as usize;
+                match &self.d.columns {
+                    Columns::Narrow { u, .. } => {
+                        block_multipliers(u.get(range)?, r.su, &den, eu, block)?
+                    }
+                    Columns::Wide { u, .. } => {
+                        block_multipliers(u.get(range)?, r.su, &den, eu, block)?
+                    }
                 }
-                debug_assert_eq!(prefix + us[k as usize - 1], r.su);
             }
             first += k as usize;
             o += k as usize - 1;
@@ -467,7 +590,7 @@ impl DyadicBlocks {
                 if i + 1 >= n {
                     break;
                 }
-                prefix += BigInt::from(self.d.u[i]);
+                prefix += BigInt::from(self.d.columns.u(i).unwrap_or(0));
                 let num = &kb * &prefix - BigInt::from(m) * BigInt::from(r.su);
                 multipliers.push(exact(num, &kb * BigInt::from(n), eu));
             }

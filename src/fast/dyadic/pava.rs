@@ -1,40 +1,120 @@
-//! The PAVA of `prop:proj-micro` on `i128` pairs with the block being
+//! The PAVA of `prop:proj-micro` on integer pairs with the block being
 //! grown kept out of the stack (in registers): an entry pooled into it
 //! costs a comparison with one multiplication by a block size and no
 //! stack traffic, the common case when blocks are large. It pools exactly
 //! as [`crate::fast::kernel::pava_words`] does (the same decision,
 //! [`crate::projection::pools`], on the same sums), so it returns the same
 //! blocks; the tests compare the two.
+//!
+//! The sums are `i64` ([`Sum`]) when the caller proved that every sum and
+//! every product of a sum and a block size fits 63 bits (grid data: one
+//! machine multiplication per comparison, half the registers), `i128`
+//! otherwise.
 
-use crate::fast::kernel::{pools, Run};
+use crate::fast::kernel::Run;
 use crate::projection;
+
+/// The integer type of the PAVA's sums: wrapping arithmetic, exact under
+/// the caller's width bound.
+pub(crate) trait Sum: Copy + Ord + Into<i128> {
+    /// `k` (a block size).
+    fn size(k: u64) -> Self;
+    /// `self + o` (wrapping).
+    fn plus(self, o: Self) -> Self;
+    /// `self · o` (wrapping).
+    fn times(self, o: Self) -> Self;
+    /// `self · 2^j` (wrapping).
+    fn shifted(self, j: u32) -> Self;
+}
+
+impl Sum for i64 {
+    #[inline]
+    fn size(k: u64) -> i64 {
+        k as i64
+    }
+    #[inline]
+    fn plus(self, o: i64) -> i64 {
+        self.wrapping_add(o)
+    }
+    #[inline]
+    fn times(self, o: i64) -> i64 {
+        self.wrapping_mul(o)
+    }
+    #[inline]
+    fn shifted(self, j: u32) -> i64 {
+        self.wrapping_shl(j)
+    }
+}
+
+impl Sum for i128 {
+    #[inline]
+    fn size(k: u64) -> i128 {
+        i128::from(k)
+    }
+    #[inline]
+    fn plus(self, o: i128) -> i128 {
+        self.wrapping_add(o)
+    }
+    #[inline]
+    fn times(self, o: i128) -> i128 {
+        self.wrapping_mul(o)
+    }
+    #[inline]
+    fn shifted(self, j: u32) -> i128 {
+        self.wrapping_shl(j)
+    }
+}
+
+/// [`crate::fast::kernel::pools`] on sums of type `W`: is `a`'s mean `≥`
+/// `b`'s in the lexicographic order on `(Y, U)`?
+#[inline]
+fn pools<W: Sum>(a: &Run<W>, b: &Run<W>) -> bool {
+    let (ka, kb) = (W::size(a.k), W::size(b.k));
+    projection::pools(a.sy.times(kb).cmp(&b.sy.times(ka)), || {
+        a.su.times(kb).cmp(&b.su.times(ka))
+    })
+}
+
+/// The blocks on `i128` sums (exact: a sum of `W` fits `i128`).
+pub(crate) fn widened<W: Sum>(runs: Vec<Run<W>>) -> Vec<Run<i128>> {
+    runs.into_iter()
+        .map(|r| Run {
+            k: r.k,
+            sy: r.sy.into(),
+            su: r.su.into(),
+        })
+        .collect()
+}
 
 /// PAVA on the pairs `(y(x_i, u_i), u_i)` in lexicographic order:
 /// adjacent blocks pooled while the left mean is `≥` the right one. The
-/// sums must satisfy the kernel's width bound (the products of a sum and a
-/// block size fit `i128`): the arithmetic wraps, it never checks.
-pub(crate) fn pava(xs: &[i128], us: &[i128], y: impl Fn(i128, i128) -> i128) -> Vec<Run<i128>> {
+/// sums must satisfy the width bound of `W` (the products of a sum and a
+/// block size fit `W`): the arithmetic wraps, it never checks. The
+/// columns are `i64` or `i128` ([`super::Columns`]).
+pub(crate) fn pava<T: Copy + Into<W>, W: Sum>(
+    xs: &[T],
+    us: &[T],
+    y: impl Fn(T, T) -> W,
+) -> Vec<Run<W>> {
     debug_assert_eq!(xs.len(), us.len());
-    let mut stack: Vec<Run<i128>> = Vec::with_capacity(1024);
+    let mut stack: Vec<Run<W>> = Vec::with_capacity(1024);
     // Iterators over the two columns: no bounds check per entry.
-    let mut entries = xs.iter().zip(us).map(|(&x, &u)| (y(x, u), u));
+    let mut entries = xs.iter().zip(us).map(|(&x, &u)| (y(x, u), u.into()));
     let Some((sy, su)) = entries.next() else {
         return stack;
     };
     let mut cur = Run { k: 1, sy, su };
     for (y, u) in entries {
         // [`pools`] of `cur` and the one-entry block `(y, u)`.
-        let k = i128::from(cur.k);
-        let pool = projection::pools(cur.sy.cmp(&y.wrapping_mul(k)), || {
-            cur.su.cmp(&u.wrapping_mul(k))
-        });
+        let k = W::size(cur.k);
+        let pool = projection::pools(cur.sy.cmp(&y.times(k)), || cur.su.cmp(&u.times(k)));
         if !pool {
             stack.push(std::mem::replace(&mut cur, Run { k: 1, sy: y, su: u }));
             continue;
         }
         cur.k += 1;
-        cur.sy = cur.sy.wrapping_add(y);
-        cur.su = cur.su.wrapping_add(u);
+        cur.sy = cur.sy.plus(y);
+        cur.su = cur.su.plus(u);
         // The grown block's mean went down: it may violate with the blocks
         // below it.
         while let Some(top) = stack.last() {
@@ -43,8 +123,8 @@ pub(crate) fn pava(xs: &[i128], us: &[i128], y: impl Fn(i128, i128) -> i128) -> 
             }
             if let Some(top) = stack.pop() {
                 cur.k += top.k;
-                cur.sy = cur.sy.wrapping_add(top.sy);
-                cur.su = cur.su.wrapping_add(top.su);
+                cur.sy = cur.sy.plus(top.sy);
+                cur.su = cur.su.plus(top.su);
             }
         }
     }

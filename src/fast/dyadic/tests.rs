@@ -79,6 +79,17 @@ fn check(radius: Option<BigRational>, xs: &[f64], us: &[f64], t: &BigRational) -
     assert_eq!(bits_of(&near2.positions), bits_of(&near.positions));
     assert_eq!(bits_of(&near2.velocities), bits_of(&near.velocities));
     assert_eq!(bits_of(&near2.multipliers), bits_of(&near.multipliers));
+    // The `i128` columns: the same blocks, the same doubles, the same
+    // exact state.
+    let wide = lean.widened();
+    assert!(!wide.is_narrow());
+    let wide = wide.blocks_at(t).expect("the same bound");
+    assert_eq!(wide.runs, blocks.runs, "i128 columns at t = {t}");
+    assert_eq!(wide.exact_state(), got, "i128 columns at t = {t}");
+    let near3 = wide.nearest().expect("on words");
+    assert_eq!(bits_of(&near3.positions), bits_of(&near.positions));
+    assert_eq!(bits_of(&near3.velocities), bits_of(&near.velocities));
+    assert_eq!(bits_of(&near3.multipliers), bits_of(&near.multipliers));
     assert_eq!(
         bits_of(&near.positions),
         nearest_of(&want.positions),
@@ -178,6 +189,49 @@ fn random_scenes_of_doubles_agree_with_the_generic_projection() {
     // rounding of the gaps in doubles.
     assert!(answered * 10 > valid * 9, "{answered} of {valid}");
     assert!(valid * 4 > cases, "{valid} of {cases}");
+}
+
+/// The columns are `i64` up to `|U_i| < 2^63` and `i128` from `2^63` on,
+/// with the same answers either side of the boundary.
+#[test]
+fn columns_narrow_below_2_63_and_fall_back_from_it() {
+    let xs = [0.0, 10.0, 20.0];
+    let top = 2f64.powi(63);
+    let below = top - 1024.0; // the largest double below 2^63
+    for (us, narrow) in [
+        ([1.0, below, -below], true),
+        ([1.0, top, 0.0], false),
+        ([1.0, 0.0, -top], false),
+    ] {
+        let lean = Dyadic::from_doubles(Some(q(1, 4)), &xs, &us).unwrap();
+        assert_eq!(lean.is_narrow(), narrow, "{us:?}");
+        for t in [q(0, 1), q(1, 4), q(1, 3), exact_f64(2f64.powi(-40))] {
+            assert!(agree(Some(q(1, 4)), &xs, &us, &t), "{us:?} at {t}");
+        }
+    }
+    // A scene on small integers is narrow.
+    let lean = Dyadic::from_doubles(None, &xs, &[0.5, -0.25, 3.0]).unwrap();
+    assert!(lean.is_narrow());
+}
+
+/// The PAVA's sums are `i64` only under the bound on 63 bits: two
+/// particles whose pooled `ΣY = 3·2^61` wraps `i64` take the `i128` sums
+/// and agree; on both sides of `b_Y + b_K = 63` (N = 2, `b_K = 2`, at
+/// `t = 0` `b_Y` is the bits of `X̃` plus 2) the answers agree too.
+#[test]
+fn sums_are_i64_only_under_the_63_bit_bound() {
+    let us = [2f64.powi(62), 2f64.powi(61)];
+    let lean = Dyadic::from_doubles(Some(q(1, 2)), &[0.0, 2.0], &us).unwrap();
+    assert!(lean.is_narrow());
+    for t in [q(1, 1), q(2, 1), q(1, 2)] {
+        assert!(agree(Some(q(1, 2)), &[0.0, 2.0], &us, &t), "t = {t}");
+    }
+    for x_bits in [58, 59, 60, 61] {
+        let top = 2f64.powi(x_bits) - 1024.0;
+        let xs = [top - 2048.0, top];
+        assert!(agree(Some(q(1, 2)), &xs, &[1.0, -1.0], &q(0, 1)));
+        assert!(agree(Some(q(1, 2)), &xs, &[1.0, -1.0], &q(4096, 1)));
+    }
 }
 
 /// Subnormal positions and velocities, mixed with normal ones.
