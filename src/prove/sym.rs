@@ -104,6 +104,13 @@ impl Sym {
     /// `self − other`, and the polynomial whose sign is the sign of the
     /// difference wherever the denominators do not vanish.
     fn sign_poly(&self, other: &Sym) -> (Sym, Poly) {
+        // The quotients compared (collision instants), for the lifting of
+        // an undecided query (`lift`).
+        for q in [self, other] {
+            if q.den.as_constant().is_none() {
+                super::explore::note_quotient(&q.num, &q.den);
+            }
+        }
         let d = self.clone() - other;
         let p = if d.den.as_constant().is_some() {
             d.num.clone()
@@ -135,6 +142,11 @@ impl Sym {
 
 impl PartialEq for Sym {
     fn eq(&self, other: &Self) -> bool {
+        for q in [self, other] {
+            if q.den.as_constant().is_none() {
+                super::explore::note_quotient(&q.num, &q.den);
+            }
+        }
         let d = self.clone() - other;
         decide(&d.num, &[Rel::Eq, Rel::Ne]) == 0
     }
