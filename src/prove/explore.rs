@@ -330,6 +330,18 @@ impl PathState {
         if self.solver.check(&text, None)? == Sat::Unsat {
             return Ok((Sat::Unsat, None));
         }
+        // The monomials read as variables ([`relax::linearize`]): its
+        // `unsat` is the query's, its `sat` says nothing.
+        let first = Var::try_from(self.names.len()).unwrap_or(Var::MAX);
+        if let Some(lin) = relax::linearize(&system, first) {
+            let mut names = self.names.clone();
+            names.extend((0..lin.monomials.len()).map(|k| format!("mono{k}")));
+            let text: Vec<String> = lin.constraints.iter().map(|c| c.smt(&names)).collect();
+            self.queries += 1;
+            if Solver::start(&names, self.solver.limits)?.check(&text, None)? == Sat::Unsat {
+                return Ok((Sat::Unsat, None));
+            }
+        }
         self.check_lifted(&system)
     }
 
