@@ -117,6 +117,8 @@ struct PathState {
     cons: Vec<Constraint>,
     /// The quotients compared on the path ([`lift`]).
     quotients: Vec<Quotient>,
+    /// The polynomials squared on the path ([`relax::linearize`]).
+    squares: Vec<Poly>,
     solver: Solver,
     names: Vec<String>,
     queries: usize,
@@ -333,7 +335,7 @@ impl PathState {
         // The monomials read as variables ([`relax::linearize`]): its
         // `unsat` is the query's, its `sat` says nothing.
         let first = Var::try_from(self.names.len()).unwrap_or(Var::MAX);
-        if let Some(lin) = relax::linearize(&system, first) {
+        if let Some(lin) = relax::linearize(&system, &self.squares, first) {
             let mut names = self.names.clone();
             names.extend((0..lin.monomials.len()).map(|k| format!("mono{k}")));
             let text: Vec<String> = lin.constraints.iter().map(|c| c.smt(&names)).collect();
@@ -392,6 +394,21 @@ pub fn note_quotient(num: &Poly, den: &Poly) {
             };
             if !st.quotients.contains(&q) {
                 st.quotients.push(q);
+            }
+        }
+    });
+}
+
+/// The most squared polynomials kept for [`relax::linearize`] on one path.
+const MAX_SQUARES: usize = 8;
+
+/// Records a polynomial the program squares (a displacement whose square
+/// it bounds), for [`relax::linearize`] on the path running on this thread.
+pub fn note_square(base: &Poly) {
+    STATE.with(|s| {
+        if let Some(st) = s.borrow_mut().as_mut() {
+            if st.squares.len() < MAX_SQUARES && !st.squares.contains(base) {
+                st.squares.push(base.clone());
             }
         }
     });
@@ -627,6 +644,7 @@ pub fn explore(
         pc: base_pc.clone(),
         cons: base_cons.clone(),
         quotients: Vec::new(),
+        squares: Vec::new(),
         solver,
         names: names.to_vec(),
         queries: 0,
@@ -670,6 +688,7 @@ pub fn explore(
         st.pc = base_pc.clone();
         st.cons = base_cons.clone();
         st.quotients.clear();
+        st.squares.clear();
         st.queries = 0;
         st.unknown_answers = 0;
         st.fault = None;

@@ -54,14 +54,35 @@ pub struct Linearized {
 
 /// `system` with every monomial of degree ≥ 2 replaced by a fresh variable
 /// (numbered from `first`, one per distinct monomial), and `m ≥ 0` added
-/// for the monomials that are squares (every variable to an even power).
+/// for the monomials that are squares (every variable to an even power);
+/// first the squares of `squared`, their sums and differences in pairs
+/// are added as non-negative (true of every point).
 /// An over-approximation: a point of `system` gives, with each fresh
 /// variable set to its monomial's value, a point of the result; so the
 /// result's `unsat` is `system`'s, and its `sat` says nothing. `None` when
 /// there is no such monomial (nothing to gain: [`linear_part`] already
 /// asked the linear constraints) or the fresh variables would not fit in
 /// [`Var`].
-pub fn linearize(system: &[Constraint], first: Var) -> Option<Linearized> {
+pub fn linearize(system: &[Constraint], squared: &[Poly], first: Var) -> Option<Linearized> {
+    // Facts of every real point: `p² ≥ 0` for the polynomials the program
+    // squared, `(p − q)² ≥ 0` and `(p + q)² ≥ 0` for each pair of them
+    // (`pq ≤ (p² + q²)/2`, the step from `p², q² ≤ B` to
+    // `(p² + pq + q²)/3 ≤ B`, which the monomials alone do not see).
+    let mut with_facts = system.to_vec();
+    for (i, p) in squared.iter().enumerate() {
+        let mut bases = vec![p.clone()];
+        for q in &squared[i + 1..] {
+            bases.push(p.sub(q));
+            bases.push(p.add(q));
+        }
+        with_facts.extend(bases.iter().map(|b| {
+            Constraint::Atom(Atom {
+                poly: b.mul(b),
+                rel: Rel::Ge,
+            })
+        }));
+    }
+    let system = &with_facts[..];
     let mut fresh: BTreeMap<Vec<Var>, Var> = BTreeMap::new();
     let mut monomials: Vec<Vec<Var>> = Vec::new();
     let mut linear = |p: &Poly| -> Option<Poly> {
@@ -161,7 +182,7 @@ mod tests {
     }
 
     fn lin(system: &[Constraint], vars: Var) -> (Linearized, usize) {
-        let l = linearize(system, vars).unwrap();
+        let l = linearize(system, &[], vars).unwrap();
         let total = usize::from(vars) + l.monomials.len();
         (l, total)
     }
@@ -197,7 +218,7 @@ mod tests {
         }));
         assert!(holds(&l.constraints, &lifted));
         // A linear system has nothing to linearize.
-        assert_eq!(linearize(&[atom(x.add(&y), Rel::Lt)], 2), None);
+        assert_eq!(linearize(&[atom(x.add(&y), Rel::Lt)], &[], 2), None);
     }
 
     /// The summed bound of `lem:density` in miniature: two nonlinear
@@ -224,6 +245,38 @@ mod tests {
             panic!("the linear part should not decide this");
         }
         let (l, vars) = lin(&system, 2);
+        if let Some(answer) = ask(&l.constraints, vars) {
+            assert_eq!(answer, Sat::Unsat);
+        }
+    }
+
+    /// The cell step of `lem:density` in miniature: `g², h² ≤ z` on the
+    /// path, `g² + gh + h² > 3z` asked. Refuted only with `g`, `h` noted
+    /// as squared (`(g − h)² ≥ 0` added); without, the linearization is
+    /// satisfiable.
+    #[test]
+    fn the_squared_bases_give_the_cell_step() {
+        // (g − h)² = (x − w)²: not a sum of monomial squares.
+        let (x, y, w, z) = (Poly::var(0), Poly::var(1), Poly::var(2), Poly::var(3));
+        let g = x.add(&y);
+        let h = y.add(&w);
+        let system = [
+            atom(g.mul(&g).sub(&z), Rel::Le),
+            atom(h.mul(&h).sub(&z), Rel::Le),
+            atom(
+                g.mul(&g)
+                    .add(&g.mul(&h))
+                    .add(&h.mul(&h))
+                    .sub(&z.scale(&q(3, 1))),
+                Rel::Gt,
+            ),
+        ];
+        let (l, vars) = lin(&system, 4);
+        if let Some(answer) = ask(&l.constraints, vars) {
+            assert_ne!(answer, Sat::Unsat);
+        }
+        let l = linearize(&system, &[g.clone(), h.clone()], 4).unwrap();
+        let vars = 4 + l.monomials.len();
         if let Some(answer) = ask(&l.constraints, vars) {
             assert_eq!(answer, Sat::Unsat);
         }

@@ -179,6 +179,11 @@ fn add(a: &Sym, b: &Sym) -> Sym {
 }
 
 fn mul(a: &Sym, b: &Sym) -> Sym {
+    // A polynomial squared: its base, for the relaxation's `(p ± q)² ≥ 0`
+    // (`relax::linearize`).
+    if a.num == b.num && a.den == b.den && a.den.as_constant().is_some() && a.num.degree() > 0 {
+        super::explore::note_square(&a.num);
+    }
     if a.den == b.num && !a.den.is_zero() {
         return Sym::frac(a.num.clone(), b.den.clone());
     }
