@@ -55,7 +55,7 @@ const NOT_EXPRESSIBLE_UP_TO_3: [(&str, &str); 0] = [];
 const UNDECIDED_AT_3: [(&str, &str); 1] = [
     (
         "lem:density",
-        "at N = 3 the coupling bound ∫|X̃_N(t) − X̃_N(s)|² ≤ (t − s)² ‖∂_t X̃_N‖²_∞ is a quartic inequality in (x⁰, u⁰, s, t) (products u·u·t·s) under a path condition with two collision times; nlsat returns unknown on path 186 even with the ties' equalities eliminated and the nonlinear constraints dropped (proved at N = 1, 2)",
+        "at N = 3 the coupling bound ∫|X̃_N(t) − X̃_N(s)|² ≤ (t − s)² ‖∂_t X̃_N‖²_∞ is a quartic inequality in (x⁰, u⁰, s, t) (products u·u·t·s) under a path condition with two collision times; nlsat returns unknown on path 202 even with the ties' equalities eliminated, the nonlinear constraints dropped or the collision instants lifted to variables (src/prove/lift.rs, which decides the earlier ones); proved at N = 1, 2",
     ),
 ];
 

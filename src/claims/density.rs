@@ -18,6 +18,8 @@
 //!   facts checked), so the first inequality is the equality
 //!   `W_2² = ∫|X̃_N(t) − X̃_N(s)|²` (piecewise affine in `w` on the grid
 //!   `i/N`: `(1/N) Σ_i (g_{i−1}² + g_{i−1}g_i + g_i²)/3`, `g_i = x_i(t) − x_i(s)`).
+//!   The bound is checked in the proof's steps (`coupling_steps`): each
+//!   node's displacement, then each cell's share, then their mean.
 //!   `‖∂_t X̃_N‖_∞` on `(s, t)` is `max_i |u_i(τ)|` over `τ = s` and the
 //!   collision instants in `(s, t)` (the velocities are constant between
 //!   collisions; `∂_t X̃_N` interpolates `u_0 = u_1, u_1, …, u_N`).
@@ -94,13 +96,67 @@ fn density_at<S: Scalar>(snap: &Snapshot<S>) -> Result<(), String> {
     Ok(())
 }
 
+/// The displacements `g_i = X̃_N(t, i/N) − X̃_N(s, i/N) = x_i(t) − x_i(s)`
+/// of the nodes `i = 0 … N` (the artificial particle first).
+fn displacements<S: Scalar>(a: &Snapshot<S>, b: &Snapshot<S>) -> Vec<S> {
+    a.x.iter().zip(&b.x).map(|(p, q)| q.clone() - p).collect()
+}
+
+/// `N ∫_{cell} |X̃_N(t,w) − X̃_N(s,w)|² dw = (g² + gh + h²)/3` on the cell
+/// between nodes with displacements `g`, `h` (the interpolant is affine).
+fn cell_cost<S: Scalar>(g: &S, h: &S) -> S {
+    (g.clone() * g + &(g.clone() * h) + &(h.clone() * h)) / &S::from_i64(3)
+}
+
 /// `∫_0^1 |X̃_N(t,w) − X̃_N(s,w)|² dw` (both affine on each cell).
 fn coupling_cost<S: Scalar>(a: &Snapshot<S>, b: &Snapshot<S>) -> S {
-    let g: Vec<S> = a.x.iter().zip(&b.x).map(|(p, q)| q.clone() - p).collect();
-    let sum = g.windows(2).fold(S::zero(), |acc, w| {
-        acc + &(w[0].clone() * &w[0] + &(w[0].clone() * &w[1]) + &(w[1].clone() * &w[1]))
-    });
-    sum / &(S::from_i64(3) * &S::from_usize(a.n))
+    let g = displacements(a, b);
+    let sum = g
+        .windows(2)
+        .fold(S::zero(), |acc, w| acc + &cell_cost(&w[0], &w[1]));
+    sum / &S::from_usize(a.n)
+}
+
+/// The proof of `lem:density` (i) between `s` and `t`, step by step, with
+/// `bound = (t − s)² ‖∂_t X̃_N‖²_∞`: (1) every node moves by at most
+/// `(t − s)‖∂_t X̃_N‖_∞` (the Lipschitz step; squares compared); (2) every
+/// cell's share `(g² + gh + h²)/3 ≤ bound` (the exact integral of the
+/// square of an affine interpolant, times `N`); (3) their mean, the
+/// coupling cost, `≤ bound`.
+fn coupling_steps<S: Scalar>(a: &Snapshot<S>, b: &Snapshot<S>, bound: &S) -> Result<(), String> {
+    let g = displacements(a, b);
+    for (i, gi) in g.iter().enumerate() {
+        let sq = gi.clone() * gi;
+        if sq > *bound {
+            return Err(format!(
+                "Lipschitz step: |x[{i}](t) − x[{i}](s)|² = {} > (t − s)² ‖∂_t X̃_N‖²_∞ = {}",
+                sq.render(),
+                bound.render(),
+                i = FromPaper(i)
+            ));
+        }
+    }
+    for (i, w) in g.windows(2).enumerate() {
+        let cell = cell_cost(&w[0], &w[1]);
+        if cell > *bound {
+            return Err(format!(
+                "cell step: on the cell (x[{}], x[{}]), N ∫|X̃_N(t) − X̃_N(s)|² = {} > (t − s)² ‖∂_t X̃_N‖²_∞ = {}",
+                FromPaper(i),
+                FromPaper(i + 1),
+                cell.render(),
+                bound.render()
+            ));
+        }
+    }
+    let cost = coupling_cost(a, b);
+    if cost > *bound {
+        return Err(format!(
+            "W_2(ρ̃_N(s), ρ̃_N(t))² = ∫|X̃_N(t) − X̃_N(s)|² = {} > (t − s)² ‖∂_t X̃_N‖²_∞ = {}",
+            cost.render(),
+            bound.render()
+        ));
+    }
+    Ok(())
 }
 
 fn sup_speed<S: Scalar>(snap: &Snapshot<S>) -> S {
@@ -143,21 +199,14 @@ pub fn density<S: Scalar>(case: &Case<S>) -> R {
                 }
             }
         }
-        let cost = coupling_cost(a, b);
         let dt = b.t.clone() - &a.t;
         let bound = dt.clone() * &dt * &sup * &sup;
-        if cost > bound {
-            return Err(Violation::new(
+        coupling_steps(a, b, &bound).map_err(|e| {
+            Violation::new(
                 ID,
-                format!(
-                    "s = {}, t = {}: W_2(ρ̃_N(s), ρ̃_N(t))² = ∫|X̃_N(t) − X̃_N(s)|² = {} > (t − s)² ‖∂_t X̃_N‖²_∞ = {}",
-                    a.t.render(),
-                    b.t.render(),
-                    cost.render(),
-                    bound.render()
-                ),
-            ));
-        }
+                format!("s = {}, t = {}: {e}", a.t.render(), b.t.render()),
+            )
+        })?;
     }
     Ok(())
 }
@@ -286,6 +335,36 @@ mod tests {
             *x = x.clone() + q(1, 1);
         }
         assert!(coupling_cost(&a, &b) > q(1, 64) * sup_speed(&a) * sup_speed(&a));
+    }
+
+    /// The proof's first step fails on a node moved faster than the
+    /// velocities allow, with the node's index from 0 (`x[−1]` the
+    /// artificial particle).
+    #[test]
+    fn the_lipschitz_step_names_the_node() {
+        let case = head_on();
+        let a = snapshot(&case, &q(0, 1)).unwrap();
+        let b = snapshot(&case, &q(1, 8)).unwrap();
+        let bound = q(1, 64) * sup_speed(&a) * sup_speed(&a);
+        coupling_steps(&a, &b, &bound).unwrap();
+        let mut c = b.clone();
+        c.x[0] = c.x[0].clone() + q(1, 1);
+        let e = coupling_steps(&a, &c, &bound).unwrap_err();
+        assert!(e.starts_with("Lipschitz step: |x[−1](t)"), "{e}");
+        // A bound below a node's true displacement (1/8 at speed 1).
+        let e = coupling_steps(&a, &b, &q(1, 65)).unwrap_err();
+        assert!(e.starts_with("Lipschitz step"), "{e}");
+    }
+
+    /// The cell term is the exact integral: Simpson's rule, exact on the
+    /// quadratic `(g + (h − g)θ)²`, gives `(g² + 4m² + h²)/6`, `m` the mean.
+    #[test]
+    fn the_cell_term_is_the_integral_of_the_square() {
+        for (g, h) in [(q(1, 1), q(1, 1)), (q(-2, 3), q(5, 7)), (q(0, 1), q(3, 1))] {
+            let m = (g.clone() + &h) / q(2, 1);
+            let simpson = (g.clone() * &g + q(4, 1) * &m * &m + h.clone() * &h) / q(6, 1);
+            assert_eq!(cell_cost(&g, &h), simpson);
+        }
     }
 
     #[test]

@@ -24,7 +24,8 @@ use num_traits::{Signed, Zero};
 
 use super::budget;
 use super::eliminate::{self, Atom, Constraint, Reduced};
-use super::poly::Poly;
+use super::lift::{self, Quotient};
+use super::poly::{Poly, Var};
 use super::relax;
 use super::smt::{Sat, Solver, SolverError, SolverLimits};
 use crate::progress::Progress;
@@ -124,6 +125,10 @@ struct PathState {
     /// The same path condition as polynomial constraints (for
     /// [`eliminate`], when the solver cannot decide a query on `pc`).
     cons: Vec<Constraint>,
+    /// The quotients compared on the path ([`lift`]).
+    quotients: Vec<Quotient>,
+    /// The polynomials squared on the path ([`relax::linearize`]).
+    squares: Vec<Poly>,
     solver: Solver,
     names: Vec<String>,
     queries: usize,
@@ -405,9 +410,53 @@ impl PathState {
         let weaker = relax::linear_part(&self.cons, extra.as_ref());
         let text: Vec<String> = weaker.iter().map(|c| c.smt(&self.names)).collect();
         self.queries += 1;
-        match self.solver.check(&text, None)? {
-            Sat::Unsat => Ok((Sat::Unsat, None)),
-            _ => Ok((Sat::Unknown, None)),
+        if self.solver.check(&text, None)? == Sat::Unsat {
+            return Ok((Sat::Unsat, None));
+        }
+        // The monomials read as variables ([`relax::linearize`]): its
+        // `unsat` is the query's, its `sat` says nothing.
+        let first = Var::try_from(self.names.len()).unwrap_or(Var::MAX);
+        if let Some(lin) = relax::linearize(&system, &self.squares, first) {
+            let mut names = self.names.clone();
+            names.extend((0..lin.monomials.len()).map(|k| format!("mono{k}")));
+            let text: Vec<String> = lin.constraints.iter().map(|c| c.smt(&names)).collect();
+            self.queries += 1;
+            if Solver::start(&names, self.solver.limits)?.check(&text, None)? == Sat::Unsat {
+                return Ok((Sat::Unsat, None));
+            }
+        }
+        self.check_lifted(&system)
+    }
+
+    /// The query with the path's quotients as variables of their own
+    /// ([`lift`]), asked of a solver process that declares them; a model
+    /// is cut back to the original variables.
+    fn check_lifted(
+        &mut self,
+        system: &[Constraint],
+    ) -> Result<(Sat, Option<Vec<BigRational>>), SolverError> {
+        let first = Var::try_from(self.names.len()).unwrap_or(Var::MAX);
+        let masks = &self.masks;
+        // As for the elimination: `den ≠ 0` when the path excludes sign 0.
+        let nonzero = |a: &Poly| {
+            let (np, _) = a.normalized();
+            masks.get(&np).is_some_and(|m| m & ZERO == 0)
+        };
+        let lifted = lift::lift(system, &self.quotients, &nonzero, first, MAX_LIFTED);
+        if lifted.fresh.is_empty() {
+            return Ok((Sat::Unknown, None));
+        }
+        let mut names = self.names.clone();
+        names.extend((0..lifted.fresh.len()).map(|k| format!("tau{k}")));
+        let text: Vec<String> = lifted.constraints.iter().map(|c| c.smt(&names)).collect();
+        let mut solver = Solver::start(&names, self.solver.limits)?;
+        self.queries += 1;
+        match solver.check(&text, None)? {
+            Sat::Sat => {
+                let model = solver.model(&self.names)?;
+                Ok((Sat::Sat, model))
+            }
+            other => Ok((other, None)),
         }
     }
 }
@@ -419,6 +468,40 @@ fn union_rel(rels: impl Iterator<Item = Rel>) -> Option<Rel> {
     [Rel::Lt, Rel::Le, Rel::Eq, Rel::Ne, Rel::Gt, Rel::Ge]
         .into_iter()
         .find(|r| r.mask() == mask)
+}
+
+/// The most quotients lifted to variables in one query.
+const MAX_LIFTED: usize = 8;
+
+/// Records a quotient `num / den` the program compares (a collision
+/// instant), for [`lift`] on the path running on this thread.
+pub fn note_quotient(num: &Poly, den: &Poly) {
+    STATE.with(|s| {
+        if let Some(st) = s.borrow_mut().as_mut() {
+            let q = Quotient {
+                num: num.clone(),
+                den: den.clone(),
+            };
+            if !st.quotients.contains(&q) {
+                st.quotients.push(q);
+            }
+        }
+    });
+}
+
+/// The most squared polynomials kept for [`relax::linearize`] on one path.
+const MAX_SQUARES: usize = 8;
+
+/// Records a polynomial the program squares (a displacement whose square
+/// it bounds), for [`relax::linearize`] on the path running on this thread.
+pub fn note_square(base: &Poly) {
+    STATE.with(|s| {
+        if let Some(st) = s.borrow_mut().as_mut() {
+            if st.squares.len() < MAX_SQUARES && !st.squares.contains(base) {
+                st.squares.push(base.clone());
+            }
+        }
+    });
 }
 
 /// `true` when the exact point satisfies every constraint.
@@ -651,6 +734,8 @@ pub fn explore(
         pc: base_pc.clone(),
         full_pc: base_pc.clone(),
         cons: base_cons.clone(),
+        quotients: Vec::new(),
+        squares: Vec::new(),
         solver,
         names: names.to_vec(),
         queries: 0,
@@ -694,6 +779,8 @@ pub fn explore(
         st.pc = base_pc.clone();
         st.full_pc = base_pc.clone();
         st.cons = base_cons.clone();
+        st.quotients.clear();
+        st.squares.clear();
         st.queries = 0;
         st.unknown_answers = 0;
         st.fault = None;

@@ -33,6 +33,7 @@
 pub mod budget;
 pub mod eliminate;
 pub mod explore;
+pub mod lift;
 pub mod poly;
 pub mod record;
 pub mod relax;

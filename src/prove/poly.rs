@@ -69,6 +69,11 @@ impl Poly {
     pub fn is_empty(&self) -> bool {
         self.terms.is_empty()
     }
+    /// The monomials (sorted variable lists, a power repeated) with their
+    /// non-zero coefficients, in the map's order.
+    pub fn terms(&self) -> impl Iterator<Item = (&[Var], &BigRational)> {
+        self.terms.iter().map(|(m, c)| (m.as_slice(), c))
+    }
     fn add_term(&mut self, m: Vec<Var>, c: BigRational) {
         budget::tick();
         if c.is_zero() {

@@ -104,6 +104,13 @@ impl Sym {
     /// `self − other`, and the polynomial whose sign is the sign of the
     /// difference wherever the denominators do not vanish.
     fn sign_poly(&self, other: &Sym) -> (Sym, Poly) {
+        // The quotients compared (collision instants), for the lifting of
+        // an undecided query (`lift`).
+        for q in [self, other] {
+            if q.den.as_constant().is_none() {
+                super::explore::note_quotient(&q.num, &q.den);
+            }
+        }
         let d = self.clone() - other;
         let p = if d.den.as_constant().is_some() {
             d.num.clone()
@@ -135,6 +142,11 @@ impl Sym {
 
 impl PartialEq for Sym {
     fn eq(&self, other: &Self) -> bool {
+        for q in [self, other] {
+            if q.den.as_constant().is_none() {
+                super::explore::note_quotient(&q.num, &q.den);
+            }
+        }
         let d = self.clone() - other;
         decide(&d.num, &[Rel::Eq, Rel::Ne]) == 0
     }
@@ -167,6 +179,11 @@ fn add(a: &Sym, b: &Sym) -> Sym {
 }
 
 fn mul(a: &Sym, b: &Sym) -> Sym {
+    // A polynomial squared: its base, for the relaxation's `(p ± q)² ≥ 0`
+    // (`relax::linearize`).
+    if a.num == b.num && a.den == b.den && a.den.as_constant().is_some() && a.num.degree() > 0 {
+        super::explore::note_square(&a.num);
+    }
     if a.den == b.num && !a.den.is_zero() {
         return Sym::frac(a.num.clone(), b.den.clone());
     }
