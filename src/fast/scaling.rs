@@ -12,7 +12,7 @@
 
 use num_bigint::{BigInt, BigUint};
 use num_rational::BigRational;
-use num_traits::ToPrimitive;
+use num_traits::{One, ToPrimitive, Zero};
 
 use crate::fast::int::{gcd, narrowed, MulSmall};
 use crate::initial::InitialData;
@@ -403,10 +403,51 @@ pub(crate) fn scale_big(
     let scale = |v: &[BigRational], d: &BigInt| -> Vec<BigInt> {
         v.iter().map(|q| q.numer() * (d / q.denom())).collect()
     };
-    let shifted = data.shifted_positions();
-    let dx = lcm(&shifted);
+    let (x, dx) = scale_shifted_big(data);
     let du = lcm(data.velocities());
-    (scale(&shifted, &dx), scale(data.velocities(), &du), dx, du)
+    (x, scale(data.velocities(), &du), dx, du)
+}
+
+/// The translated positions `x_i − 2r·i` (`df:translat-x`) on their least
+/// common denominator, without reducing one `BigRational` per particle: on
+/// a common denominator `D` of the positions and of `r`, `x_i − 2r·i =
+/// n_i / D` with integer `n_i`, and the lcm of the reduced denominators
+/// `D / gcd(D, n_i)` is `D / g` with `g = gcd(D, n_0, …)`; the scaled
+/// values are then `n_i / g`. Any common multiple `D` gives the same `g`
+/// quotient, so `D` need not be the least.
+fn scale_shifted_big(data: &InitialData<BigRational>) -> (Vec<BigInt>, BigInt) {
+    let r = data.radius();
+    let d = data
+        .positions()
+        .iter()
+        .fold(r.denom().magnitude().clone(), |acc, q| {
+            crate::gcd::lcm(&acc, q.denom().magnitude())
+        });
+    let d = BigInt::from(d);
+    let two_r = r.numer() * (&d / r.denom()) * 2u32;
+    let mut offset = BigInt::zero();
+    let n: Vec<BigInt> = data
+        .positions()
+        .iter()
+        .map(|q| {
+            let v = q.numer() * (&d / q.denom()) - &offset;
+            offset += &two_r;
+            v
+        })
+        .collect();
+    let g = n.iter().fold(d.magnitude().clone(), |acc, v| {
+        if acc.is_one() {
+            acc
+        } else {
+            crate::gcd::gcd(&acc, v.magnitude())
+        }
+    });
+    if g.is_one() {
+        return (n, d);
+    }
+    let g = BigInt::from(g);
+    let dx = &d / &g;
+    (n.into_iter().map(|v| v / &g).collect(), dx)
 }
 
 /// The scaling in `i128` by whichever path applies; `None` when a scaled
