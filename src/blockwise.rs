@@ -11,7 +11,7 @@
 //! adding one particle costs a remainder by its (small) denominator, not a
 //! gcd of two big numbers. When the data share their denominators (the
 //! lcm of the positions' and of the velocities' is at most
-//! [`COMMON_EXTRA_BITS`] wider than the widest one: data scaled by one wide
+//! `COMMON_EXTRA_BITS` wider than the widest one: data scaled by one wide
 //! factor), the free flight is computed over those common denominators,
 //! numerators only, and the PAVA adds and compares numerators: no gcd
 //! before the answers. The answers are then reduced once per block:

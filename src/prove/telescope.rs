@@ -3,9 +3,9 @@
 //!
 //! The checker ([`crate::claims::eulerian::mass`]) computes, for each test
 //! function `φ = B(t) Q(x)` and each piece `[a, b]` between consecutive
-//! cuts ([`mass_cuts`]), the integral over `τ ∈ [0, b − a]` of its
-//! [`piece_integrand`] `B_a'(τ) S_a(τ) + B_a(τ) S_a'(τ)`, where
-//! `B_a(τ) = B(a + τ)` is [`bump`]'s polynomial and
+//! cuts (`mass_cuts`), the integral over `τ ∈ [0, b − a]` of its
+//! `piece_integrand` `B_a'(τ) S_a(τ) + B_a(τ) S_a'(τ)`, where
+//! `B_a(τ) = B(a + τ)` is `bump`'s polynomial and
 //! `S_a(τ) = Σ_i Q(x_i(a) + τ u_i(a))` comes from the state at `a`. Three
 //! identities of the checker's code, true for all reals and proved as
 //! identities of polynomials by this module's tests (on the symbolic
@@ -25,9 +25,6 @@
 //! it (identically true, or decided by the path condition, or the path
 //! splits); where it fails, the prover computes the checker's own residual
 //! on that path instead.
-//!
-//! [`piece_integrand`]: crate::claims::eulerian::piece_integrand
-//! [`bump`]: crate::claims::eulerian::bump
 
 use crate::claims::eulerian::{mass_cuts, mass_tests};
 use crate::claims::Case;
