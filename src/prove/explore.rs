@@ -158,6 +158,17 @@ pub fn fault(what: &str) {
 }
 
 impl PathState {
+    /// Takes the outcome `rel` of the comparison of `p` (normalised `np`):
+    /// recorded in the sign masks and the path condition, and kept as a
+    /// constraint of the path.
+    fn keep(&mut self, np: &Poly, flipped: bool, p: &Poly, rel: Rel, ptext: &str, implied: bool) {
+        self.record(np, flipped, rel, Some(rel.smt(ptext)), implied);
+        self.cons.push(Constraint::Atom(Atom {
+            poly: p.clone(),
+            rel,
+        }));
+    }
+
     fn record(&mut self, np: &Poly, flipped: bool, rel: Rel, text: Option<String>, implied: bool) {
         let m = if flipped {
             flip(rel.mask())
@@ -220,17 +231,7 @@ impl PathState {
             }
             let k = usize::from(k).min(outcomes.len() - 1);
             self.taken.push((fingerprint, taken));
-            self.record(
-                &np,
-                flipped,
-                outcomes[k],
-                Some(outcomes[k].smt(&ptext)),
-                implied,
-            );
-            self.cons.push(Constraint::Atom(Atom {
-                poly: p.clone(),
-                rel: outcomes[k],
-            }));
+            self.keep(&np, flipped, p, outcomes[k], &ptext, implied);
             return k;
         }
         // The outcome the current model takes is feasible: no query.
@@ -326,17 +327,7 @@ impl PathState {
         }
         let flag = if implied { IMPLIED } else { 0 };
         self.taken.push((fingerprint, k as u8 | flag));
-        self.record(
-            &np,
-            flipped,
-            outcomes[k],
-            Some(outcomes[k].smt(&ptext)),
-            implied,
-        );
-        self.cons.push(Constraint::Atom(Atom {
-            poly: p.clone(),
-            rel: outcomes[k],
-        }));
+        self.keep(&np, flipped, p, outcomes[k], &ptext, implied);
         k
     }
 
@@ -353,17 +344,7 @@ impl PathState {
     ) {
         let ptext = p.smt(&self.names);
         self.taken.push((fingerprint, k as u8 | IMPLIED));
-        self.record(
-            np,
-            flipped,
-            outcomes[k],
-            Some(outcomes[k].smt(&ptext)),
-            true,
-        );
-        self.cons.push(Constraint::Atom(Atom {
-            poly: p.clone(),
-            rel: outcomes[k],
-        }));
+        self.keep(np, flipped, p, outcomes[k], &ptext, true);
     }
 
     /// The query `path condition ∧ extra` asked again after eliminating the
