@@ -105,16 +105,7 @@ pub fn lean_toml(bytes: &[u8]) {
 /// than [`KERNELS_GENERIC_MAX_N`] particles ([`kernels_asks`]). Panics on
 /// any difference.
 pub fn kernels(bytes: &[u8]) {
-    let (head, rest) = bytes.split_at(bytes.len().min(3));
-    let similarity = similarity(head);
-    let data = initial_data(
-        rest,
-        Limits {
-            max_n: KERNELS_MAX_N,
-            max_den: 8,
-            max_speed: 16,
-        },
-    );
+    let (similarity, data) = kernels_input(bytes);
     if let Err(m) = crate::fast::battery::check_similar_asking(
         &data,
         &similarity,
@@ -125,6 +116,21 @@ pub fn kernels(bytes: &[u8]) {
     {
         panic!("{m}\n(similarity {similarity}, on {data:?})");
     }
+}
+
+/// The input of the `kernels` target: the similarity from the first three
+/// bytes, the small admissible data (N ≤ [`KERNELS_MAX_N`]) from the rest.
+fn kernels_input(bytes: &[u8]) -> (Similarity, crate::InitialData<BigRational>) {
+    let (head, rest) = bytes.split_at(bytes.len().min(3));
+    let data = initial_data(
+        rest,
+        Limits {
+            max_n: KERNELS_MAX_N,
+            max_den: 8,
+            max_speed: 16,
+        },
+    );
+    (similarity(head), data)
 }
 
 /// The largest N on which the `kernels` target asks the merge engine for
@@ -258,16 +264,8 @@ mod tests {
     /// The kernel widths the image data of `bytes` reach at the target's
     /// probe times, and the number of particles.
     fn widths(bytes: &[u8]) -> (std::collections::BTreeSet<String>, usize) {
-        let (head, rest) = bytes.split_at(bytes.len().min(3));
-        let small = initial_data(
-            rest,
-            Limits {
-                max_n: KERNELS_MAX_N,
-                max_den: 8,
-                max_speed: 16,
-            },
-        );
-        let d = IntegerData::new(&similarity(head).data(&small));
+        let (similarity, small) = kernels_input(bytes);
+        let d = IntegerData::new(&similarity.data(&small));
         let times = probe_times(&Trajectory::new(small.clone()), Some(KERNELS_PROBES));
         let seen = times
             .iter()
@@ -307,16 +305,8 @@ mod tests {
         let mut count = |key: String| *reach.entry(key).or_default() += 1;
         let inputs = corpus(400);
         for bytes in &inputs {
-            let (head, rest) = bytes.split_at(3);
-            let small = initial_data(
-                rest,
-                Limits {
-                    max_n: KERNELS_MAX_N,
-                    max_den: 8,
-                    max_speed: 16,
-                },
-            );
-            let image = similarity(head).data(&small);
+            let (similarity, small) = kernels_input(bytes);
+            let image = similarity.data(&small);
             let times = probe_times(&Trajectory::new(small.clone()), Some(KERNELS_PROBES));
             let d = IntegerData::new(&image);
             let mut seen = std::collections::BTreeSet::new();
