@@ -169,17 +169,10 @@ fn free_flight(
 /// denominator that divides the running lcm costs one remainder.
 fn common_denominator<'a>(denoms: impl Iterator<Item = &'a BigUint> + Clone) -> Option<BigUint> {
     let widest = denoms.clone().map(BigUint::bits).max().unwrap_or(0);
-    let mut lcm = BigUint::one();
-    for d in denoms {
-        if *d == lcm || (&lcm % d).is_zero() {
-            continue;
-        }
-        lcm = gcd::lcm(&lcm, d);
-        if lcm.bits() > widest + COMMON_EXTRA_BITS {
-            return None;
-        }
+    match gcd::running_lcm(&BigUint::one(), denoms, widest + COMMON_EXTRA_BITS) {
+        gcd::RunningLcm::Exact(lcm) => Some(lcm),
+        gcd::RunningLcm::Past(_) => None,
     }
-    Some(lcm)
 }
 
 /// How many bits the common denominator of [`common_denominator`] may have

@@ -132,6 +132,51 @@ pub fn lcm(a: &BigUint, b: &BigUint) -> BigUint {
     a / gcd(a, b) * b
 }
 
+/// What a running lcm reached: the lcm itself, or the size past which it
+/// stopped.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum RunningLcm {
+    /// Every value was taken in: this is their lcm.
+    Exact(BigUint),
+    /// The running lcm passed the limit with this many bits; the lcm of all
+    /// the values has at least as many.
+    Past(u64),
+}
+
+/// The lcm of `start` and `values` (positive denominators), taken in one at
+/// a time: a value that divides the lcm so far costs one remainder (a word
+/// remainder when it is small), any other one a [`gcd`]. Stops as soon as
+/// the lcm has more than `limit` bits, so that a hostile column (the
+/// denominators `1 … n`, whose lcm has ~1.44·n bits) costs no more than
+/// the limit allows.
+pub fn running_lcm<'a>(
+    start: &BigUint,
+    values: impl IntoIterator<Item = &'a BigUint>,
+    limit: u64,
+) -> RunningLcm {
+    debug_assert!(!start.is_zero());
+    let mut acc = start.clone();
+    for d in values {
+        debug_assert!(!d.is_zero(), "a denominator is positive");
+        if d.is_one() || *d == acc || (&acc % d).is_zero() {
+            continue;
+        }
+        acc = lcm(&acc, d);
+        if acc.bits() > limit {
+            return RunningLcm::Past(acc.bits());
+        }
+    }
+    RunningLcm::Exact(acc)
+}
+
+/// The lcm of `start` and `values`, with no limit ([`running_lcm`]).
+pub fn lcm_of<'a>(start: &BigUint, values: impl IntoIterator<Item = &'a BigUint>) -> BigUint {
+    match running_lcm(start, values, u64::MAX) {
+        RunningLcm::Exact(l) => l,
+        RunningLcm::Past(_) => unreachable!("no lcm has more than u64::MAX bits"),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -200,5 +245,42 @@ mod tests {
             assert_eq!(lcm(&a, &b), a.lcm(&b));
         }
         assert_eq!(ratio(BigInt::zero(), BigInt::from(-5)), BigRational::zero());
+    }
+
+    /// The running lcm equals `num-integer`'s lcm folded over the values
+    /// (divisors, repeats and ones among them), and stops exactly when the
+    /// lcm passes the limit, with the bits it reached.
+    #[test]
+    fn running_lcm_equals_the_fold_and_stops_past_the_limit() {
+        let mut w = Words(777);
+        for k in 0..200 {
+            let start = w.big(1 + k % 3) + 1u32;
+            let values: Vec<BigUint> = (0..1 + k % 12)
+                .map(|j| match j % 4 {
+                    0 => BigUint::one(),
+                    1 => start.clone(),
+                    _ => w.big(1 + j % 3) + 1u32,
+                })
+                .collect();
+            let fold = values.iter().fold(start.clone(), |a, d| a.lcm(d));
+            assert_eq!(lcm_of(&start, &values), fold);
+            let bits = fold.bits();
+            assert_eq!(
+                running_lcm(&start, &values, bits),
+                RunningLcm::Exact(fold.clone())
+            );
+            if bits > start.bits() {
+                match running_lcm(&start, &values, bits - 1) {
+                    RunningLcm::Past(b) => assert!(b > bits - 1 && b <= bits),
+                    RunningLcm::Exact(l) => panic!("{l} has {bits} bits > {}", bits - 1),
+                }
+            }
+        }
+        // The hostile column 1 … 2000 stops near its limit, not at its end.
+        let hostile: Vec<BigUint> = (1u32..=2000).map(BigUint::from).collect();
+        match running_lcm(&BigUint::one(), &hostile, 100) {
+            RunningLcm::Past(b) => assert!((101..=112).contains(&b), "{b}"),
+            RunningLcm::Exact(l) => panic!("lcm(1 … 2000) has {} bits", l.bits()),
+        }
     }
 }

@@ -154,17 +154,17 @@ pub const MERGE_WORD_BITS: u64 = 128;
 /// `x⁰_i − 2r·i` (`i < 16`).
 pub fn scaled_bits(data: &crate::InitialData<BigRational>) -> u64 {
     use num_bigint::BigUint;
-    use num_traits::{One, Zero};
+    use num_traits::One;
     let column = |values: &mut dyn Iterator<Item = (&BigRational, u64)>| -> u64 {
-        let mut lcm = BigUint::one();
         let mut widest: i64 = 0;
-        for (q, extra) in values {
-            let d = q.denom().magnitude();
-            if !(&lcm % d).is_zero() {
-                lcm = crate::gcd::lcm(&lcm, d);
-            }
-            widest = widest.max((q.numer().bits() + extra) as i64 - d.bits() as i64);
-        }
+        let lcm = crate::gcd::lcm_of(
+            &BigUint::one(),
+            values.map(|(q, extra)| {
+                let d = q.denom().magnitude();
+                widest = widest.max((q.numer().bits() + extra) as i64 - d.bits() as i64);
+                d
+            }),
+        );
         (lcm.bits() as i64 + widest + 2).max(0) as u64
     };
     let two_r = data.two_r();

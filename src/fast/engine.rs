@@ -182,20 +182,16 @@ impl Cost {
     /// remainder by each small denominator, [`crate::gcd`]), stopped once
     /// past [`LCM_BITS_LIMIT`].
     pub fn of(data: &InitialData<BigRational>) -> Cost {
-        use num_bigint::BigUint;
         let radius = data.radius().denom().magnitude();
-        let running = |values: &mut dyn Iterator<Item = &BigRational>| -> Bits {
-            let mut lcm: BigUint = radius.clone();
-            for q in values {
-                lcm = crate::gcd::lcm(&lcm, q.denom().magnitude());
-                if lcm.bits() > LCM_BITS_LIMIT {
-                    return Bits::AtLeast(lcm.bits());
-                }
+        let running = |values: &[BigRational]| -> Bits {
+            let denoms = values.iter().map(|q| q.denom().magnitude());
+            match crate::gcd::running_lcm(radius, denoms, LCM_BITS_LIMIT) {
+                crate::gcd::RunningLcm::Exact(lcm) => Bits::Exact(lcm.bits()),
+                crate::gcd::RunningLcm::Past(bits) => Bits::AtLeast(bits),
             }
-            Bits::Exact(lcm.bits())
         };
-        let x = running(&mut data.positions().iter());
-        let u = running(&mut data.velocities().iter());
+        let x = running(data.positions());
+        let u = running(data.velocities());
         let largest_denominator_bits = largest_denominator_bits(data);
         // Stopped early, the lcm is at least the bits reached and at least
         // every single denominator.

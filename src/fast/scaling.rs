@@ -395,10 +395,10 @@ pub(crate) fn scale_big(
     data: &InitialData<BigRational>,
 ) -> (Vec<BigInt>, Vec<BigInt>, BigInt, BigInt) {
     let lcm = |v: &[BigRational]| {
-        let d = v.iter().fold(BigUint::from(1u32), |acc, q| {
-            crate::gcd::lcm(&acc, q.denom().magnitude())
-        });
-        BigInt::from(d)
+        BigInt::from(crate::gcd::lcm_of(
+            &BigUint::from(1u32),
+            v.iter().map(|q| q.denom().magnitude()),
+        ))
     };
     let scale = |v: &[BigRational], d: &BigInt| -> Vec<BigInt> {
         v.iter().map(|q| q.numer() * (d / q.denom())).collect()
@@ -417,12 +417,10 @@ pub(crate) fn scale_big(
 /// quotient, so `D` need not be the least.
 fn scale_shifted_big(data: &InitialData<BigRational>) -> (Vec<BigInt>, BigInt) {
     let r = data.radius();
-    let d = data
-        .positions()
-        .iter()
-        .fold(r.denom().magnitude().clone(), |acc, q| {
-            crate::gcd::lcm(&acc, q.denom().magnitude())
-        });
+    let d = crate::gcd::lcm_of(
+        r.denom().magnitude(),
+        data.positions().iter().map(|q| q.denom().magnitude()),
+    );
     let d = BigInt::from(d);
     let two_r = r.numer() * (&d / r.denom()) * 2u32;
     let mut offset = BigInt::zero();
