@@ -4,7 +4,7 @@
     (clusters as [(first, size)], indices from 0) of [Dynamics.v], proved
     equal to [P_K(x⁰ + t u⁰)] ([DynamicsIsProjK.dynamics_is_proj_K]) and to
     the paper's statements on them (the files after [Dynamics.v]). Written
-    to [extraction/sticky_dynamics.ml] with the realizers of [Extract.v]
+    to [extraction/sticky_dynamics.ml] with the realizers of [Realizers.v]
     (zarith integers, OCaml ints for [nat], [Z.ggcd] by zarith's gcd).
 
     This is an independent second implementation for cross-checks on small
@@ -12,15 +12,8 @@
     unreduced, so it is quadratic in [N] at best; the oracle stays on PAVA,
     which [dynamics_is_proj_K] proves equal to it. *)
 
-From Coq Require Import Extraction ExtrOcamlBasic ExtrOcamlNatInt ExtrOcamlZBigInt.
-From Coq Require Import QArith.
-From Sticky Require Import Dynamics.
-
-Extract Constant Z.ggcd =>
-  "(fun a b -> let g = Big_int_Z.gcd_big_int a b in
-     if Big_int_Z.sign_big_int g = 0
-     then (g, (Big_int_Z.zero_big_int, Big_int_Z.zero_big_int))
-     else (g, (Big_int_Z.div_big_int a g, Big_int_Z.div_big_int b g)))".
+From Coq Require Import Extraction QArith.
+From Sticky Require Import Realizers Dynamics.
 
 Cd "extraction".
 Extraction "sticky_dynamics" dynamics cluster_spans Qred.

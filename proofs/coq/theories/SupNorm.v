@@ -44,59 +44,52 @@ Proof.
     destruct (qmax_cases c d) as [[L' E']|[L' E']]; rewrite E'; lra.
 Qed.
 
-Fixpoint vmin (a b : list Q) : list Q :=
+(** [f] entry by entry on two lists (as long as the shorter); [vmin] and
+    [vmax] are its two instances. *)
+Fixpoint vzip (f : Q -> Q -> Q) (a b : list Q) : list Q :=
   match a, b with
-  | x :: a', y :: b' => qmin x y :: vmin a' b'
+  | x :: a', y :: b' => f x y :: vzip f a' b'
   | _, _ => []
   end.
 
-Fixpoint vmax (a b : list Q) : list Q :=
-  match a, b with
-  | x :: a', y :: b' => qmax x y :: vmax a' b'
-  | _, _ => []
-  end.
+Notation vmin := (vzip qmin).
+Notation vmax := (vzip qmax).
 
-Lemma nth_vmin (a : list Q) : forall b i,
-  length b = length a -> nth i (vmin a b) 0 = qmin (nth i a 0) (nth i b 0).
-Proof.
-  induction a as [|x a IH]; intros [|y b] i L; simpl in L; try discriminate.
-  - destruct i; reflexivity.
-  - destruct i; simpl; [reflexivity|apply IH; lia].
-Qed.
+Section Entrywise.
+  (** An operation monotone in both arguments that maps [0, 0] (the
+      default of [nth]) to [0]. *)
+  Variable f : Q -> Q -> Q.
+  Hypothesis f_mono : forall a b c d, a <= c -> b <= d -> f a b <= f c d.
+  Hypothesis f_zero : f 0 0 = 0.
 
-Lemma nth_vmax (a : list Q) : forall b i,
-  length b = length a -> nth i (vmax a b) 0 = qmax (nth i a 0) (nth i b 0).
-Proof.
-  induction a as [|x a IH]; intros [|y b] i L; simpl in L; try discriminate.
-  - destruct i; reflexivity.
-  - destruct i; simpl; [reflexivity|apply IH; lia].
-Qed.
+  Lemma nth_vzip (a : list Q) : forall b i,
+    length b = length a -> nth i (vzip f a b) 0 = f (nth i a 0) (nth i b 0).
+  Proof.
+    induction a as [|x a IH]; intros [|y b] i L; simpl in L; try discriminate.
+    - destruct i; symmetry; exact f_zero.
+    - destruct i; simpl; [reflexivity|apply IH; lia].
+  Qed.
 
-Lemma vmin_length (a : list Q) : forall b, length b = length a -> length (vmin a b) = length a.
-Proof.
-  induction a as [|x a IH]; intros [|y b] L; simpl in *; try discriminate; [reflexivity|].
-  f_equal. apply IH. lia.
-Qed.
+  Lemma vzip_length (a : list Q) : forall b, length b = length a -> length (vzip f a b) = length a.
+  Proof.
+    induction a as [|x a IH]; intros [|y b] L; simpl in *; try discriminate; [reflexivity|].
+    f_equal. apply IH. lia.
+  Qed.
 
-Lemma vmax_length (a : list Q) : forall b, length b = length a -> length (vmax a b) = length a.
-Proof.
-  induction a as [|x a IH]; intros [|y b] L; simpl in *; try discriminate; [reflexivity|].
-  f_equal. apply IH. lia.
-Qed.
+  Lemma vzip_monotone (a b : list Q) :
+    length b = length a -> Monotone a -> Monotone b -> Monotone (vzip f a b).
+  Proof.
+    intros L Ha Hb i Hi. rewrite vzip_length in Hi by exact L.
+    rewrite !nth_vzip by exact L. apply f_mono; [apply Ha|apply Hb]; lia.
+  Qed.
+End Entrywise.
 
-Lemma vmin_monotone (a b : list Q) :
-  length b = length a -> Monotone a -> Monotone b -> Monotone (vmin a b).
-Proof.
-  intros L Ha Hb i Hi. rewrite vmin_length in Hi by exact L.
-  rewrite !nth_vmin by exact L. apply qmin_mono; [apply Ha|apply Hb]; lia.
-Qed.
-
-Lemma vmax_monotone (a b : list Q) :
-  length b = length a -> Monotone a -> Monotone b -> Monotone (vmax a b).
-Proof.
-  intros L Ha Hb i Hi. rewrite vmax_length in Hi by exact L.
-  rewrite !nth_vmax by exact L. apply qmax_mono; [apply Ha|apply Hb]; lia.
-Qed.
+Definition nth_vmin := nth_vzip qmin eq_refl.
+Definition nth_vmax := nth_vzip qmax eq_refl.
+Definition vmin_length := vzip_length qmin.
+Definition vmax_length := vzip_length qmax.
+Definition vmin_monotone := vzip_monotone qmin qmin_mono eq_refl.
+Definition vmax_monotone := vzip_monotone qmax qmax_mono eq_refl.
 
 (** Entrywise [a ≤ b]. *)
 Definition LeList (a b : list Q) : Prop := forall i, nth i a 0 <= nth i b 0.
