@@ -557,11 +557,11 @@ enum Model {
 
 /// The first try of every query, in milliseconds: `nlsat` answers most of
 /// them within it ([`PathState::ask`]).
-const FIRST_TRY_MS: u64 = 500;
+const FIRST_TRY_MS: u64 = 200;
 
 /// The time given to each cheap over-approximation of a query `nlsat` did
 /// not answer within [`FIRST_TRY_MS`] (they are linear, or nearly).
-const RELAXED_MS: u64 = 2_000;
+const RELAXED_MS: u64 = 500;
 
 /// The most quotients lifted to variables in one query.
 const MAX_LIFTED: usize = 8;
