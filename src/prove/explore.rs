@@ -357,7 +357,8 @@ impl PathState {
     /// answer is the one the single long query would give, or `unsat` where
     /// it would have given `unknown`, in less time when a relaxation
     /// settles it (on `lem:density` at N = 3, nlsat ran 20 s into its limit
-    /// on queries that the linear part refutes in 0.1 s).
+    /// on cell steps that the elimination or the linearisation refutes in
+    /// 0.1 s).
     fn ask(
         &mut self,
         extra: &Atom,
@@ -395,19 +396,13 @@ impl PathState {
 
     /// `true` when a cheap over-approximation of `path condition ∧ extra`
     /// is unsatisfiable (then so is the query): the elimination of the
-    /// variables the path's equalities determine ([`eliminate`]), the
-    /// linear part ([`relax::linear_part`]) and the monomials read as
-    /// variables ([`relax::linearize`]), each given [`RELAXED_MS`].
-    /// `false` says nothing.
+    /// variables the path's equalities determine ([`eliminate`]), then
+    /// [`PathState::refuted_by_relaxation`], each solver call given
+    /// [`RELAXED_MS`]. `false` says nothing.
     fn refuted_cheaply(&mut self, extra: &Atom) -> Result<bool, SolverError> {
         let mut system = self.cons.clone();
         system.push(Constraint::Atom(extra.clone()));
-        let masks = &self.masks;
-        let nonzero = |a: &Poly| {
-            let (np, _) = a.normalized();
-            masks.get(&np).is_some_and(|m| m & ZERO == 0)
-        };
-        match eliminate::reduce(&system, &nonzero, self.names.len()) {
+        match self.eliminated(&system) {
             Reduced::Unsatisfiable => return Ok(true),
             Reduced::System {
                 constraints,
@@ -421,20 +416,47 @@ impl PathState {
             }
             Reduced::System { .. } => {}
         }
-        let weaker = relax::linear_part(&self.cons, Some(extra));
+        self.refuted_by_relaxation(&system, Some(extra), RELAXED_MS)
+    }
+
+    /// `system` (the path condition and `extra`) with the variables that
+    /// its equalities determine eliminated ([`eliminate::reduce`]), where
+    /// the path condition shows the leading coefficient non-zero.
+    fn eliminated(&self, system: &[Constraint]) -> Reduced {
+        let masks = &self.masks;
+        // `a ≠ 0` on the path when the path condition excludes the sign 0
+        // of `a` (up to a constant factor).
+        let nonzero = |a: &Poly| {
+            let (np, _) = a.normalized();
+            masks.get(&np).is_some_and(|m| m & ZERO == 0)
+        };
+        eliminate::reduce(system, &nonzero, self.names.len())
+    }
+
+    /// `true` when a weaker system than `system` (the path condition and
+    /// `extra`) is unsatisfiable within `ms` milliseconds: its linear part
+    /// and `extra` ([`relax::linear_part`]), then its monomials read as
+    /// variables ([`relax::linearize`]). `false` says nothing.
+    fn refuted_by_relaxation(
+        &mut self,
+        system: &[Constraint],
+        extra: Option<&Atom>,
+        ms: u64,
+    ) -> Result<bool, SolverError> {
+        let weaker = relax::linear_part(&self.cons, extra);
         let text: Vec<String> = weaker.iter().map(|c| c.smt(&self.names)).collect();
         self.queries += 1;
-        if self.solver.check_within(&text, None, RELAXED_MS)? == Sat::Unsat {
+        if self.solver.check_within(&text, None, ms)? == Sat::Unsat {
             return Ok(true);
         }
         let first = Var::try_from(self.names.len()).unwrap_or(Var::MAX);
-        if let Some(lin) = relax::linearize(&system, &self.squares, first) {
+        if let Some(lin) = relax::linearize(system, &self.squares, first) {
             let mut names = self.names.clone();
             names.extend((0..lin.monomials.len()).map(|k| format!("mono{k}")));
             let text: Vec<String> = lin.constraints.iter().map(|c| c.smt(&names)).collect();
             self.queries += 1;
             let mut solver = Solver::start(&names, self.solver.limits)?;
-            if solver.check_within(&text, None, RELAXED_MS)? == Sat::Unsat {
+            if solver.check_within(&text, None, ms)? == Sat::Unsat {
                 return Ok(true);
             }
         }
@@ -455,14 +477,7 @@ impl PathState {
     ) -> Result<(Sat, Option<Vec<BigRational>>), SolverError> {
         let mut system = self.cons.clone();
         system.extend(extra.clone().map(Constraint::Atom));
-        let masks = &self.masks;
-        // `a ≠ 0` on the path when the path condition excludes the sign 0
-        // of `a` (up to a constant factor).
-        let nonzero = |a: &Poly| {
-            let (np, _) = a.normalized();
-            masks.get(&np).is_some_and(|m| m & ZERO == 0)
-        };
-        let reduced = eliminate::reduce(&system, &nonzero, self.names.len());
+        let reduced = self.eliminated(&system);
         match &reduced {
             Reduced::Unsatisfiable => return Ok((Sat::Unsat, None)),
             Reduced::System {
@@ -482,23 +497,9 @@ impl PathState {
             }
             Reduced::System { .. } => {}
         }
-        let weaker = relax::linear_part(&self.cons, extra.as_ref());
-        let text: Vec<String> = weaker.iter().map(|c| c.smt(&self.names)).collect();
-        self.queries += 1;
-        if self.solver.check(&text, None)? == Sat::Unsat {
+        let full = self.solver.limits.query_ms;
+        if self.refuted_by_relaxation(&system, extra.as_ref(), full)? {
             return Ok((Sat::Unsat, None));
-        }
-        // The monomials read as variables ([`relax::linearize`]): its
-        // `unsat` is the query's, its `sat` says nothing.
-        let first = Var::try_from(self.names.len()).unwrap_or(Var::MAX);
-        if let Some(lin) = relax::linearize(&system, &self.squares, first) {
-            let mut names = self.names.clone();
-            names.extend((0..lin.monomials.len()).map(|k| format!("mono{k}")));
-            let text: Vec<String> = lin.constraints.iter().map(|c| c.smt(&names)).collect();
-            self.queries += 1;
-            if Solver::start(&names, self.solver.limits)?.check(&text, None)? == Sat::Unsat {
-                return Ok((Sat::Unsat, None));
-            }
         }
         self.check_lifted(&system)
     }
