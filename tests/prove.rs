@@ -52,12 +52,7 @@ const NOT_EXPRESSIBLE_UP_TO_3: [(&str, &str); 0] = [];
 /// Targets proved at N ≤ 2 whose N = 3 proof z3 does not finish, with the
 /// reason (the N = 3 attempt is not made; every numeric engine still checks
 /// them at all N).
-const UNDECIDED_AT_3: [(&str, &str); 1] = [
-    (
-        "lem:density",
-        "at N = 3 the coupling bound ∫|X̃_N(t) − X̃_N(s)|² ≤ (t − s)² ‖∂_t X̃_N‖²_∞ is a quartic inequality in (x⁰, u⁰, s, t) (products u·u·t·s) under a path condition with two collision times; nlsat returns unknown on path 202 even with the ties' equalities eliminated, the nonlinear constraints dropped or the collision instants lifted to variables (src/prove/lift.rs, which decides the earlier ones); proved at N = 1, 2",
-    ),
-];
+const UNDECIDED_AT_3: [(&str, &str); 0] = [];
 
 #[test]
 #[ignore = "campaign: symbolic proofs of every claim at N = 1, 2, 3 with z3, ~5 min; CI runs it (cargo test --release -- --ignored)"]

@@ -311,16 +311,19 @@ impl Solver {
         Ok(())
     }
 
-    fn check_now(&mut self) -> Result<Sat, SolverError> {
+    /// Asks the current stack within `ms` milliseconds (at most the
+    /// query's own limit).
+    fn check_now(&mut self, ms: u64) -> Result<Sat, SolverError> {
+        let ms = ms.min(self.limits.query_ms);
         let cmd = match std::env::var("STICKY_Z3_TACTIC") {
-            Ok(t) if !t.is_empty() => format!("(check-sat-using {t})\n"),
-            _ => format!(
-                "(check-sat-using (try-for qfnra-nlsat {}))\n",
-                self.limits.query_ms
-            ),
+            Ok(t) if !t.is_empty() && ms == self.limits.query_ms => {
+                format!("(check-sat-using {t})\n")
+            }
+            Ok(t) if !t.is_empty() => format!("(check-sat-using (try-for {t} {ms}))\n"),
+            _ => format!("(check-sat-using (try-for qfnra-nlsat {ms}))\n"),
         };
         self.send(&cmd)?;
-        let own = Instant::now() + Duration::from_millis(self.limits.query_ms) + QUERY_GRACE;
+        let own = Instant::now() + Duration::from_millis(ms) + QUERY_GRACE;
         let limit = own.min(self.limits.deadline);
         match self.read_until(limit) {
             Ok(answer) => Ok(match answer.as_str() {
@@ -351,12 +354,23 @@ impl Solver {
         constraints: &[String],
         extra: Option<&str>,
     ) -> Result<Sat, SolverError> {
+        self.check_within(constraints, extra, self.limits.query_ms)
+    }
+
+    /// [`Solver::check`] given `ms` milliseconds (at most the query's own
+    /// limit): a short first try, `unknown` when it does not suffice.
+    pub fn check_within(
+        &mut self,
+        constraints: &[String],
+        extra: Option<&str>,
+        ms: u64,
+    ) -> Result<Sat, SolverError> {
         self.sync(constraints)?;
         match extra {
-            None => self.check_now(),
+            None => self.check_now(ms),
             Some(e) => {
                 self.send(&format!("(push 1)\n(assert {e})\n"))?;
-                let r = self.check_now();
+                let r = self.check_now(ms);
                 self.pop_extra();
                 r
             }
@@ -405,9 +419,21 @@ impl Solver {
         extra: &str,
         names: &[String],
     ) -> Result<(Sat, Option<Vec<BigRational>>), SolverError> {
+        self.check_with_model_within(constraints, extra, names, self.limits.query_ms)
+    }
+
+    /// [`Solver::check_with_model`] given `ms` milliseconds (at most the
+    /// query's own limit).
+    pub fn check_with_model_within(
+        &mut self,
+        constraints: &[String],
+        extra: &str,
+        names: &[String],
+        ms: u64,
+    ) -> Result<(Sat, Option<Vec<BigRational>>), SolverError> {
         self.sync(constraints)?;
         self.send(&format!("(push 1)\n(assert {extra})\n"))?;
-        let r = self.check_now();
+        let r = self.check_now(ms);
         let model = match r {
             Ok(Sat::Sat) => self.model(names),
             _ => Ok(None),
