@@ -62,7 +62,7 @@ impl Denominator {
 /// `±∞` beyond the largest finite double, `0.0` for `num = 0`): the value
 /// of [`round::nearest`], with no division when the filter decides
 /// (module documentation).
-#[inline]
+#[inline(always)]
 pub fn nearest(num: i128, den: &Denominator, e: i64) -> f64 {
     match filtered(num, den, e) {
         Some(v) => v,
@@ -71,7 +71,7 @@ pub fn nearest(num: i128, den: &Denominator, e: i64) -> f64 {
 }
 
 /// [`nearest`] when the filter decides, `None` when it does not.
-#[inline]
+#[inline(always)]
 fn filtered(num: i128, den: &Denominator, e: i64) -> Option<f64> {
     if num == 0 {
         return Some(0.0);
