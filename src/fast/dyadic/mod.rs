@@ -30,7 +30,8 @@
 //!
 //! Each is an `i128` numerator over a 64-bit denominator times a power of
 //! two, rounded once to the nearest double by [`round::nearest`] (one
-//! integer division, none when the denominator is a power of two) or
+//! integer division, none when the denominator is a power of two; the
+//! multipliers by [`quotient::nearest`], no division per pair) or
 //! reduced to lowest terms on demand ([`DyadicBlocks::exact_state`]).
 //!
 //! **Same results.** Everything answers `None` the moment the data leave
