@@ -30,7 +30,8 @@
 //!
 //! Each is an `i128` numerator over a 64-bit denominator times a power of
 //! two, rounded once to the nearest double by [`round::nearest`] (one
-//! integer division, none when the denominator is a power of two) or
+//! integer division, none when the denominator is a power of two; the
+//! multipliers by [`quotient::nearest`], no division per pair) or
 //! reduced to lowest terms on demand ([`DyadicBlocks::exact_state`]).
 //!
 //! **Same results.** Everything answers `None` the moment the data leave
@@ -43,6 +44,7 @@
 
 mod halves;
 mod pava;
+pub mod quotient;
 pub mod round;
 
 use std::sync::Arc;
@@ -56,6 +58,7 @@ use crate::fast::kernel::{i128_clusters, size_bits, Run};
 use crate::fast::stream::Nearest;
 use crate::state::State;
 use pava::Sum;
+use quotient::Denominator;
 use round::{Divisor, Split};
 
 /// Bits of `|v|` (0 for 0).
@@ -377,21 +380,42 @@ pub struct DyadicBlocks {
 /// The multipliers of one block of `k = us.len() ≥ 2` entries with
 /// `S_U = su`, into `out` (its first `k − 1` pairs): the `m`-th is
 /// `(k Σ_{j ≤ m} U_j − m S_U) 2^{eu} / (k N)` (`eq:dyn-micro`), `den = k N`.
+/// The numerator moves by `k U_m − S_U` from one pair to the next. With
+/// `|U_j| < 2^{u_bits}` every numerator and every partial sum is below
+/// `2 k² 2^{u_bits}`: the caller checks `2 bits(k) + u_bits + 1 ≤ 127`, and
+/// the wrapping arithmetic is then exact.
 fn block_multipliers<T: Copy + Into<i128>>(
     us: &[T],
     su: i128,
-    den: &Divisor,
+    den: &Denominator,
+    eu: i64,
+    out: &mut [f64],
+) {
+    let k = us.len() as i128;
+    let mut num = 0i128;
+    for (&u, l) in us.iter().zip(out.iter_mut()) {
+        num = num.wrapping_add(k.wrapping_mul(u.into())).wrapping_sub(su);
+        // `λ ≥ 0` (eq:dyn-micro, the Coq development's `multiplier_nonneg`).
+        debug_assert!(num >= 0);
+        *l = quotient::nearest(num, den, eu);
+    }
+}
+
+/// [`block_multipliers`] with checked arithmetic, for a block beyond its
+/// bound: `None` when a numerator leaves `i128`.
+fn block_multipliers_checked<T: Copy + Into<i128>>(
+    us: &[T],
+    su: i128,
+    den: &Denominator,
     eu: i64,
     out: &mut [f64],
 ) -> Option<()> {
-    let ki = i128::try_from(us.len()).ok()?;
-    let mut prefix = 0i128;
-    for ((m, &u), l) in (1i128..).zip(us).zip(out.iter_mut()) {
-        prefix = prefix.checked_add(u.into())?;
-        let num = ki.checked_mul(prefix)?.checked_sub(m.checked_mul(su)?)?;
-        *l = round::nearest_by(num, den, eu);
+    let k = i128::try_from(us.len()).ok()?;
+    let mut num = 0i128;
+    for (&u, l) in us.iter().zip(out.iter_mut()) {
+        num = num.checked_add(k.checked_mul(u.into())?)?.checked_sub(su)?;
+        *l = quotient::nearest(num, den, eu);
     }
-    debug_assert_eq!(prefix + us.last().map_or(0, |&u| u.into()), su);
     Some(())
 }
 
@@ -538,18 +562,25 @@ impl DyadicBlocks {
         for r in runs {
             let k = r.k;
             // λ of the m-th pair of the block: (k Σ_{j ≤ m} U_j − m S_U) 2^{eu} / (k N),
-            // with one prepared divisor per block (no division per pair);
-            // the last pair of a block (m = k, a gap) is exactly 0.
+            // no integer division per pair (`quotient::nearest`); the last
+            // pair of a block (m = k, a gap) is exactly 0.
             if k > 1 {
-                let den = Divisor::new(k.checked_mul(big_n)?);
+                let den = Denominator::new(k.checked_mul(big_n)?);
                 let block = out.get_mut(o..o + k as usize - 1)?;
                 let range = first..first + k as usize;
-                match &self.d.columns {
-                    Columns::Narrow { u, .. } => {
-                        block_multipliers(u.get(range)?, r.su, &den, eu, block)?
+                let within = 2 * bits(u128::from(k)) + self.d.u_bits < 127;
+                match (&self.d.columns, within) {
+                    (Columns::Narrow { u, .. }, true) => {
+                        block_multipliers(u.get(range)?, r.su, &den, eu, block)
                     }
-                    Columns::Wide { u, .. } => {
-                        block_multipliers(u.get(range)?, r.su, &den, eu, block)?
+                    (Columns::Wide { u, .. }, true) => {
+                        block_multipliers(u.get(range)?, r.su, &den, eu, block)
+                    }
+                    (Columns::Narrow { u, .. }, false) => {
+                        block_multipliers_checked(u.get(range)?, r.su, &den, eu, block)?
+                    }
+                    (Columns::Wide { u, .. }, false) => {
+                        block_multipliers_checked(u.get(range)?, r.su, &den, eu, block)?
                     }
                 }
             }
