@@ -145,30 +145,9 @@ fn by_reciprocal(a: u128, den: &Denominator, e: i64) -> Option<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::fast::dyadic::round::tests::{oracle, Quotient};
     use crate::generate::SplitMix64;
     use num_bigint::BigInt;
-    use num_rational::BigRational;
-    use num_traits::{One, ToPrimitive};
-
-    /// The exactly checked nearest double of `num 2^e / d`
-    /// ([`crate::rational::nearest_f64`]), `±∞` beyond the range.
-    fn oracle(num: i128, d: u64, e: i64) -> f64 {
-        let two = BigRational::from_integer(BigInt::from(2));
-        let scale = if e >= 0 {
-            num_traits::pow(two, e as usize)
-        } else {
-            BigRational::one() / num_traits::pow(two, (-e) as usize)
-        };
-        let q = BigRational::new(BigInt::from(num), BigInt::from(d)) * scale;
-        match crate::rational::nearest_f64(&q) {
-            Some(f) => f,
-            None => {
-                let f = q.to_f64().unwrap_or(f64::NAN);
-                assert!(f.is_infinite(), "{q}");
-                f
-            }
-        }
-    }
 
     fn check(num: i128, d: u64, e: i64) {
         let got = nearest(num, &Denominator::new(d), e);
@@ -187,19 +166,8 @@ mod tests {
     fn agrees_with_the_exact_nearest_double() {
         let mut rng = SplitMix64::new(0x907);
         for _ in 0..40_000 {
-            let nb = rng.next_u64() % 128;
-            let num = (((u128::from(rng.next_u64()) << 64) | u128::from(rng.next_u64()))
-                >> (128 - nb.max(1))) as i128;
-            let num = if rng.next_u64() % 2 == 0 { num } else { -num };
-            let db = rng.next_u64() % 64 + 1;
-            let d = (rng.next_u64() >> (64 - db)).max(1);
-            let e = match rng.next_u64() % 4 {
-                0 => (rng.next_u64() % 200) as i64 - 100,
-                1 => -1074 - (rng.next_u64() % 130) as i64 + 64,
-                2 => 1024 - (rng.next_u64() % 130) as i64,
-                _ => (rng.next_u64() % 2400) as i64 - 1200,
-            };
-            check(num, d, e);
+            let q = Quotient::random(&mut rng);
+            check(q.num, q.den, q.exp);
         }
     }
 

@@ -422,13 +422,14 @@ fn pow2(e: i64) -> f64 {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
     use crate::generate::SplitMix64;
     use num_bigint::BigInt;
     use num_rational::BigRational;
     use num_traits::{One, ToPrimitive};
 
+    /// `num·2^exp / den`, exactly.
     fn exact(num: i128, den: u64, exp: i64) -> BigRational {
         let two = BigRational::from_integer(BigInt::from(2));
         let scale = if exp >= 0 {
@@ -440,8 +441,8 @@ mod tests {
     }
 
     /// The oracle: the exactly checked nearest double of the rational
-    /// ([`crate::rational::nearest_f64`]), `∞` where it is beyond range.
-    fn oracle(num: i128, den: u64, exp: i64) -> f64 {
+    /// ([`crate::rational::nearest_f64`]), `±∞` where it is beyond range.
+    pub(in crate::fast::dyadic) fn oracle(num: i128, den: u64, exp: i64) -> f64 {
         let q = exact(num, den, exp);
         match crate::rational::nearest_f64(&q) {
             Some(f) => f,
@@ -450,6 +451,34 @@ mod tests {
                 assert!(f.is_infinite(), "{q}");
                 f
             }
+        }
+    }
+
+    /// A test case `num·2^exp / den` of the roundings.
+    pub(in crate::fast::dyadic) struct Quotient {
+        pub num: i128,
+        pub den: u64,
+        pub exp: i64,
+    }
+
+    impl Quotient {
+        /// Numerators of 1 to 127 bits of either sign, denominators of 1 to
+        /// 64 bits, exponents in the normal range and past it (subnormals,
+        /// overflow).
+        pub(in crate::fast::dyadic) fn random(rng: &mut SplitMix64) -> Quotient {
+            let nb = rng.next_u64() % 128;
+            let num = (((u128::from(rng.next_u64()) << 64) | u128::from(rng.next_u64()))
+                >> (128 - nb.max(1))) as i128;
+            let num = if rng.next_u64() % 2 == 0 { num } else { -num };
+            let db = rng.next_u64() % 64 + 1;
+            let den = (rng.next_u64() >> (64 - db)).max(1);
+            let exp = match rng.next_u64() % 4 {
+                0 => (rng.next_u64() % 200) as i64 - 100,
+                1 => -1074 - (rng.next_u64() % 130) as i64 + 64,
+                2 => 1024 - (rng.next_u64() % 130) as i64,
+                _ => (rng.next_u64() % 2400) as i64 - 1200,
+            };
+            Quotient { num, den, exp }
         }
     }
 
@@ -469,19 +498,8 @@ mod tests {
     fn agrees_with_the_exact_nearest_double() {
         let mut rng = SplitMix64::new(0x5eed);
         for _ in 0..20_000 {
-            let nb = rng.next_u64() % 128;
-            let num = (((u128::from(rng.next_u64()) << 64) | u128::from(rng.next_u64()))
-                >> (128 - nb.max(1))) as i128;
-            let num = if rng.next_u64() % 2 == 0 { num } else { -num };
-            let db = rng.next_u64() % 64 + 1;
-            let den = (rng.next_u64() >> (64 - db)).max(1);
-            let exp = match rng.next_u64() % 4 {
-                0 => (rng.next_u64() % 200) as i64 - 100,
-                1 => -1074 - (rng.next_u64() % 130) as i64 + 64,
-                2 => 1024 - (rng.next_u64() % 130) as i64,
-                _ => (rng.next_u64() % 2400) as i64 - 1200,
-            };
-            check(num, den, exp);
+            let q = Quotient::random(&mut rng);
+            check(q.num, q.den, q.exp);
         }
     }
 
