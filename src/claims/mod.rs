@@ -34,6 +34,7 @@ pub mod inclusion;
 pub mod ledger;
 pub mod linf;
 pub mod macro_data;
+mod macro_measures;
 pub mod micro;
 pub mod momentum;
 pub mod registry;
