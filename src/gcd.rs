@@ -143,12 +143,20 @@ pub enum RunningLcm {
     Past(u64),
 }
 
+/// Takes the positive denominator `d` into the running lcm `acc`: a `d`
+/// that divides `acc` costs one remainder (a word remainder when it is
+/// small), any other one a [`gcd`].
+fn take_in(acc: &mut BigUint, d: &BigUint) {
+    debug_assert!(!d.is_zero(), "a denominator is positive");
+    if !(d.is_one() || d == acc || (&*acc % d).is_zero()) {
+        *acc = lcm(acc, d);
+    }
+}
+
 /// The lcm of `start` and `values` (positive denominators), taken in one at
-/// a time: a value that divides the lcm so far costs one remainder (a word
-/// remainder when it is small), any other one a [`gcd`]. Stops as soon as
-/// the lcm has more than `limit` bits, so that a hostile column (the
-/// denominators `1 … n`, whose lcm has ~1.44·n bits) costs no more than
-/// the limit allows.
+/// a time ([`take_in`]). Stops as soon as the lcm has more than `limit`
+/// bits, so that a hostile column (the denominators `1 … n`, whose lcm has
+/// ~1.44·n bits) costs no more than the limit allows.
 pub fn running_lcm<'a>(
     start: &BigUint,
     values: impl IntoIterator<Item = &'a BigUint>,
@@ -157,11 +165,7 @@ pub fn running_lcm<'a>(
     debug_assert!(!start.is_zero());
     let mut acc = start.clone();
     for d in values {
-        debug_assert!(!d.is_zero(), "a denominator is positive");
-        if d.is_one() || *d == acc || (&acc % d).is_zero() {
-            continue;
-        }
-        acc = lcm(&acc, d);
+        take_in(&mut acc, d);
         if acc.bits() > limit {
             return RunningLcm::Past(acc.bits());
         }
@@ -169,12 +173,14 @@ pub fn running_lcm<'a>(
     RunningLcm::Exact(acc)
 }
 
-/// The lcm of `start` and `values`, with no limit ([`running_lcm`]).
+/// The lcm of `start` and `values`, with no limit (as [`running_lcm`]).
 pub fn lcm_of<'a>(start: &BigUint, values: impl IntoIterator<Item = &'a BigUint>) -> BigUint {
-    match running_lcm(start, values, u64::MAX) {
-        RunningLcm::Exact(l) => l,
-        RunningLcm::Past(_) => unreachable!("no lcm has more than u64::MAX bits"),
+    debug_assert!(!start.is_zero());
+    let mut acc = start.clone();
+    for d in values {
+        take_in(&mut acc, d);
     }
+    acc
 }
 
 #[cfg(test)]
