@@ -402,35 +402,56 @@ impl PathState {
     fn refuted_cheaply(&mut self, extra: &Atom) -> Result<bool, SolverError> {
         let mut system = self.cons.clone();
         system.push(Constraint::Atom(extra.clone()));
-        match self.eliminated(&system) {
-            Reduced::Unsatisfiable => return Ok(true),
-            Reduced::System {
-                constraints,
-                eliminated,
-            } if !eliminated.is_empty() => {
-                let text: Vec<String> = constraints.iter().map(|c| c.smt(&self.names)).collect();
-                self.queries += 1;
-                if self.solver.check_within(&text, None, RELAXED_MS)? == Sat::Unsat {
-                    return Ok(true);
-                }
-            }
-            Reduced::System { .. } => {}
+        let (answer, _) = self.check_eliminated(&system, RELAXED_MS, Model::NotNeeded)?;
+        if answer == Sat::Unsat {
+            return Ok(true);
         }
         self.refuted_by_relaxation(&system, Some(extra), RELAXED_MS)
     }
 
+    /// `a ≠ 0` on the path: the path condition excludes the sign 0 of `a`
+    /// (up to a constant factor).
+    fn nonzero_on_path(&self, a: &Poly) -> bool {
+        let (np, _) = a.normalized();
+        self.masks.get(&np).is_some_and(|m| m & ZERO == 0)
+    }
+
     /// `system` (the path condition and `extra`) with the variables that
     /// its equalities determine eliminated ([`eliminate::reduce`]), where
-    /// the path condition shows the leading coefficient non-zero.
-    fn eliminated(&self, system: &[Constraint]) -> Reduced {
-        let masks = &self.masks;
-        // `a ≠ 0` on the path when the path condition excludes the sign 0
-        // of `a` (up to a constant factor).
-        let nonzero = |a: &Poly| {
-            let (np, _) = a.normalized();
-            masks.get(&np).is_some_and(|m| m & ZERO == 0)
+    /// the path condition shows the leading coefficient non-zero, asked
+    /// within `ms` milliseconds: `unsat` when the algebra alone refutes it;
+    /// with `sat`, the model (when wanted) completed with the eliminated
+    /// values (exact, so it satisfies the path condition whenever the
+    /// solver's values are rational); `unknown` when nothing was
+    /// eliminated or the solver did not answer.
+    fn check_eliminated(
+        &mut self,
+        system: &[Constraint],
+        ms: u64,
+        model: Model,
+    ) -> Result<(Sat, Option<Vec<BigRational>>), SolverError> {
+        let reduced = eliminate::reduce(system, &|a| self.nonzero_on_path(a), self.names.len());
+        let Reduced::System {
+            constraints,
+            eliminated,
+        } = &reduced
+        else {
+            return Ok((Sat::Unsat, None));
         };
-        eliminate::reduce(system, &nonzero, self.names.len())
+        if eliminated.is_empty() {
+            return Ok((Sat::Unknown, None));
+        }
+        let text: Vec<String> = constraints.iter().map(|c| c.smt(&self.names)).collect();
+        self.queries += 1;
+        let answer = self.solver.check_within(&text, None, ms)?;
+        let values = match (answer, model) {
+            (Sat::Sat, Model::Wanted) => self
+                .solver
+                .model(&self.names)?
+                .and_then(|m| reduced.complete(&m)),
+            _ => None,
+        };
+        Ok((answer, values))
     }
 
     /// `true` when a weaker system than `system` (the path condition and
@@ -477,27 +498,11 @@ impl PathState {
     ) -> Result<(Sat, Option<Vec<BigRational>>), SolverError> {
         let mut system = self.cons.clone();
         system.extend(extra.clone().map(Constraint::Atom));
-        let reduced = self.eliminated(&system);
-        match &reduced {
-            Reduced::Unsatisfiable => return Ok((Sat::Unsat, None)),
-            Reduced::System {
-                constraints,
-                eliminated,
-            } if !eliminated.is_empty() => {
-                let text: Vec<String> = constraints.iter().map(|c| c.smt(&self.names)).collect();
-                self.queries += 1;
-                match self.solver.check(&text, None)? {
-                    Sat::Sat => {
-                        let model = self.solver.model(&self.names)?;
-                        return Ok((Sat::Sat, model.and_then(|m| reduced.complete(&m))));
-                    }
-                    Sat::Unsat => return Ok((Sat::Unsat, None)),
-                    Sat::Unknown => {}
-                }
-            }
-            Reduced::System { .. } => {}
-        }
         let full = self.solver.limits.query_ms;
+        match self.check_eliminated(&system, full, Model::Wanted)? {
+            (Sat::Unknown, _) => {}
+            answer => return Ok(answer),
+        }
         if self.refuted_by_relaxation(&system, extra.as_ref(), full)? {
             return Ok((Sat::Unsat, None));
         }
@@ -512,12 +517,8 @@ impl PathState {
         system: &[Constraint],
     ) -> Result<(Sat, Option<Vec<BigRational>>), SolverError> {
         let first = Var::try_from(self.names.len()).unwrap_or(Var::MAX);
-        let masks = &self.masks;
         // As for the elimination: `den ≠ 0` when the path excludes sign 0.
-        let nonzero = |a: &Poly| {
-            let (np, _) = a.normalized();
-            masks.get(&np).is_some_and(|m| m & ZERO == 0)
-        };
+        let nonzero = |a: &Poly| self.nonzero_on_path(a);
         let lifted = lift::lift(system, &self.quotients, &nonzero, first, MAX_LIFTED);
         if lifted.fresh.is_empty() {
             return Ok((Sat::Unknown, None));
