@@ -154,7 +154,7 @@ fn take_in(acc: &mut BigUint, d: &BigUint) {
 }
 
 /// The lcm of `start` and `values` (positive denominators), taken in one at
-/// a time ([`take_in`]). Stops as soon as the lcm has more than `limit`
+/// a time (`take_in`). Stops as soon as the lcm has more than `limit`
 /// bits, so that a hostile column (the denominators `1 … n`, whose lcm has
 /// ~1.44·n bits) costs no more than the limit allows.
 pub fn running_lcm<'a>(
