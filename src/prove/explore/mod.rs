@@ -23,12 +23,13 @@ use num_rational::BigRational;
 use num_traits::{Signed, Zero};
 
 use super::budget;
-use super::eliminate::{self, Atom, Constraint, Reduced};
-use super::lift::{self, Quotient};
-use super::poly::{Poly, Var};
-use super::relax;
+use super::eliminate::{Atom, Constraint};
+use super::lift::Quotient;
+use super::poly::Poly;
 use super::smt::{Sat, Solver, SolverError, SolverLimits};
 use crate::progress::Progress;
+
+mod ask;
 
 /// A sign condition on a polynomial `p`: `p < 0`, `p ≤ 0`, …
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -123,11 +124,11 @@ struct PathState {
     /// and solving a path to a violation, as asked before the lean `pc`).
     full_pc: Vec<String>,
     /// The same path condition as polynomial constraints (for
-    /// [`eliminate`], when the solver cannot decide a query on `pc`).
+    /// [`eliminate`](super::eliminate), when the solver cannot decide a query on `pc`).
     cons: Vec<Constraint>,
-    /// The quotients compared on the path ([`lift`]).
+    /// The quotients compared on the path ([`lift`](super::lift)).
     quotients: Vec<Quotient>,
-    /// The polynomials squared on the path ([`relax::linearize`]).
+    /// The polynomials squared on the path ([`relax::linearize`](super::relax::linearize)).
     squares: Vec<Poly>,
     solver: Solver,
     names: Vec<String>,
@@ -348,194 +349,6 @@ impl PathState {
         self.taken.push((fingerprint, k as u8 | IMPLIED));
         self.keep(np, flipped, p, outcomes[k], &ptext, true);
     }
-
-    /// Is `path condition ∧ extra` satisfiable (`text`: `extra` as
-    /// SMT-LIB)? Asked of `nlsat` as before, with the query's own limit,
-    /// but first within [`FIRST_TRY_MS`]: most queries are answered there,
-    /// and the others are first given to the cheap over-approximations
-    /// ([`PathState::refuted_cheaply`]), whose `unsat` is the query's. The
-    /// answer is the one the single long query would give, or `unsat` where
-    /// it would have given `unknown`, in less time when a relaxation
-    /// settles it (on `lem:density` at N = 3, nlsat ran 20 s into its limit
-    /// on cell steps that the elimination or the linearisation refutes in
-    /// 0.1 s).
-    fn ask(
-        &mut self,
-        extra: &Atom,
-        text: &str,
-        model: Model,
-    ) -> Result<(Sat, Option<Vec<BigRational>>), SolverError> {
-        let full = self.solver.limits.query_ms;
-        if full > FIRST_TRY_MS {
-            let first = self.ask_nlsat(text, model, FIRST_TRY_MS)?;
-            if first.0 != Sat::Unknown {
-                return Ok(first);
-            }
-            if self.refuted_cheaply(extra)? {
-                return Ok((Sat::Unsat, None));
-            }
-            self.queries += 1;
-        }
-        self.ask_nlsat(text, model, full)
-    }
-
-    /// `path condition ∧ text` asked of `nlsat` within `ms` milliseconds.
-    fn ask_nlsat(
-        &mut self,
-        text: &str,
-        model: Model,
-        ms: u64,
-    ) -> Result<(Sat, Option<Vec<BigRational>>), SolverError> {
-        match model {
-            Model::Wanted => self
-                .solver
-                .check_with_model_within(&self.pc, text, &self.names, ms),
-            Model::NotNeeded => Ok((self.solver.check_within(&self.pc, Some(text), ms)?, None)),
-        }
-    }
-
-    /// `true` when a cheap over-approximation of `path condition ∧ extra`
-    /// is unsatisfiable (then so is the query): the elimination of the
-    /// variables the path's equalities determine ([`eliminate`]), then
-    /// [`PathState::refuted_by_relaxation`], each solver call given
-    /// [`RELAXED_MS`]. `false` says nothing.
-    fn refuted_cheaply(&mut self, extra: &Atom) -> Result<bool, SolverError> {
-        let mut system = self.cons.clone();
-        system.push(Constraint::Atom(extra.clone()));
-        let (answer, _) = self.check_eliminated(&system, RELAXED_MS, Model::NotNeeded)?;
-        if answer == Sat::Unsat {
-            return Ok(true);
-        }
-        self.refuted_by_relaxation(&system, Some(extra), RELAXED_MS)
-    }
-
-    /// `a ≠ 0` on the path: the path condition excludes the sign 0 of `a`
-    /// (up to a constant factor).
-    fn nonzero_on_path(&self, a: &Poly) -> bool {
-        let (np, _) = a.normalized();
-        self.masks.get(&np).is_some_and(|m| m & ZERO == 0)
-    }
-
-    /// `system` (the path condition and `extra`) with the variables that
-    /// its equalities determine eliminated ([`eliminate::reduce`]), where
-    /// the path condition shows the leading coefficient non-zero, asked
-    /// within `ms` milliseconds: `unsat` when the algebra alone refutes it;
-    /// with `sat`, the model (when wanted) completed with the eliminated
-    /// values (exact, so it satisfies the path condition whenever the
-    /// solver's values are rational); `unknown` when nothing was
-    /// eliminated or the solver did not answer.
-    fn check_eliminated(
-        &mut self,
-        system: &[Constraint],
-        ms: u64,
-        model: Model,
-    ) -> Result<(Sat, Option<Vec<BigRational>>), SolverError> {
-        let reduced = eliminate::reduce(system, &|a| self.nonzero_on_path(a), self.names.len());
-        let Reduced::System {
-            constraints,
-            eliminated,
-        } = &reduced
-        else {
-            return Ok((Sat::Unsat, None));
-        };
-        if eliminated.is_empty() {
-            return Ok((Sat::Unknown, None));
-        }
-        let text: Vec<String> = constraints.iter().map(|c| c.smt(&self.names)).collect();
-        self.queries += 1;
-        let answer = self.solver.check_within(&text, None, ms)?;
-        let values = match (answer, model) {
-            (Sat::Sat, Model::Wanted) => self
-                .solver
-                .model(&self.names)?
-                .and_then(|m| reduced.complete(&m)),
-            _ => None,
-        };
-        Ok((answer, values))
-    }
-
-    /// `true` when a weaker system than `system` (the path condition and
-    /// `extra`) is unsatisfiable within `ms` milliseconds: its linear part
-    /// and `extra` ([`relax::linear_part`]), then its monomials read as
-    /// variables ([`relax::linearize`]). `false` says nothing.
-    fn refuted_by_relaxation(
-        &mut self,
-        system: &[Constraint],
-        extra: Option<&Atom>,
-        ms: u64,
-    ) -> Result<bool, SolverError> {
-        let weaker = relax::linear_part(&self.cons, extra);
-        let text: Vec<String> = weaker.iter().map(|c| c.smt(&self.names)).collect();
-        self.queries += 1;
-        if self.solver.check_within(&text, None, ms)? == Sat::Unsat {
-            return Ok(true);
-        }
-        let first = Var::try_from(self.names.len()).unwrap_or(Var::MAX);
-        if let Some(lin) = relax::linearize(system, &self.squares, first) {
-            let mut names = self.names.clone();
-            names.extend((0..lin.monomials.len()).map(|k| format!("mono{k}")));
-            let text: Vec<String> = lin.constraints.iter().map(|c| c.smt(&names)).collect();
-            self.queries += 1;
-            let mut solver = Solver::start(&names, self.solver.limits)?;
-            if solver.check_within(&text, None, ms)? == Sat::Unsat {
-                return Ok(true);
-            }
-        }
-        Ok(false)
-    }
-
-    /// The query `path condition ∧ extra` asked again after eliminating the
-    /// variables that equalities of the path condition determine
-    /// ([`eliminate`]), for a query the solver answered `unknown` on as
-    /// asked: `unsat` when the algebra alone refutes it; with `sat`, the
-    /// model completed with the eliminated values (exact, so it satisfies
-    /// the path condition whenever the solver's values are rational).
-    /// Failing that, the linear part of the system and `extra` are asked
-    /// ([`relax`]): `unsat` there is `unsat` here. Otherwise `unknown`.
-    fn check_reduced(
-        &mut self,
-        extra: Option<Atom>,
-    ) -> Result<(Sat, Option<Vec<BigRational>>), SolverError> {
-        let mut system = self.cons.clone();
-        system.extend(extra.clone().map(Constraint::Atom));
-        let full = self.solver.limits.query_ms;
-        match self.check_eliminated(&system, full, Model::Wanted)? {
-            (Sat::Unknown, _) => {}
-            answer => return Ok(answer),
-        }
-        if self.refuted_by_relaxation(&system, extra.as_ref(), full)? {
-            return Ok((Sat::Unsat, None));
-        }
-        self.check_lifted(&system)
-    }
-
-    /// The query with the path's quotients as variables of their own
-    /// ([`lift`]), asked of a solver process that declares them; a model
-    /// is cut back to the original variables.
-    fn check_lifted(
-        &mut self,
-        system: &[Constraint],
-    ) -> Result<(Sat, Option<Vec<BigRational>>), SolverError> {
-        let first = Var::try_from(self.names.len()).unwrap_or(Var::MAX);
-        // As for the elimination: `den ≠ 0` when the path excludes sign 0.
-        let nonzero = |a: &Poly| self.nonzero_on_path(a);
-        let lifted = lift::lift(system, &self.quotients, &nonzero, first, MAX_LIFTED);
-        if lifted.fresh.is_empty() {
-            return Ok((Sat::Unknown, None));
-        }
-        let mut names = self.names.clone();
-        names.extend((0..lifted.fresh.len()).map(|k| format!("tau{k}")));
-        let text: Vec<String> = lifted.constraints.iter().map(|c| c.smt(&names)).collect();
-        let mut solver = Solver::start(&names, self.solver.limits)?;
-        self.queries += 1;
-        match solver.check(&text, None)? {
-            Sat::Sat => {
-                let model = solver.model(&self.names)?;
-                Ok((Sat::Sat, model))
-            }
-            other => Ok((other, None)),
-        }
-    }
 }
 
 /// The sign condition allowing exactly the signs allowed by one of
@@ -557,19 +370,8 @@ enum Model {
     NotNeeded,
 }
 
-/// The first try of every query, in milliseconds: `nlsat` answers most of
-/// them within it ([`PathState::ask`]).
-const FIRST_TRY_MS: u64 = 200;
-
-/// The time given to each cheap over-approximation of a query `nlsat` did
-/// not answer within [`FIRST_TRY_MS`] (they are linear, or nearly).
-const RELAXED_MS: u64 = 500;
-
-/// The most quotients lifted to variables in one query.
-const MAX_LIFTED: usize = 8;
-
 /// Records a quotient `num / den` the program compares (a collision
-/// instant), for [`lift`] on the path running on this thread.
+/// instant), for [`lift`](super::lift) on the path running on this thread.
 pub fn note_quotient(num: &Poly, den: &Poly) {
     STATE.with(|s| {
         if let Some(st) = s.borrow_mut().as_mut() {
@@ -584,11 +386,11 @@ pub fn note_quotient(num: &Poly, den: &Poly) {
     });
 }
 
-/// The most squared polynomials kept for [`relax::linearize`] on one path.
+/// The most squared polynomials kept for [`relax::linearize`](super::relax::linearize) on one path.
 const MAX_SQUARES: usize = 8;
 
 /// Records a polynomial the program squares (a displacement whose square
-/// it bounds), for [`relax::linearize`] on the path running on this thread.
+/// it bounds), for [`relax::linearize`](super::relax::linearize) on the path running on this thread.
 pub fn note_square(base: &Poly) {
     STATE.with(|s| {
         if let Some(st) = s.borrow_mut().as_mut() {
@@ -1012,141 +814,4 @@ pub fn explore(
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::progress::Silent;
-
-    /// A term of the SMT-LIB text the prover writes ([`Poly::smt`]).
-    fn parse_term(tokens: &[&str], at: &mut usize, names: &[String]) -> Poly {
-        let tok = tokens[*at];
-        *at += 1;
-        if tok != "(" {
-            if let Some(v) = names.iter().position(|n| n == tok) {
-                return Poly::var(Var::try_from(v).unwrap());
-            }
-            let int = tok.strip_suffix(".0").unwrap();
-            return Poly::constant(BigRational::from_integer(int.parse().unwrap()));
-        }
-        let op = tokens[*at];
-        *at += 1;
-        let mut args = Vec::new();
-        while tokens[*at] != ")" {
-            args.push(parse_term(tokens, at, names));
-        }
-        *at += 1;
-        let q = |p: &Poly| p.as_constant().unwrap();
-        match (op, args.as_slice()) {
-            ("-", [a]) => a.neg(),
-            ("/", [a, b]) => Poly::constant(q(a) / q(b)),
-            ("*", _) => args.iter().fold(
-                Poly::constant(BigRational::from_integer(1.into())),
-                |m, a| m.mul(a),
-            ),
-            ("+", _) => args.iter().fold(Poly::zero(), |m, a| m.add(a)),
-            _ => panic!("unexpected term ({op} …)"),
-        }
-    }
-
-    /// A sign condition `(rel p 0.0)` or `(not (= p 0.0))`.
-    fn parse_atom(tokens: &[&str], at: &mut usize, names: &[String]) -> (Poly, Rel) {
-        assert_eq!(tokens[*at], "(");
-        let op = tokens[*at + 1];
-        *at += 2;
-        let (poly, rel) = if op == "not" {
-            let (p, rel) = parse_atom(tokens, at, names);
-            assert_eq!(rel, Rel::Eq);
-            (p, Rel::Ne)
-        } else {
-            let rel = match op {
-                "<" => Rel::Lt,
-                "<=" => Rel::Le,
-                "=" => Rel::Eq,
-                ">" => Rel::Gt,
-                ">=" => Rel::Ge,
-                _ => panic!("unexpected relation {op}"),
-            };
-            let p = parse_term(tokens, at, names);
-            assert!(parse_term(tokens, at, names).is_zero());
-            (p, rel)
-        };
-        assert_eq!(tokens[*at], ")");
-        *at += 1;
-        (poly, rel)
-    }
-
-    /// The assertions of a transcript as hypotheses (`or` of atoms as
-    /// [`Hypothesis::Any`]), with the variable names declared.
-    fn parse_assertions(text: &str) -> (Vec<String>, Vec<Hypothesis>) {
-        let mut names = Vec::new();
-        let mut out = Vec::new();
-        for line in text.lines().filter(|l| !l.starts_with(';')) {
-            let spaced = line.replace('(', " ( ").replace(')', " ) ");
-            let tokens: Vec<&str> = spaced.split_whitespace().collect();
-            match tokens.get(1) {
-                Some(&"declare-const") => names.push(tokens[2].to_string()),
-                Some(&"assert") if tokens[3] == "or" => {
-                    let mut at = 4;
-                    let mut atoms = Vec::new();
-                    while tokens[at] != ")" {
-                        atoms.push(parse_atom(&tokens, &mut at, &names));
-                    }
-                    out.push(Hypothesis::Any(atoms));
-                }
-                Some(&"assert") => {
-                    let (p, rel) = parse_atom(&tokens, &mut 2, &names);
-                    out.push(Hypothesis::Sign(p, rel));
-                }
-                _ => {}
-            }
-        }
-        (names, out)
-    }
-
-    /// A query `nlsat` does not answer within its 20 s limit (a cell step
-    /// of `lem:density` at N = 3, from a transcript) is settled by its
-    /// linear part after the short first try, well within a 10 s budget;
-    /// asked only as one long query first, it would spend the whole budget
-    /// on it and end `unknown`.
-    #[test]
-    fn a_query_nlsat_cannot_answer_is_refuted_after_the_first_try() {
-        if super::super::smt::available().is_none() {
-            eprintln!("z3 not installed: skipped");
-            return;
-        }
-        let text = include_str!("fixtures/cell_step_n3.smt2");
-        let (names, mut hyps) = parse_assertions(text);
-        let Some(Hypothesis::Sign(question, Rel::Gt)) = hyps.pop() else {
-            panic!("the fixture ends with its question `p > 0`");
-        };
-        let program = || match decide(&question, &[Rel::Gt, Rel::Le]) {
-            0 => PathEnd::Violated("the cell step fails".into()),
-            _ => PathEnd::Holds,
-        };
-        let limits = Limits {
-            time: Duration::from_secs(10),
-            ..Limits::default()
-        };
-        assert_eq!(limits.query_ms, 20_000);
-        let e = explore(&names, &hyps, limits, &program, &Silent).unwrap();
-        assert!(matches!(e.verdict, Verdict::Proved), "{:?}", e.verdict);
-        assert_eq!(e.paths, 1);
-    }
-
-    /// The union of outcomes asked in one query allows exactly their signs
-    /// (a wrong union, e.g. `Lt ∪ Eq` as `Lt`, would drop feasible paths).
-    #[test]
-    fn union_of_outcomes_is_exact() {
-        assert_eq!(union_rel([Rel::Lt, Rel::Eq].into_iter()), Some(Rel::Le));
-        assert_eq!(union_rel([Rel::Eq, Rel::Gt].into_iter()), Some(Rel::Ge));
-        assert_eq!(union_rel([Rel::Lt, Rel::Gt].into_iter()), Some(Rel::Ne));
-        assert_eq!(union_rel([Rel::Gt].into_iter()), Some(Rel::Gt));
-        assert_eq!(union_rel([Rel::Lt, Rel::Eq, Rel::Gt].into_iter()), None);
-        for a in [Rel::Lt, Rel::Le, Rel::Eq, Rel::Ne, Rel::Gt, Rel::Ge] {
-            for b in [Rel::Lt, Rel::Le, Rel::Eq, Rel::Ne, Rel::Gt, Rel::Ge] {
-                if let Some(u) = union_rel([a, b].into_iter()) {
-                    assert_eq!(u.mask(), a.mask() | b.mask());
-                }
-            }
-        }
-    }
-}
+mod tests;
