@@ -13,10 +13,13 @@
 
 use num_rational::BigRational;
 
+use super::domain::{open_intervals, Domain, InTime};
+use super::witness::{self, Failure, WitnessData, WitnessScene};
 use super::{scaling, Case, Claim, Kind, Violation};
 use crate::fast::kernel;
 use crate::generate::{initial_data, Limits, SplitMix64};
 use crate::progress::Progress;
+use crate::scalar::Scalar;
 use crate::scene::{self, particles_toml};
 
 /// The engines that call every [`Kind::Case`] checker of the registry
@@ -84,6 +87,8 @@ pub struct Outcome {
     pub witness: Option<String>,
     /// Measurements (scaling checks).
     pub note: Option<String>,
+    /// The counterexample in machine-readable form.
+    pub witness_data: Option<WitnessData>,
 }
 
 /// One row of the ledger.
@@ -136,13 +141,74 @@ fn case_of(bytes: &[u8], limits: Limits) -> Case<BigRational> {
     Case::new(initial_data(bytes, limits), None).with_engine(kernel::state_of_data)
 }
 
-/// Greedy shrinking of the generator input while `check` still fails.
+/// A failure of a checker inside its statement's domain: the violation
+/// at each time where it is shown (two times of one open interval between
+/// collisions for an a.e.-in-`t` statement; the checker's own probe times
+/// otherwise).
+#[derive(Debug, Clone)]
+pub struct Found {
+    /// The violation at each time, in order.
+    pub violations: Vec<Violation>,
+    /// The times (empty when the checker ran on all its probe times).
+    pub times: Vec<BigRational>,
+    /// The open interval holding `times`.
+    pub interval: Option<super::domain::OpenInterval<BigRational>>,
+}
+
+/// The first failure of `check` on `case` inside `domain`, or `None`. A
+/// datum outside the domain's hypotheses (`N`, `u⁰ ∈ H`) is skipped; an
+/// a.e.-in-`t` statement is run at two times of each open interval between
+/// collisions, one time alone at a time, and fails only if it fails at
+/// both. Every returned witness passes [`Domain::admits`].
+pub fn failure_in_domain(
+    check: super::CaseCheck<BigRational>,
+    case: &Case<BigRational>,
+    domain: &Domain,
+) -> Option<Found> {
+    domain.admits_datum(&case.traj).ok()?;
+    if domain.time != InTime::AlmostEvery {
+        return check(case).err().map(|v| Found {
+            violations: vec![v],
+            times: Vec::new(),
+            interval: None,
+        });
+    }
+    let at = |t: &BigRational| {
+        check(
+            &Case::with_times(case.traj.clone(), vec![t.clone()])
+                .with_engine(kernel::state_of_data),
+        )
+        .err()
+    };
+    let intervals = open_intervals(&case.traj);
+    // One run over every interval's first time first: most cases pass.
+    let firsts: Vec<BigRational> = intervals.iter().map(|iv| iv.times[0].clone()).collect();
+    check(&Case::with_times(case.traj.clone(), firsts).with_engine(kernel::state_of_data)).err()?;
+    for iv in intervals {
+        let Some(a) = at(&iv.times[0]) else { continue };
+        let Some(b) = at(&iv.times[1]) else { continue };
+        let times = iv.times.to_vec();
+        debug_assert!(domain.admits(&case.traj, &times).is_ok());
+        domain.admits(&case.traj, &times).ok()?;
+        return Some(Found {
+            violations: vec![a, b],
+            times,
+            interval: Some(iv),
+        });
+    }
+    None
+}
+
+/// Greedy shrinking of the generator input while `check` still fails
+/// inside `domain` ([`failure_in_domain`]).
 fn shrink(
     bytes: Vec<u8>,
     limits: Limits,
     check: super::CaseCheck<BigRational>,
-) -> (Vec<u8>, Limits, Violation) {
-    let fails = |b: &[u8], l: Limits| -> Option<Violation> { check(&case_of(b, l)).err() };
+    domain: &Domain,
+) -> (Vec<u8>, Limits, Found) {
+    let fails =
+        |b: &[u8], l: Limits| -> Option<Found> { failure_in_domain(check, &case_of(b, l), domain) };
     let mut best = bytes;
     let mut lim = limits;
     let Some(mut v) = fails(&best, lim) else {
@@ -150,7 +216,7 @@ fn shrink(
     };
     let mut budget = 3000usize;
     // Fewer particles first.
-    while lim.max_n > 1 && budget > 0 {
+    while lim.max_n > domain.min_n.max(1) && budget > 0 {
         budget -= 1;
         let l = Limits {
             max_n: lim.max_n - 1,
@@ -216,10 +282,46 @@ fn shipped_cases() -> Vec<(&'static str, Case<BigRational>)> {
         .collect()
 }
 
-/// Runs one case-checker over the random cases then the shipped scenes.
+/// The witness text and data of a failure found on `data`.
+fn report(
+    found: &Found,
+    scene: WitnessScene,
+    domain: &Domain,
+    tail: String,
+) -> (String, WitnessData) {
+    let mut text = found.violations[0].witness.clone();
+    if let (Some(iv), [_, b]) = (&found.interval, found.violations.as_slice()) {
+        text.push_str(&format!(
+            "\nfor a.e. t: it fails at t = {} and at t = {}, both in the open interval ({}, {}) between collision instants; at t = {}: {}",
+            found.times[0].render(),
+            found.times[1].render(),
+            iv.lo.render(),
+            iv.hi.as_ref().map_or("∞".to_string(), |h| h.render()),
+            found.times[1].render(),
+            b.witness.lines().next().unwrap_or("")
+        ));
+    }
+    text.push_str(&tail);
+    let data = WitnessData {
+        scene,
+        domain: witness::DomainData::of(domain),
+        times: found
+            .times
+            .iter()
+            .map(crate::rational::render_exact)
+            .collect(),
+        interval: found.interval.as_ref().map(witness::interval),
+        failures: found.violations.iter().map(Failure::of).collect(),
+    };
+    (text, data)
+}
+
+/// Runs one case-checker over the random cases then the shipped scenes,
+/// keeping only failures inside `domain`.
 fn run_case_check(
     check: super::CaseCheck<BigRational>,
     applies: fn(&Case<BigRational>) -> bool,
+    domain: &Domain,
     budget: Budget,
     shipped: &[(&'static str, Case<BigRational>)],
 ) -> Outcome {
@@ -232,19 +334,25 @@ fn run_case_check(
             continue;
         }
         cases += 1;
-        if check(&case).is_err() {
-            let (b, l, v) = shrink(bytes, limits, check);
+        if failure_in_domain(check, &case, domain).is_some() {
+            let (b, l, found) = shrink(bytes, limits, check, domain);
             let data = initial_data(&b, l);
+            let (text, wd) = report(
+                &found,
+                witness::particles(&data),
+                domain,
+                format!(
+                    "\nwitness scene (N = {}):\n{}",
+                    data.n(),
+                    particles_toml(&data, Some("witness"))
+                ),
+            );
             return Outcome {
                 status: Status::Counterexample,
                 cases,
-                witness: Some(format!(
-                    "{}\nwitness scene (N = {}):\n{}",
-                    v.witness,
-                    data.n(),
-                    particles_toml(&data, Some("witness"))
-                )),
+                witness: Some(text),
                 note: None,
+                witness_data: Some(wd),
             };
         }
     }
@@ -253,12 +361,21 @@ fn run_case_check(
             continue;
         }
         cases += 1;
-        if let Err(v) = check(case) {
+        if let Some(found) = failure_in_domain(check, case, domain) {
+            let (text, wd) = report(
+                &found,
+                WitnessScene::Shipped {
+                    name: (*name).to_string(),
+                },
+                domain,
+                format!("\nwitness: scenes/{name}.toml"),
+            );
             return Outcome {
                 status: Status::Counterexample,
                 cases,
-                witness: Some(format!("{}\nwitness: scenes/{name}.toml", v.witness)),
+                witness: Some(text),
                 note: None,
+                witness_data: Some(wd),
             };
         }
     }
@@ -267,18 +384,41 @@ fn run_case_check(
         cases,
         witness: None,
         note: None,
+        witness_data: None,
+    }
+}
+
+/// The witness data of a claim checked without a particle datum (a
+/// formula, or a scaling check on a shipped scene named first in the
+/// witness text).
+fn timeless(v: &Violation, domain: &Domain) -> WitnessData {
+    let name = v.witness.split(':').next().unwrap_or("");
+    let scene = if scene::shipped(name).is_some() {
+        WitnessScene::Shipped {
+            name: name.to_string(),
+        }
+    } else {
+        WitnessScene::Formula
+    };
+    WitnessData {
+        scene,
+        domain: witness::DomainData::of(domain),
+        times: Vec::new(),
+        interval: None,
+        failures: vec![Failure::of(v)],
     }
 }
 
 fn run_kind(
     kind: &Kind<BigRational>,
     applies: fn(&Case<BigRational>) -> bool,
+    domain: &Domain,
     budget: Budget,
     shipped: &[(&'static str, Case<BigRational>)],
 ) -> (Outcome, Vec<&'static str>) {
     match kind {
         Kind::Case(check) => (
-            run_case_check(*check, applies, budget, shipped),
+            run_case_check(*check, applies, domain, budget, shipped),
             CASE_ENGINES.to_vec(),
         ),
         Kind::Scaling(check) => {
@@ -288,6 +428,7 @@ fn run_kind(
                     status: Status::Holds,
                     cases: reports.iter().map(|r| r.cases).sum(),
                     witness: None,
+                    witness_data: None,
                     note: Some(
                         reports
                             .iter()
@@ -300,6 +441,7 @@ fn run_kind(
                     status: Status::Counterexample,
                     // The values of the scene that failed, one per N.
                     cases: scaling::ns(sb).len(),
+                    witness_data: Some(timeless(&v, domain)),
                     witness: Some(v.witness),
                     note: None,
                 },
@@ -313,10 +455,12 @@ fn run_kind(
                     cases: 1,
                     witness: None,
                     note: None,
+                    witness_data: None,
                 },
                 Err(v) => Outcome {
                     status: Status::Counterexample,
                     cases: 1,
+                    witness_data: Some(timeless(&v, domain)),
                     witness: Some(v.witness),
                     note: None,
                 },
@@ -329,6 +473,7 @@ fn run_kind(
                 cases: 0,
                 witness: None,
                 note: None,
+                witness_data: None,
             },
             vec![],
         ),
@@ -349,12 +494,14 @@ pub fn run(budget: Budget, progress: &dyn Progress) -> Vec<Entry> {
             break;
         }
         progress.note(claim.id);
-        let (mut outcome, engines) = run_kind(&claim.kind, claim.applies, budget, &shipped);
+        let (mut outcome, engines) =
+            run_kind(&claim.kind, claim.applies, &claim.domain, budget, &shipped);
         if let (Status::Holds, Some(why)) = (&outcome.status, claim.identity) {
             outcome.status = Status::Identity(why.to_string());
         }
         let correction = claim.correction.as_ref().map(|c| {
-            let (o, _) = run_kind(&c.check, claim.applies, budget, &shipped);
+            // A correction must hold on every case, at every probe time.
+            let (o, _) = run_kind(&c.check, claim.applies, &Domain::EVERY_T, budget, &shipped);
             (c.statement, o, c.conclusion)
         });
         out.push(Entry {
