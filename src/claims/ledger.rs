@@ -397,6 +397,14 @@ fn timeless(v: &Violation, domain: &Domain) -> WitnessData {
         WitnessScene::Shipped {
             name: name.to_string(),
         }
+    } else if let Some((blocks, _)) = v
+        .witness
+        .strip_prefix("blocks = ")
+        .and_then(|rest| rest.split_once(", N = "))
+    {
+        WitnessScene::Macro {
+            blocks: blocks.to_string(),
+        }
     } else {
         WitnessScene::Formula
     };
@@ -480,6 +488,37 @@ fn run_kind(
     }
 }
 
+/// Runs one claim of the registry (and its correction) with `budget`,
+/// as [`run`] does for each.
+pub fn run_claim(claim: &Claim<BigRational>, budget: Budget) -> Entry {
+    entry(claim, budget, &shipped_cases())
+}
+
+fn entry(
+    claim: &Claim<BigRational>,
+    budget: Budget,
+    shipped: &[(&'static str, Case<BigRational>)],
+) -> Entry {
+    let (mut outcome, engines) =
+        run_kind(&claim.kind, claim.applies, &claim.domain, budget, shipped);
+    if let (Status::Holds, Some(why)) = (&outcome.status, claim.identity) {
+        outcome.status = Status::Identity(why.to_string());
+    }
+    let correction = claim.correction.as_ref().map(|c| {
+        // A correction must hold on every case, at every probe time.
+        let (o, _) = run_kind(&c.check, claim.applies, &Domain::EVERY_T, budget, shipped);
+        (c.statement, o, c.conclusion)
+    });
+    Entry {
+        id: claim.id,
+        section: claim.section,
+        statement: claim.statement,
+        engines,
+        outcome,
+        correction,
+    }
+}
+
 /// Runs the whole registry, telling `progress` of each claim as it starts
 /// (one stage, `claims`, with one step per claim). When `progress` asks to
 /// stop ([`Progress::cancelled`], Ctrl-C in Python) the run ends between two
@@ -494,24 +533,7 @@ pub fn run(budget: Budget, progress: &dyn Progress) -> Vec<Entry> {
             break;
         }
         progress.note(claim.id);
-        let (mut outcome, engines) =
-            run_kind(&claim.kind, claim.applies, &claim.domain, budget, &shipped);
-        if let (Status::Holds, Some(why)) = (&outcome.status, claim.identity) {
-            outcome.status = Status::Identity(why.to_string());
-        }
-        let correction = claim.correction.as_ref().map(|c| {
-            // A correction must hold on every case, at every probe time.
-            let (o, _) = run_kind(&c.check, claim.applies, &Domain::EVERY_T, budget, &shipped);
-            (c.statement, o, c.conclusion)
-        });
-        out.push(Entry {
-            id: claim.id,
-            section: claim.section,
-            statement: claim.statement,
-            engines,
-            outcome,
-            correction,
-        });
+        out.push(entry(claim, budget, &shipped));
         progress.advance(1);
     }
     progress.finish();
@@ -596,55 +618,8 @@ pub fn table(entries: &[Entry]) -> String {
     out
 }
 
-fn json_outcome(o: &Outcome) -> String {
-    let s = crate::text::string;
-    format!(
-        "\"status\": {}, \"cases\": {}, \"witness\": {}, \"note\": {}",
-        s(o.status.label()),
-        o.cases,
-        o.witness.as_deref().map_or("null".to_string(), s),
-        o.note
-            .as_deref()
-            .map(s)
-            .or_else(|| match &o.status {
-                Status::NotCheckable(r) | Status::Identity(r) => Some(s(r)),
-                _ => None,
-            })
-            .unwrap_or_else(|| "null".to_string())
-    )
-}
-
-/// The ledger as JSON: `[{"id", "statement", "status", "cases", "engines",
-/// "witness", …}, …]`.
-pub fn json(entries: &[Entry]) -> String {
-    let s = crate::text::string;
-    let items: Vec<String> = entries
-        .iter()
-        .map(|e| {
-            let engines: Vec<String> = e.engines.iter().map(|x| s(x)).collect();
-            let correction = match &e.correction {
-                None => "null".to_string(),
-                Some((st, o, concl)) => format!(
-                    "{{\"statement\": {}, {}, \"conclusion\": {}}}",
-                    s(st),
-                    json_outcome(o),
-                    s(concl)
-                ),
-            };
-            format!(
-                "{{\"id\": {}, \"section\": {}, \"statement\": {}, {}, \"engines\": [{}], \"correction\": {}, {}}}",
-                s(e.id),
-                s(e.section),
-                s(e.statement),
-                json_outcome(&e.outcome),
-                engines.join(", "),
-                correction,
-                super::coq::json_field(e.id)
-            )
-        })
-        .collect();
-    format!("[\n{}\n]", items.join(",\n"))
-}
+#[cfg(feature = "json")]
+pub use super::json::json;
 
 /// The index convention of the ledger's texts, said once at the top of the
 /// table and of `CLAIMS.md` (issue 28 item 5: every program output indexes

@@ -33,6 +33,8 @@ pub mod domain;
 pub mod eulerian;
 pub mod fuzz;
 pub mod inclusion;
+#[cfg(feature = "json")]
+pub mod json;
 pub mod ledger;
 pub mod linf;
 pub mod macro_data;
@@ -44,6 +46,7 @@ pub mod registry;
 pub mod sampling;
 pub mod scaling;
 pub mod test_pressure;
+pub mod weak_pressure;
 pub mod witness;
 
 pub use registry::registry;

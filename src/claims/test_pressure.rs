@@ -245,6 +245,13 @@ pub fn test_function_boundary<S: Scalar>(case: &Case<S>) -> R {
                     at0.render(),
                     at1.render()
                 ),
+            )
+            .at(t.render())
+            .sides(
+                "φ(t,0)/ϕ(t), φ(t,1)/ϕ(t)",
+                format!("{}, {}", at0.render(), at1.render()),
+                "0, 0",
+                "0, 0",
             ));
         }
     }

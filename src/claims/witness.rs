@@ -17,7 +17,7 @@ use crate::violation::{Detail, Violation};
 
 /// The scene a witness lives on.
 #[derive(Debug, Clone, PartialEq, Eq)]
-#[cfg_attr(feature = "json", derive(serde::Serialize))]
+#[cfg_attr(feature = "json", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "json", serde(tag = "kind", rename_all = "snake_case"))]
 pub enum WitnessScene {
     /// A particle datum, every number an exact string.
@@ -36,6 +36,12 @@ pub enum WitnessScene {
         /// Its name.
         name: String,
     },
+    /// A `[macro]` datum: its `blocks` array as in a scene file (the
+    /// failing N is in the failure's text).
+    Macro {
+        /// `[{ from, to, density, velocity }, …]`, exact strings.
+        blocks: String,
+    },
     /// A fixed formula of the paper (no scene: the formula is the witness).
     Formula,
 }
@@ -43,7 +49,7 @@ pub enum WitnessScene {
 /// The open interval `(lo, hi)` between consecutive collision instants
 /// (`hi = None` after the last) holding the witness times.
 #[derive(Debug, Clone, PartialEq, Eq)]
-#[cfg_attr(feature = "json", derive(serde::Serialize))]
+#[cfg_attr(feature = "json", derive(serde::Serialize, serde::Deserialize))]
 pub struct Interval {
     /// The left end: 0 or a collision instant.
     pub lo: String,
@@ -53,7 +59,7 @@ pub struct Interval {
 
 /// The failure at one time (or the only failure of a timeless claim).
 #[derive(Debug, Clone, PartialEq, Eq)]
-#[cfg_attr(feature = "json", derive(serde::Serialize))]
+#[cfg_attr(feature = "json", derive(serde::Serialize, serde::Deserialize))]
 pub struct Failure {
     /// The time, when there is one.
     pub t: Option<String>,
@@ -105,7 +111,7 @@ impl Failure {
 
 /// The domain a witness was accepted in, in words.
 #[derive(Debug, Clone, PartialEq, Eq)]
-#[cfg_attr(feature = "json", derive(serde::Serialize))]
+#[cfg_attr(feature = "json", derive(serde::Serialize, serde::Deserialize))]
 pub struct DomainData {
     /// The `\label` that states it.
     pub label: String,
@@ -161,7 +167,7 @@ impl DomainData {
 
 /// A counterexample in machine-readable form.
 #[derive(Debug, Clone, PartialEq, Eq)]
-#[cfg_attr(feature = "json", derive(serde::Serialize))]
+#[cfg_attr(feature = "json", derive(serde::Serialize, serde::Deserialize))]
 pub struct WitnessData {
     /// The scene.
     pub scene: WitnessScene,
@@ -212,6 +218,13 @@ pub enum ReplayError {
 }
 
 impl WitnessData {
+    /// N of a particle witness (0 otherwise).
+    pub fn scene_n(&self) -> usize {
+        match &self.scene {
+            WitnessScene::Particles { n, .. } => *n,
+            _ => 0,
+        }
+    }
     /// Re-checks a particle witness from its strings alone: rebuilds the
     /// datum, computes its history with the generic engine, asks
     /// [`Domain::admits`] of the times and runs `check` at each time alone;
