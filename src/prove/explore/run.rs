@@ -333,9 +333,8 @@ impl Explorer<'_> {
             }
             Ok(a) => a,
             Err(e) => {
-                return self.stop_unknown(format!(
-                    "{e} (deciding a path to a violation: {message})"
-                ))
+                return self
+                    .stop_unknown(format!("{e} (deciding a path to a violation: {message})"))
             }
         };
         match answer {

@@ -158,7 +158,11 @@ fn names_are_cleared_when_the_hypotheses_are_unsatisfiable() {
     let program = || PathEnd::Holds;
     let e = explore(&names, &hyps, Limits::default(), &program, &Silent).unwrap();
     assert!(matches!(e.verdict, Verdict::Unknown(_)), "{:?}", e.verdict);
-    assert!(super::names().is_empty(), "stale names: {:?}", super::names());
+    assert!(
+        super::names().is_empty(),
+        "stale names: {:?}",
+        super::names()
+    );
 }
 
 /// Two outcomes feasible: the first is taken and the other queued, so the
