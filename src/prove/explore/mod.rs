@@ -340,8 +340,8 @@ pub enum Verdict {
 }
 
 /// Limits of one exploration: all of them are enforced on the whole
-/// attempt, the symbolic algebra ([`budget`]) as well as the solver
-/// ([`SolverLimits`]).
+/// attempt, the symbolic algebra ([`budget`](super::budget)) as well as the solver
+/// ([`SolverLimits`](super::smt::SolverLimits)).
 #[derive(Debug, Clone, Copy)]
 pub struct Limits {
     /// Most paths run.
