@@ -15,18 +15,46 @@ doubles and, on demand, as lists of fractions.Fraction.
 Particles are indexed from 0 everywhere (clusters, events, messages).
 """
 
+from . import _notebook, _values
 from ._sticky import (
     CompareFrame,
     CompareReport,
     Event,
     Scene,
     State,
+    __version__,
     claims,
     compare,
     export,
     isotonic,
 )
+from .errors import (
+    ArgumentError,
+    ArgumentTypeError,
+    CompareError,
+    InvalidDataError,
+    LengthMismatchError,
+    MacroError,
+    NegativeTimeError,
+    NotSortedError,
+    OverlapError,
+    SceneFormatError,
+    SceneReadError,
+    StickyError,
+    UnsupportedError,
+    VelocityConeError,
+    WorkLimitError,
+)
 
+Scene.__eq__ = _values.scene_eq
+Scene.__hash__ = _values.scene_hash
+Scene.__reduce__ = _values.scene_reduce
+Scene._repr_html_ = _notebook.scene_html
+Scene.plot = _notebook.plot
+State.__reduce__ = _values.state_reduce
+State._repr_html_ = _notebook.state_html
+CompareReport.__dir__ = _values.report_dir
+CompareReport._repr_html_ = _notebook.report_html
 
 
 def _exact_text(value, what):
@@ -114,6 +142,22 @@ def _from_macro(particles, blocks, *, name=None, t_end=None):
 Scene.from_macro = staticmethod(_from_macro)
 
 __all__ = [
+    "ArgumentError",
+    "ArgumentTypeError",
+    "CompareError",
+    "InvalidDataError",
+    "LengthMismatchError",
+    "MacroError",
+    "NegativeTimeError",
+    "NotSortedError",
+    "OverlapError",
+    "SceneFormatError",
+    "SceneReadError",
+    "StickyError",
+    "UnsupportedError",
+    "VelocityConeError",
+    "WorkLimitError",
+    "__version__",
     "CompareFrame",
     "CompareReport",
     "Event",
