@@ -2,20 +2,50 @@
 
 from fractions import Fraction
 from os import PathLike
-from typing import Any, Iterable, List, Mapping, Optional, Sequence, Tuple, Union
+from typing import Any, Iterable, List, Literal, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
 
+from . import errors as errors
+from .errors import (
+    ArgumentError as ArgumentError,
+    ArgumentTypeError as ArgumentTypeError,
+    CompareError as CompareError,
+    InvalidDataError as InvalidDataError,
+    LengthMismatchError as LengthMismatchError,
+    MacroError as MacroError,
+    NegativeTimeError as NegativeTimeError,
+    NotSortedError as NotSortedError,
+    OverlapError as OverlapError,
+    SceneFormatError as SceneFormatError,
+    SceneReadError as SceneReadError,
+    StickyError as StickyError,
+    UnsupportedError as UnsupportedError,
+    VelocityConeError as VelocityConeError,
+    WorkLimitError as WorkLimitError,
+)
+
+__version__: str
+
+# The verdict of a comparison, best first.
+Verdict = Literal["exact", "rounding", "inexact", "invalid"]
+# Where a scene's initial data came from.
+SceneKindName = Literal["particles", "macro"]
+
 # A number read exactly: a float (its binary value), an int, a Fraction, or
 # an exact string such as "1/3", "0.125", "1e-3".
+# Bools are refused.
 Number = Union[float, int, Fraction, str, np.floating, np.integer]
 Numbers = Union[npt.ArrayLike, Sequence[Number], Iterable[Number]]
 FloatArray = npt.NDArray[np.float64]
 
 class State:
-    """The state at one time t (indices from 0)."""
+    """The state at one time t (indices from 0); its arrays are read-only."""
 
+    @property
+    def scene(self) -> Scene:
+        """The scene this is a state of."""
     @property
     def t(self) -> Fraction:
         """The time, exact."""
@@ -42,6 +72,7 @@ class State:
         """λ(t), exact."""
     def to_dict(self) -> dict[str, Any]:
         """The state as `sticky run --json` prints it (exact strings)."""
+    def _repr_html_(self) -> str: ...
 
 class Event:
     """A cluster formed by a collision."""
@@ -81,12 +112,18 @@ class Scene:
         blocks: Sequence[Union[Tuple[Any, Any, Any, Any], Mapping[str, Any]]],
         *,
         name: Optional[str] = None,
-        t_end: Any = None,
+        t_end: Optional[Number] = None,
     ) -> Scene:
         """A [macro] scene: blocks (from, to, density, velocity) of a piecewise
         constant density, velocity a number or a pair (a, b) (affine), sampled
         with N = particles at the quantiles (thm:main); the same validation as
         a TOML [macro] section."""
+    def __eq__(self, other: object) -> bool: ...
+    def __hash__(self) -> int: ...
+    def _repr_html_(self) -> str: ...
+    def plot(self, t_end: Number, ax: Any = None) -> Any:
+        """The worldlines x_i(t), 0 ≤ t ≤ t_end, coloured by cluster at t_end:
+        a matplotlib Figure (matplotlib is an optional extra)."""
     @property
     def n(self) -> int:
         """The number of particles N."""
@@ -98,7 +135,7 @@ class Scene:
     def name(self) -> Optional[str]:
         """The scene's name field."""
     @property
-    def kind(self) -> str:
+    def kind(self) -> SceneKindName:
         """"particles" or "macro"."""
     @property
     def positions(self) -> FloatArray:
@@ -118,6 +155,15 @@ class Scene:
         """Every cluster formed by a collision, by time then first particle."""
     def project(self, z: Numbers, exact: bool = False) -> Union[FloatArray, List[Fraction]]:
         """P_K(z), the exact projection onto K = {x : x[i+1] - x[i] ≥ 2r}."""
+
+def from_macro(
+    particles: int,
+    blocks: Sequence[Union[Tuple[Any, Any, Any, Any], Mapping[str, Any]]],
+    *,
+    name: Optional[str] = None,
+    t_end: Optional[Number] = None,
+) -> Scene:
+    """Scene.from_macro."""
 
 def isotonic(z: Numbers, exact: bool = False) -> Union[FloatArray, List[Fraction]]:
     """Exact isotonic regression (non-decreasing, equal weights)."""
@@ -141,7 +187,7 @@ class CompareFrame:
     @property
     def t(self) -> Fraction: ...
     @property
-    def verdict(self) -> str:
+    def verdict(self) -> Verdict:
         """"exact", "rounding", "inexact" or "invalid"."""
     @property
     def exact(self) -> bool: ...
@@ -185,7 +231,7 @@ class CompareReport:
     """The verdict and the figures; with one time, the frame's figures are attributes too."""
 
     @property
-    def verdict(self) -> str: ...
+    def verdict(self) -> Verdict: ...
     @property
     def frames(self) -> List[CompareFrame]: ...
     def text(self) -> str:
@@ -195,6 +241,7 @@ class CompareReport:
     def to_dict(self) -> dict[str, Any]:
         """The JSON of `sticky compare --json`."""
     def __getattr__(self, name: str) -> Any: ...
+    def _repr_html_(self) -> str: ...
 
 def compare(
     scene: Scene,
@@ -204,7 +251,7 @@ def compare(
     *,
     multipliers: Optional[Numbers] = None,
     clusters: Optional[Sequence[Tuple[int, int]]] = None,
-    contact_tol: Optional[Number] = None,
-    overlap_tol: Optional[Number] = None,
+    contact_tol: Optional[Number] = 0,
+    overlap_tol: Optional[Number] = 0,
 ) -> CompareReport:
     """Another solver's answer at t against the exact one, as `sticky compare` measures it."""
