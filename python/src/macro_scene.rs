@@ -35,17 +35,21 @@ fn block(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Block> {
         let message = format!(
             "{what}: a (from, to, density, velocity) tuple or a dict with those keys is needed"
         );
-        errors::argument_type(py, what, message)
+        errors::argument(py, what, message)
     };
     let values: Vec<Bound<'_, PyAny>> = if let Ok(d) = obj.cast::<PyDict>() {
+        let mut unknown = Vec::new();
         for key in d.keys() {
             let known = key
                 .extract::<String>()
                 .is_ok_and(|k| KEYS.contains(&k.as_str()));
             if !known {
-                let message = format!("{what}: unknown key {}", key.repr()?);
-                return Err(errors::argument(py, what, message));
+                unknown.push(key.repr()?.to_string());
             }
+        }
+        if !unknown.is_empty() {
+            let message = format!("{what}: unknown keys [{}]", unknown.join(", "));
+            return Err(errors::argument(py, what, message));
         }
         KEYS.iter()
             .map(|k| {
@@ -70,7 +74,7 @@ fn block(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Block> {
             _ => {
                 let what = field("velocity");
                 let message = format!("{what}: a number or a pair (a, b) is needed");
-                return Err(errors::argument_type(py, &what, message));
+                return Err(errors::argument(py, &what, message));
             }
         },
         None => BlockVelocity::Constant(number(velocity, "velocity")?),

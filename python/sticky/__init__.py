@@ -15,6 +15,8 @@ doubles and, on demand, as lists of fractions.Fraction.
 Particles are indexed from 0 everywhere (clusters, events, messages).
 """
 
+from typing import Literal
+
 from . import _notebook, _values
 from ._sticky import (
     CompareFrame,
@@ -46,6 +48,11 @@ from .errors import (
     VelocityConeError,
     WorkLimitError,
 )
+
+# The verdict of a comparison, best first (CompareReport.verdict).
+Verdict = Literal["exact", "rounding", "inexact", "invalid"]
+# Where a scene's initial data came from (Scene.kind).
+SceneKindName = Literal["particles", "macro"]
 
 Scene.__eq__ = _values.scene_eq
 Scene.__hash__ = _values.scene_hash
@@ -81,9 +88,12 @@ __all__ = [
     "CompareReport",
     "Event",
     "Scene",
+    "SceneKindName",
     "State",
+    "Verdict",
     "claims",
     "compare",
     "export",
+    "from_macro",
     "isotonic",
 ]

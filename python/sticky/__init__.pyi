@@ -2,7 +2,8 @@
 
 from fractions import Fraction
 from os import PathLike
-from typing import Any, Iterable, List, Literal, Mapping, Optional, Sequence, Tuple, Union
+from typing import Any, Iterable, List, Literal, Mapping, Optional, Sequence, Tuple, Union, final
+
 
 import numpy as np
 import numpy.typing as npt
@@ -28,6 +29,37 @@ from .errors import (
 
 __version__: str
 
+__all__ = [
+    "ArgumentError",
+    "ArgumentTypeError",
+    "CompareError",
+    "InvalidDataError",
+    "LengthMismatchError",
+    "MacroError",
+    "NegativeTimeError",
+    "NotSortedError",
+    "OverlapError",
+    "SceneFormatError",
+    "SceneReadError",
+    "StickyError",
+    "UnsupportedError",
+    "VelocityConeError",
+    "WorkLimitError",
+    "__version__",
+    "CompareFrame",
+    "CompareReport",
+    "Event",
+    "Scene",
+    "SceneKindName",
+    "State",
+    "Verdict",
+    "claims",
+    "compare",
+    "export",
+    "from_macro",
+    "isotonic",
+]
+
 # The verdict of a comparison, best first.
 Verdict = Literal["exact", "rounding", "inexact", "invalid"]
 # Where a scene's initial data came from.
@@ -36,10 +68,11 @@ SceneKindName = Literal["particles", "macro"]
 # A number read exactly: a float (its binary value), an int, a Fraction, or
 # an exact string such as "1/3", "0.125", "1e-3".
 # Bools are refused.
-Number = Union[float, int, Fraction, str, np.floating, np.integer]
-Numbers = Union[npt.ArrayLike, Sequence[Number], Iterable[Number]]
-FloatArray = npt.NDArray[np.float64]
+_Number = Union[float, int, Fraction, str, np.floating, np.integer]
+_Numbers = Union[npt.ArrayLike, Sequence[_Number], Iterable[_Number]]
+_FloatArray = npt.NDArray[np.float64]
 
+@final
 class State:
     """The state at one time t (indices from 0); its arrays are read-only."""
 
@@ -53,13 +86,13 @@ class State:
     def n(self) -> int:
         """The number of particles N."""
     @property
-    def positions(self) -> FloatArray:
+    def positions(self) -> _FloatArray:
         """x(t), the nearest double of each exact value."""
     @property
-    def velocities(self) -> FloatArray:
+    def velocities(self) -> _FloatArray:
         """u(t) (right derivative), nearest doubles."""
     @property
-    def multipliers(self) -> FloatArray:
+    def multipliers(self) -> _FloatArray:
         """λ(t), N - 1 values (entry i: the pair (i, i+1)), nearest doubles."""
     @property
     def clusters(self) -> List[Tuple[int, int]]:
@@ -74,6 +107,7 @@ class State:
         """The state as `sticky run --json` prints it (exact strings)."""
     def _repr_html_(self) -> str: ...
 
+@final
 class Event:
     """A cluster formed by a collision."""
 
@@ -95,10 +129,11 @@ class Event:
     def to_dict(self) -> dict[str, Any]:
         """The event as `sticky events --json` prints it."""
 
+@final
 class Scene:
     """N particles of radius r on a line, validated; exact answers on demand."""
 
-    def __init__(self, positions: Numbers, velocities: Numbers, radius: Optional[Number] = None) -> None:
+    def __new__(cls, positions: _Numbers, velocities: _Numbers, radius: Optional[_Number] = None) -> Scene:
         """Raises ValueError (overlap, velocity cone, NaN, length mismatch)."""
     @staticmethod
     def load(path: Union[str, PathLike[str]]) -> Scene:
@@ -112,7 +147,7 @@ class Scene:
         blocks: Sequence[Union[Tuple[Any, Any, Any, Any], Mapping[str, Any]]],
         *,
         name: Optional[str] = None,
-        t_end: Optional[Number] = None,
+        t_end: Optional[_Number] = None,
     ) -> Scene:
         """A [macro] scene: blocks (from, to, density, velocity) of a piecewise
         constant density, velocity a number or a pair (a, b) (affine), sampled
@@ -121,7 +156,7 @@ class Scene:
     def __eq__(self, other: object) -> bool: ...
     def __hash__(self) -> int: ...
     def _repr_html_(self) -> str: ...
-    def plot(self, t_end: Number, ax: Any = None) -> Any:
+    def plot(self, t_end: _Number, ax: Any = None) -> Any:
         """The worldlines x_i(t), 0 ≤ t ≤ t_end, coloured by cluster at t_end:
         a matplotlib Figure (matplotlib is an optional extra)."""
     @property
@@ -138,22 +173,22 @@ class Scene:
     def kind(self) -> SceneKindName:
         """"particles" or "macro"."""
     @property
-    def positions(self) -> FloatArray:
+    def positions(self) -> _FloatArray:
         """x⁰, nearest doubles."""
     @property
-    def velocities(self) -> FloatArray:
+    def velocities(self) -> _FloatArray:
         """u⁰, nearest doubles."""
     def exact_positions(self) -> List[Fraction]:
         """x⁰, exact."""
     def exact_velocities(self) -> List[Fraction]:
         """u⁰, exact."""
-    def state(self, t: Number) -> State:
+    def state(self, t: _Number) -> State:
         """The exact state at t ≥ 0."""
-    def states(self, ts: Numbers) -> List[State]:
+    def states(self, ts: _Numbers) -> List[State]:
         """The exact state at every t of ts."""
     def events(self) -> List[Event]:
         """Every cluster formed by a collision, by time then first particle."""
-    def project(self, z: Numbers, exact: bool = False) -> Union[FloatArray, List[Fraction]]:
+    def project(self, z: _Numbers, exact: bool = False) -> Union[_FloatArray, List[Fraction]]:
         """P_K(z), the exact projection onto K = {x : x[i+1] - x[i] ≥ 2r}."""
 
 def from_macro(
@@ -161,11 +196,11 @@ def from_macro(
     blocks: Sequence[Union[Tuple[Any, Any, Any, Any], Mapping[str, Any]]],
     *,
     name: Optional[str] = None,
-    t_end: Optional[Number] = None,
+    t_end: Optional[_Number] = None,
 ) -> Scene:
     """Scene.from_macro."""
 
-def isotonic(z: Numbers, exact: bool = False) -> Union[FloatArray, List[Fraction]]:
+def isotonic(z: _Numbers, exact: bool = False) -> Union[_FloatArray, List[Fraction]]:
     """Exact isotonic regression (non-decreasing, equal weights)."""
 
 def claims(
@@ -179,8 +214,9 @@ def claims(
 def export(scene: Scene) -> dict[str, Any]:
     """The scene's data rounded to doubles, as `sticky export --format json`."""
 
-MaxError = Tuple[Fraction, Optional[float], int]
+_MaxError = Tuple[Fraction, Optional[float], int]
 
+@final
 class CompareFrame:
     """One time of a comparison: every figure exact and as a float (indices from 0)."""
 
@@ -202,13 +238,13 @@ class CompareFrame:
     @property
     def position_l2_float(self) -> Optional[float]: ...
     @property
-    def velocity_max(self) -> Optional[MaxError]: ...
+    def velocity_max(self) -> Optional[_MaxError]: ...
     @property
     def velocity_l2_squared(self) -> Optional[Fraction]: ...
     @property
     def velocity_l2_float(self) -> Optional[float]: ...
     @property
-    def multiplier_max(self) -> Optional[MaxError]: ...
+    def multiplier_max(self) -> Optional[_MaxError]: ...
     @property
     def overlaps(self) -> List[Tuple[int, Fraction, Optional[float]]]:
         """[(pair j, depth 2r - gap, depth as float)]."""
@@ -227,6 +263,7 @@ class CompareFrame:
     @property
     def oleinik(self) -> Optional[List[int]]: ...
 
+@final
 class CompareReport:
     """The verdict and the figures; with one time, the frame's figures are attributes too."""
 
@@ -245,13 +282,13 @@ class CompareReport:
 
 def compare(
     scene: Scene,
-    t: Number,
-    positions: Numbers,
-    velocities: Optional[Numbers] = None,
+    t: _Number,
+    positions: _Numbers,
+    velocities: Optional[_Numbers] = None,
     *,
-    multipliers: Optional[Numbers] = None,
+    multipliers: Optional[_Numbers] = None,
     clusters: Optional[Sequence[Tuple[int, int]]] = None,
-    contact_tol: Optional[Number] = 0,
-    overlap_tol: Optional[Number] = 0,
+    contact_tol: Optional[_Number] = 0,
+    overlap_tol: Optional[_Number] = 0,
 ) -> CompareReport:
     """Another solver's answer at t against the exact one, as `sticky compare` measures it."""

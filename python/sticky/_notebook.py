@@ -34,7 +34,9 @@ def _head(values):
     return escape(f"[{shown}{', …' if len(values) > _ROWS else ''}]")
 
 
-def scene_html(scene):
+def scene_html(self):
+    """Scene._repr_html_: N, r, kind, name, the first values."""
+    scene = self
     rows = [("N", scene.n), ("radius", escape(_number(scene.radius))), ("kind", scene.kind)]
     if scene.name is not None:
         rows.append(("name", escape(scene.name)))
@@ -42,7 +44,9 @@ def scene_html(scene):
     return _table("sticky.Scene", rows)
 
 
-def state_html(state):
+def state_html(self):
+    """State._repr_html_: t, N, the clusters, the first values."""
+    state = self
     clusters = state.clusters
     shown = ", ".join(f"({f}, {s})" for f, s in clusters[:_ROWS])
     rows = [
@@ -55,7 +59,10 @@ def state_html(state):
     return _table("sticky.State", rows)
 
 
-def report_html(report):
+def report_html(self):
+    """CompareReport._repr_html_: the verdict, coloured, and per time the
+    main figures."""
+    report = self
     verdict = report.verdict
     colour = _COLOURS.get(verdict, "inherit")
     rows = [("verdict", f"<b style='color:{colour}'>{escape(verdict)}</b>")]
@@ -69,7 +76,7 @@ def report_html(report):
     return _table("sticky.CompareReport", rows)
 
 
-def plot(scene, t_end, ax=None):
+def plot(self, t_end, ax=None):
     """scene.plot(t_end, ax=None) -> matplotlib Figure
 
     The worldlines x_i(t) for 0 ≤ t ≤ t_end, exact: between collisions
@@ -77,6 +84,7 @@ def plot(scene, t_end, ax=None):
     through its states at 0, at every collision instant before t_end and at
     t_end. Each particle is coloured by its cluster at t_end. Needs
     matplotlib (``pip install ./python[plot]``)."""
+    scene = self
     try:
         import matplotlib.pyplot as plt
         from matplotlib.collections import LineCollection

@@ -2,7 +2,7 @@
 deep copies of Scene, State and CompareReport, and ``dir()`` of a report
 listing its figures."""
 
-from . import _sticky
+from . import _sticky  # type: ignore[attr-defined]  # the native module has no stub of its own
 
 
 def _scene(radius, positions, velocities):
