@@ -17,7 +17,7 @@ from hypothesis import strategies as st
 
 import sticky
 
-EXAMPLES = 150
+EXAMPLES = 500
 
 # Numbers and non-numbers a caller might pass where one number is expected.
 scalars = st.one_of(
@@ -56,6 +56,12 @@ columns = st.one_of(
         ]
     ),
     scalars,
+)
+
+# Cluster fields: near the scene's N = 2, and at the edges of machine words.
+counts = st.one_of(
+    st.integers(min_value=-1, max_value=3),
+    st.sampled_from([2**64 - 1, 2**64 - 2, 2**63, 2**64]),
 )
 
 ACCEPTED = (sticky.StickyError, TypeError)
@@ -120,6 +126,7 @@ def test_states_project_isotonic(z):
     st.one_of(st.none(), columns),
     st.one_of(
         st.none(),
+        st.lists(st.tuples(counts, counts), min_size=1, max_size=3),
         st.lists(st.tuples(scalars, scalars), max_size=3),
         st.lists(st.lists(scalars, max_size=3), max_size=3),
         scalars,
@@ -139,6 +146,13 @@ def test_compare(t, x, u, lam, clusters, contact_tol, overlap_tol):
         contact_tol=contact_tol,
         overlap_tol=overlap_tol,
     )
+
+
+@quick
+@given(st.lists(st.tuples(counts, counts), min_size=1, max_size=3))
+def test_compare_clusters(clusters):
+    # A valid answer, so that the clusters are what is checked.
+    calls(sticky.compare, SCENE, 1, [0, 1], [0, 0], clusters=clusters)
 
 
 @quick
