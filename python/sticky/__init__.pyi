@@ -134,7 +134,9 @@ class Scene:
     """N particles of radius r on a line, validated; exact answers on demand."""
 
     def __new__(cls, positions: _Numbers, velocities: _Numbers, radius: Optional[_Number] = None) -> Scene:
-        """Raises ValueError (overlap, velocity cone, NaN, length mismatch)."""
+        """Raises OverlapError, NotSortedError, VelocityConeError, ArgumentError
+        (NaN, infinity), LengthMismatchError (all ValueError), ArgumentTypeError
+        (a bool, a string: TypeError)."""
     @staticmethod
     def load(path: Union[str, PathLike[str]]) -> Scene:
         """A TOML scene file ([particles] inline, CSV or NPY columns, or [macro])."""
