@@ -60,3 +60,35 @@ fn exact_values_stay_exact() {
     let data = cluster();
     assert_eq!(verdict(data.positions().to_vec(), None), Verdict::Exact);
 }
+
+/// `sticky compare` gives the same verdict: the nearest doubles of the
+/// cluster, written as JSON numbers, are `rounding` with no tolerance.
+#[test]
+fn the_command_line_agrees() {
+    let dir = std::env::temp_dir().join(format!("sticky-rounded-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = dir.join("s.toml");
+    let solution = dir.join("sol.json");
+    std::fs::write(
+        &scene,
+        "[particles]\nradius = \"1/6\"\npositions = [\"0\", \"1/3\", \"2/3\"]\nvelocities = [\"0\", \"0\", \"0\"]\n",
+    )
+    .unwrap();
+    let x: Vec<f64> = [q(0, 1), q(1, 3), q(2, 3)]
+        .iter()
+        .map(sticky::Scalar::to_f64_lossy)
+        .collect();
+    let line = serde_json::json!({"t": "1", "positions": x, "velocities": [0.0, 0.0, 0.0]});
+    std::fs::write(&solution, line.to_string()).unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_sticky"))
+        .arg("compare")
+        .arg(&scene)
+        .arg(&solution)
+        .arg("--json")
+        .output()
+        .unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    assert_eq!(v["verdict"], "rounding", "{v}");
+    assert_eq!(v["times"][0]["overlaps"].as_array().map(Vec::len), Some(2));
+}
