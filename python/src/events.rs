@@ -76,7 +76,7 @@ impl Event {
     fn __repr__(&self) -> String {
         format!(
             "Event(t={}, first={}, size={}, parts={:?})",
-            self.t.render(),
+            convert::shown(&self.t),
             self.first,
             self.size,
             self.parts

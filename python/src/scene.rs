@@ -19,7 +19,7 @@ use std::sync::{Arc, OnceLock};
 
 use num_rational::BigRational;
 use numpy::PyArray1;
-use pyo3::exceptions::{PyOSError, PyValueError};
+use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyList;
 use sticky::fast::dyadic::Dyadic;
@@ -35,14 +35,7 @@ use crate::events::Event;
 use crate::interrupt;
 use crate::state::{Answer, State};
 
-/// A library error as the Python exception the command line's message goes
-/// with: `OSError` for a file that cannot be read, `ValueError` otherwise.
-pub fn py_error(e: Error) -> PyErr {
-    match e {
-        Error::Io { .. } => PyOSError::new_err(e.to_string()),
-        _ => PyValueError::new_err(e.to_string()),
-    }
-}
+pub use crate::errors::py_error;
 
 /// Where the general path's data come from when they are built lazily.
 enum Source {
@@ -70,7 +63,7 @@ pub struct Inner {
 impl Inner {
     /// A scene from validated data (the general path), and the streaming
     /// path when its values are on words.
-    fn from_scene(scene: SceneFile) -> Inner {
+    pub(crate) fn from_scene(scene: SceneFile) -> Inner {
         let lean = Lean::from_data(&scene.data);
         let general = OnceLock::new();
         let _ = general.set(scene);
@@ -422,10 +415,11 @@ impl Scene {
         let z = convert::column(z, "z")?.into_exact("z")?;
         let n = self.n(py)?;
         if z.len() != n {
-            return Err(PyValueError::new_err(format!(
+            let message = format!(
                 "z has {} values but the scene has N = {n} particles",
                 z.len()
-            )));
+            );
+            return Err(crate::errors::argument(py, "z", message));
         }
         let inner = &self.inner;
         let r = py.detach(|| inner.radius()).map_err(py_error)?;
@@ -438,10 +432,7 @@ impl Scene {
         let n = self.n(py)?;
         let inner = &self.inner;
         let r = py.detach(|| inner.radius()).map_err(py_error)?;
-        Ok(format!(
-            "Scene(n={n}, radius={})",
-            sticky::rational::render_exact(&r)
-        ))
+        Ok(format!("Scene(n={n}, radius={})", convert::shown(&r)))
     }
 }
 

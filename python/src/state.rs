@@ -143,7 +143,8 @@ const ROUNDING_CHUNK: usize = 4096;
 /// (i, i+1), indices from 0) and contact clusters. `positions`,
 /// `velocities`, `multipliers` are numpy float64 arrays of the nearest
 /// doubles (the velocities and multipliers computed on first access);
-/// `exact_positions()` and its siblings give the exact values.
+/// `exact_positions()` and its siblings give the exact values. The arrays
+/// are read-only (`writeable=False`): no call changes a state.
 #[pyclass(module = "sticky", frozen)]
 pub struct State {
     scene: Arc<Inner>,
@@ -173,19 +174,19 @@ impl State {
         if let Some(s) = a.exact {
             let _ = exact.set(s);
         }
-        let array = |v: Option<Vec<f64>>| {
+        let array = |v: Option<Vec<f64>>| -> PyResult<_> {
             let cell = OnceLock::new();
             if let Some(v) = v {
-                let _ = cell.set(PyArray1::from_vec(py, v).unbind());
+                let _ = cell.set(convert::read_only(py, v)?.unbind());
             }
-            cell
+            Ok(cell)
         };
         Ok(State {
             scene,
             t: a.t,
-            positions: PyArray1::from_vec(py, a.positions).unbind(),
-            velocities: array(a.velocities),
-            multipliers: array(a.multipliers),
+            positions: convert::read_only(py, a.positions)?.unbind(),
+            velocities: array(a.velocities)?,
+            multipliers: array(a.multipliers)?,
             clusters: a.clusters,
             blocks: a.blocks,
             exact,
@@ -221,7 +222,7 @@ impl State {
                 py.detach(|| convert::nearest(v))
             }
         };
-        let array = PyArray1::from_vec(py, values).unbind();
+        let array = convert::read_only(py, values)?.unbind();
         Ok(cell.get_or_init(|| array).bind(py).clone())
     }
 
@@ -243,6 +244,14 @@ impl State {
     #[getter]
     fn t<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         convert::fraction(py, &self.t)
+    }
+
+    /// The scene this is a state of.
+    #[getter]
+    fn scene(&self) -> crate::scene::Scene {
+        crate::scene::Scene {
+            inner: Arc::clone(&self.scene),
+        }
     }
 
     /// The number of particles N.
@@ -323,7 +332,7 @@ impl State {
         let more = if self.clusters.len() > 8 { ", ..." } else { "" };
         format!(
             "State(t={}, n={}, clusters=[{}{more}])",
-            self.t.render(),
+            convert::shown(&self.t),
             self.n(py),
             shown.join(", ")
         )

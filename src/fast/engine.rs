@@ -360,7 +360,9 @@ fn check_work_capped(
         None => format!("a largest single denominator of {bits} bits"),
         Some(cost) => format!("a common denominator of {}", cost.common_denominator),
     };
-    Err(Error::Unsupported {
+    Err(Error::WorkLimit {
+        work,
+        cap,
         message: format!(
             "the exact answer by the engine {} needs at least ~{work:.3e} word operations (N = {} particles over {what}, N·(its 64-bit words)²), more than the cap of {cap:.3e}: this would run for a very long time. Use data with smaller or fewer distinct denominators, or set the environment variable {WORK_VAR} to a larger number of operations to run it anyway",
             engine.name(),

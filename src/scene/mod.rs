@@ -77,6 +77,7 @@ use toml::Table;
 use crate::error::Error;
 use crate::initial::InitialData;
 use crate::quantile::{render_short, MacroDatum};
+pub use macro_datum::macro_data;
 use macro_datum::macro_table;
 use particles::particles_table;
 use values::{check_keys, exact, optional_string, toml_error, Budget};

@@ -47,7 +47,7 @@ use crate::reference::measure::{compare, CompareError, Comparison};
 use crate::report::solution::Frame;
 use crate::scalar::Scalar;
 
-pub use verdict::{Tolerances, Verdict};
+pub use verdict::{Representation, Tolerances, Verdict};
 
 /// When two neighbours of the solver's answer count as in contact, if the
 /// answer gives no `clusters` of its own: gap `x_{j+1} − x_j ≤ 2r + tol`.
@@ -262,7 +262,23 @@ pub fn compare_solution_with(
             velocity: tol * &speed,
             multiplier: tol * lambda_scale,
         };
-        let verdict = verdict::judge(&comparison, &gaps, f.multipliers.as_deref(), &tolerances);
+        let mut columns = vec![(x.as_slice(), state.positions.as_slice())];
+        if let Some(u) = &f.velocities {
+            columns.push((u.as_slice(), state.velocities.as_slice()));
+        }
+        if let Some(l) = &f.multipliers {
+            columns.push((l.as_slice(), state.multipliers.as_slice()));
+        }
+        let contacts_right = f.contacts.is_none()
+            || (comparison.missed_contacts == 0 && comparison.spurious_contacts == 0);
+        let representation = Representation::of(&columns, contacts_right);
+        let verdict = verdict::judge(
+            &comparison,
+            &gaps,
+            f.multipliers.as_deref(),
+            &tolerances,
+            representation,
+        );
         debug_assert_eq!(verdict == Verdict::Exact, comparison.is_exact());
         reports.push(FrameReport {
             line: f.line,
