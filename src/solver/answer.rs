@@ -54,28 +54,27 @@ fn rational(e: &Exact) -> BigRational {
     }
 }
 
+/// The visitor of one column of the streaming path's values.
+type Visitor<'v> = dyn FnMut(&Exact) -> std::io::Result<()> + 'v;
+
+/// The values a visitor of the streaming path gives, as `BigRational`s.
+fn values(visit: impl FnOnce(&mut Visitor<'_>) -> std::io::Result<()>) -> Vec<BigRational> {
+    let mut out = Vec::new();
+    // The visitors fail only when their callback does; this one never does.
+    let _ = visit(&mut |e| {
+        out.push(rational(e));
+        Ok(())
+    });
+    out
+}
+
 /// The exact state of the streaming path's blocks.
 fn words_state(b: &LeanBlocks<'_>) -> State<BigRational> {
-    let collect = |visit: &dyn Fn(&mut dyn FnMut(&Exact) -> std::io::Result<()>)| {
-        let mut out = Vec::with_capacity(b.n());
-        visit(&mut |e| {
-            out.push(rational(e));
-            Ok(())
-        });
-        out
-    };
-    // The visitors fail only when their callback does; these never do.
     State {
         t: b.t().clone(),
-        positions: collect(&|f| {
-            let _ = b.positions(f);
-        }),
-        velocities: collect(&|f| {
-            let _ = b.velocities(f);
-        }),
-        multipliers: collect(&|f| {
-            let _ = b.multipliers(f);
-        }),
+        positions: values(|f| b.positions(f)),
+        velocities: values(|f| b.velocities(f)),
+        multipliers: values(|f| b.multipliers(f)),
         clusters: b.clusters(),
     }
 }
