@@ -3,7 +3,8 @@
 use num_rational::BigRational;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use sticky::{Impulse, Scalar};
+use sticky::solver::Collision;
+use sticky::Scalar;
 
 use crate::convert;
 
@@ -19,13 +20,13 @@ pub struct Event {
 }
 
 impl Event {
-    /// The event of an impulse of the library's event history.
-    pub fn from_impulse(i: &Impulse<BigRational>) -> Event {
+    /// The event of a collision of the library's history.
+    pub fn from_collision(c: Collision) -> Event {
         Event {
-            t: i.t.clone(),
-            first: i.cluster.first,
-            size: i.cluster.size,
-            parts: i.parts.iter().map(|p| p.size).collect(),
+            t: c.t,
+            first: c.first,
+            size: c.size,
+            parts: c.parts,
         }
     }
 }

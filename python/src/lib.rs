@@ -49,13 +49,7 @@ fn claims<'py>(
     let (cases, max_n) = (count(cases, "cases")?, count(max_n, "max_n")?);
     let scaling_max_n = count(scaling_max_n, "scaling_max_n")?;
     let seed = count(seed, "seed")?.map(|s| s as u64);
-    let d = Budget::default();
-    let budget = Budget {
-        cases: cases.unwrap_or(d.cases),
-        max_n: max_n.unwrap_or(d.max_n).max(1),
-        scaling_max_n: scaling_max_n.unwrap_or(d.scaling_max_n).max(8),
-        seed: seed.unwrap_or(d.seed),
-    };
+    let budget = Budget::asked(cases, max_n, scaling_max_n, seed);
     // The ledger stops between claims once Ctrl-C is pressed (its partial
     // answer is dropped: the caller already has KeyboardInterrupt).
     let text = interrupt::run(py, move |stop| ledger::json(&ledger::run(budget, stop)))?;

@@ -8,14 +8,13 @@
 
 use std::sync::{Arc, OnceLock};
 
-use num_bigint::BigInt;
 use num_rational::BigRational;
 use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use sticky::cluster::Cluster;
 use sticky::fast::dyadic::DyadicBlocks;
-use sticky::fast::stream::{Exact, LeanBlocks};
+use sticky::fast::stream::LeanBlocks;
 use sticky::progress::Progress;
 use sticky::{Error, Scalar};
 
@@ -34,40 +33,6 @@ pub struct Answer {
     clusters: Vec<Cluster>,
     blocks: Option<DyadicBlocks>,
     exact: Option<sticky::State<BigRational>>,
-}
-
-/// Collects a visitor's values.
-fn collect<T>(
-    visit: impl FnOnce(&mut dyn FnMut(&Exact) -> std::io::Result<()>) -> std::io::Result<()>,
-    f: impl Fn(&Exact) -> T,
-) -> Vec<T> {
-    let mut out = Vec::new();
-    // The visitors fail only when their callback does; this one never does.
-    let _ = visit(&mut |e| {
-        out.push(f(e));
-        Ok(())
-    });
-    out
-}
-
-/// An exact value of the streaming path as a `BigRational` (already in
-/// lowest terms).
-fn big(e: &Exact) -> BigRational {
-    match e {
-        Exact::Small(n, d) => BigRational::new_raw(BigInt::from(*n), BigInt::from(*d)),
-        Exact::Big(q) => q.clone(),
-    }
-}
-
-/// The whole exact state from the streaming path's blocks.
-pub fn exact_state(b: &LeanBlocks<'_>) -> sticky::State<BigRational> {
-    sticky::State {
-        t: b.t().clone(),
-        positions: collect(|f| b.positions(f), big),
-        velocities: collect(|f| b.velocities(f), big),
-        multipliers: collect(|f| b.multipliers(f), big),
-        clusters: b.clusters(),
-    }
 }
 
 impl Answer {

@@ -36,6 +36,27 @@ pub struct Budget {
     pub seed: u64,
 }
 
+impl Budget {
+    /// The budget a caller asks for (the command line's flags, Python's
+    /// arguments): each field its [default](Budget::default) when not
+    /// given, the sizes clamped to what the checks need (a random case
+    /// has at least 1 particle, the checks across N go up to at least 8).
+    pub fn asked(
+        cases: Option<usize>,
+        max_n: Option<usize>,
+        scaling_max_n: Option<usize>,
+        seed: Option<u64>,
+    ) -> Budget {
+        let d = Budget::default();
+        Budget {
+            cases: cases.unwrap_or(d.cases),
+            max_n: max_n.unwrap_or(d.max_n).max(1),
+            scaling_max_n: scaling_max_n.unwrap_or(d.scaling_max_n).max(8),
+            seed: seed.unwrap_or(d.seed),
+        }
+    }
+}
+
 impl Default for Budget {
     fn default() -> Self {
         Budget {

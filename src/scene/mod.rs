@@ -170,6 +170,17 @@ pub struct Scene {
 }
 
 impl Scene {
+    /// A `[particles]` scene with no name around validated `data`.
+    pub fn particles(data: InitialData<BigRational>) -> Scene {
+        Scene {
+            name: None,
+            description: None,
+            t_end: None,
+            kind: SceneKind::Particles,
+            data,
+        }
+    }
+
     /// Number of particles N.
     pub fn n(&self) -> usize {
         self.data.n()

@@ -30,12 +30,12 @@ pub struct Args {
 
 /// Runs `sticky claims`.
 pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
-    let budget = Budget {
-        cases: args.cases,
-        max_n: args.max_n.max(1),
-        scaling_max_n: args.scaling_max_n.max(8),
-        ..Budget::default()
-    };
+    let budget = Budget::asked(
+        Some(args.cases),
+        Some(args.max_n),
+        Some(args.scaling_max_n),
+        None,
+    );
     claims(out, budget, args.json, args.markdown)
 }
 

@@ -105,7 +105,12 @@ fn parse_time(s: &str) -> Result<BigRational, String> {
 struct Failure(String);
 
 fn load(path: &std::path::Path) -> Result<Scene, Failure> {
-    scene::load(path).map_err(|e| Failure(format!("{}: {e}", path.display())))
+    scene::load(path).map_err(scene_err(path))
+}
+
+/// A library error about the scene at `path`, as a failure that names it.
+fn scene_err(path: &std::path::Path) -> impl Fn(sticky::Error) -> Failure + '_ {
+    move |e| Failure(format!("{}: {e}", path.display()))
 }
 
 fn main() -> ExitCode {
@@ -141,7 +146,10 @@ fn main() -> ExitCode {
     let result = match cli.command {
         None => scene::default_scene()
             .map_err(|e| Failure(format!("embedded default scene: {e}")))
-            .and_then(|s| check::summary(&mut out, &s, "embedded default scene")),
+            .and_then(|s| {
+                let solver = sticky::solver::Solver::from_scene(s);
+                check::summary(&mut out, &solver, "embedded default scene")
+            }),
         Some(Command::Run(args)) => run::exec(args, &mut out),
         Some(Command::Events(args)) => events::exec(args, &mut out),
         Some(Command::Check(args)) => check::exec(args, &mut out),
@@ -179,7 +187,6 @@ fn is_broken_pipe(r: &io::Result<()>) -> bool {
     matches!(r, Err(e) if e.kind() == io::ErrorKind::BrokenPipe)
 }
 
-/// Maps a write error to a failure; a closed pipe ends the output quietly.
 /// Maps a write error to a failure; a closed pipe ends the output quietly.
 fn io_err(e: io::Error) -> Failure {
     if e.kind() == io::ErrorKind::BrokenPipe {

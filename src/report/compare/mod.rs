@@ -3,7 +3,7 @@
 //! (`Report::json`, feature `json`) — the one comparison behind `sticky
 //! compare` and the Python package's `sticky.compare`.
 //!
-//! The exact answer at each time is the integer kernel's
+//! The exact answer at each time is the [`Solver`](crate::solver::Solver)'s
 //! `x(t) = P_K(x⁰ + t u⁰)` (`prop:proj-micro`), `u(t)` and `λ(t)`
 //! (`eq:dyn-micro`); the figures are
 //! [`reference::measure::compare`](crate::reference::measure::compare)'s,
@@ -40,7 +40,6 @@ use std::fmt;
 use num_rational::BigRational;
 use num_traits::{Signed, Zero};
 
-use crate::fast::kernel::{self, IntegerData};
 use crate::initial::InitialData;
 use crate::progress::{Progress, Silent};
 use crate::reference::measure::{compare, CompareError, Comparison};
@@ -231,7 +230,7 @@ pub fn compare_solution_with(
         .map(|u| u.abs())
         .max()
         .unwrap_or_else(<BigRational as Zero>::zero);
-    let ints = IntegerData::new(data);
+    let solver = crate::solver::Solver::from_data(data.clone());
     progress.stage("compare", Some(frames.len() as u64));
     let mut reports = Vec::with_capacity(frames.len());
     for f in frames {
@@ -243,11 +242,14 @@ pub fn compare_solution_with(
             t: f.t.clone(),
             error,
         };
-        let state = kernel::state_at(&ints, &f.t).map_err(|e| {
-            fail(CompareError::Exact {
-                message: e.to_string(),
-            })
-        })?;
+        let state = solver
+            .state(&f.t)
+            .map_err(|e| {
+                fail(CompareError::Exact {
+                    message: e.to_string(),
+                })
+            })?
+            .into_state();
         let comparison = compare(&f.candidate(), &state, &two_r, &contact_tol).map_err(fail)?;
         let x = &f.positions;
         let gaps: Vec<BigRational> = x.windows(2).map(|w| &w[1] - &w[0] - &two_r).collect();
