@@ -23,6 +23,7 @@ pub mod export;
 #[cfg(feature = "report")]
 pub mod figures;
 pub mod io;
+#[cfg(feature = "json")]
 pub mod json;
 #[cfg(feature = "report")]
 pub mod peers;
@@ -30,4 +31,6 @@ pub mod peers;
 pub mod plot;
 #[cfg(feature = "report")]
 pub mod progress;
+#[cfg(all(test, feature = "json"))]
+mod schema;
 pub mod solution;
