@@ -8,8 +8,17 @@
 use std::fs;
 use std::path::{Path, PathBuf};
 
-/// Files still allowed to, and why: each goes when its output is typed.
-const PENDING: [(&str, &str); 2] = [
+/// Files allowed to, and why: pending ones go when their output is typed;
+/// the readers build a search key (`"key": `), they write nothing.
+const PENDING: [(&str, &str); 4] = [
+    (
+        "prove/record.rs",
+        "reader: finds a key in the committed proof record",
+    ),
+    (
+        "report/atlas/peers.rs",
+        "reader: finds a key in a peer solver's output",
+    ),
     (
         "claims/ledger.rs",
         "`sticky claims --json`, being made a serde type",
