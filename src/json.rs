@@ -72,7 +72,11 @@ impl Formatter for Contract {
         w.write_all(short)
     }
 
-    fn write_string_fragment<W: ?Sized + Write>(&mut self, w: &mut W, text: &str) -> io::Result<()> {
+    fn write_string_fragment<W: ?Sized + Write>(
+        &mut self,
+        w: &mut W,
+        text: &str,
+    ) -> io::Result<()> {
         // serde_json leaves DEL as it is; a TOML basic string may not hold it.
         let mut pieces = text.split('\u{7f}');
         if let Some(first) = pieces.next() {
@@ -202,7 +206,13 @@ mod tests {
     fn separators_doubles_and_fixed() {
         let v = serde_json::json!({"a": [1, 2], "b": {"c": null}});
         assert_eq!(to_string(&v), r#"{"a": [1, 2], "b": {"c": null}}"#);
-        assert_eq!(to_string(&[0.0, 0.1, -1.0, 1.0 / 3.0]), "[0e0, 1e-1, -1e0, 3.333333333333333e-1]");
-        assert_eq!(to_string(&(Fixed::<3>(0.5), Fixed::<3>(f64::NAN))), "[0.500, null]");
+        assert_eq!(
+            to_string(&[0.0, 0.1, -1.0, 1.0 / 3.0]),
+            "[0e0, 1e-1, -1e0, 3.333333333333333e-1]"
+        );
+        assert_eq!(
+            to_string(&(Fixed::<3>(0.5), Fixed::<3>(f64::NAN))),
+            "[0.500, null]"
+        );
     }
 }

@@ -67,10 +67,10 @@ fn first_literal(code: &str) -> Option<&str> {
 /// Whether a literal writes JSON structure.
 fn writes_json(literal: &str) -> bool {
     let key = literal.match_indices("\\\": ").any(|(i, _)| {
-        literal[..i]
-            .rsplit("\\\"")
-            .next()
-            .is_some_and(|k| k.chars().all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '{' || c == '}'))
+        literal[..i].rsplit("\\\"").next().is_some_and(|k| {
+            k.chars()
+                .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '{' || c == '}')
+        })
     });
     key || literal.contains("{{\\\"")
 }
@@ -122,7 +122,11 @@ fn no_json_is_written_by_hand() {
         }
     }
     assert!(checked > 100, "{checked} files");
-    assert!(found.is_empty(), "JSON written by hand:\n{}", found.join("\n"));
+    assert!(
+        found.is_empty(),
+        "JSON written by hand:\n{}",
+        found.join("\n")
+    );
 }
 
 #[test]

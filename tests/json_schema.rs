@@ -68,7 +68,10 @@ fn errors_all(name: &str, instances: &[Value]) -> Vec<String> {
         "{name}: {}",
         String::from_utf8_lossy(&out.stderr)
     );
-    String::from_utf8_lossy(&out.stdout).lines().map(String::from).collect()
+    String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .map(String::from)
+        .collect()
 }
 
 fn errors(name: &str, instance: &Value) -> Vec<String> {
@@ -127,7 +130,10 @@ fn states_validate_on_both_paths() {
         ];
         assert_eq!(check_lines("state", &args), 3);
     }
-    check_lines("state", &["run", "scenes/random-1000.toml", "--at", "1/3", "--json"]);
+    check_lines(
+        "state",
+        &["run", "scenes/random-1000.toml", "--at", "1/3", "--json"],
+    );
 }
 
 #[test]
@@ -139,7 +145,15 @@ fn continuum_profiles_validate() {
         "scenes/riemann-compression.toml",
         "scenes/appendix-c-two-blocks.toml",
     ] {
-        let args = ["run", scene, "--at", "1/4", "--model", "continuum", "--json"];
+        let args = [
+            "run",
+            scene,
+            "--at",
+            "1/4",
+            "--model",
+            "continuum",
+            "--json",
+        ];
         check_lines("continuum", &args);
     }
 }
@@ -181,7 +195,12 @@ fn compare_reports_validate() {
         "docs/guide/examples/cascade-float.json",
         "docs/guide/examples/cascade-exact.json",
     ] {
-        let args = ["compare", "scenes/collision-cascade.toml", solution, "--json"];
+        let args = [
+            "compare",
+            "scenes/collision-cascade.toml",
+            solution,
+            "--json",
+        ];
         check_lines("compare", &args);
     }
 }
@@ -224,7 +243,13 @@ fn the_schemas_reject_a_renamed_key_and_an_inexact_number() {
     if !validator_available() {
         return;
     }
-    let line = sticky(&["run", "scenes/collision-cascade.toml", "--at", "1", "--json"]);
+    let line = sticky(&[
+        "run",
+        "scenes/collision-cascade.toml",
+        "--at",
+        "1",
+        "--json",
+    ]);
     let good: Value = serde_json::from_str(line.trim()).expect("JSON");
     assert!(errors("state", &good).is_empty());
     let mut renamed = good.clone();

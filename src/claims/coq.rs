@@ -14,7 +14,11 @@ const TABLE: &str = include_str!("../../proofs/coq/claims.tsv");
 
 /// Which statement of a claim a theorem is about.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[cfg_attr(feature = "json", derive(serde::Serialize), serde(rename_all = "lowercase"))]
+#[cfg_attr(
+    feature = "json",
+    derive(serde::Serialize),
+    serde(rename_all = "lowercase")
+)]
 #[cfg_attr(all(test, feature = "json"), derive(schemars::JsonSchema))]
 pub enum Statement {
     /// The statement as printed in the paper.
@@ -25,7 +29,11 @@ pub enum Statement {
 
 /// What a theorem does for the statement.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[cfg_attr(feature = "json", derive(serde::Serialize), serde(rename_all = "lowercase"))]
+#[cfg_attr(
+    feature = "json",
+    derive(serde::Serialize),
+    serde(rename_all = "lowercase")
+)]
 #[cfg_attr(all(test, feature = "json"), derive(schemars::JsonSchema))]
 pub enum CoqKind {
     /// With the claim's other `Proves` rows, it is the statement, for every N

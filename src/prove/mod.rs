@@ -95,7 +95,11 @@ pub trait Program {
 
 /// The status of a claim at one N.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[cfg_attr(feature = "json", derive(serde::Serialize), serde(rename_all = "lowercase"))]
+#[cfg_attr(
+    feature = "json",
+    derive(serde::Serialize),
+    serde(rename_all = "lowercase")
+)]
 #[cfg_attr(all(test, feature = "json"), derive(schemars::JsonSchema))]
 pub enum Status {
     /// Holds for every real input satisfying the hypotheses.

@@ -26,11 +26,11 @@ use num_rational::BigRational;
 #[cfg(feature = "json")]
 use num_traits::Signed;
 
+#[cfg(feature = "json")]
+use crate::json::Rational;
 use crate::rational::render_exact;
 use crate::scalar::Scalar;
 use crate::scene::Scene;
-#[cfg(feature = "json")]
-use crate::json::Rational;
 
 pub use crate::rational::nearest_f64;
 

@@ -224,7 +224,12 @@ impl Serialize for WordEvents<'_> {
 /// ([`crate::fast::merge::WordHistory`]), event by event: the same bytes,
 /// and a final newline.
 pub fn write_word_events(out: &mut impl io::Write, h: &WordHistory) -> io::Result<()> {
-    crate::json::to_writer(&mut *out, &EventsJson { events: WordEvents(h) })?;
+    crate::json::to_writer(
+        &mut *out,
+        &EventsJson {
+            events: WordEvents(h),
+        },
+    )?;
     out.write_all(b"\n")
 }
 

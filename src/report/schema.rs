@@ -40,7 +40,11 @@ fn closed(v: &mut serde_json::Value) {
     match v {
         serde_json::Value::Object(map) => {
             if let Some(serde_json::Value::Object(props)) = map.get("properties") {
-                let keys = props.keys().cloned().map(serde_json::Value::String).collect();
+                let keys = props
+                    .keys()
+                    .cloned()
+                    .map(serde_json::Value::String)
+                    .collect();
                 map.insert("required".into(), serde_json::Value::Array(keys));
                 map.insert("additionalProperties".into(), false.into());
             }
