@@ -88,10 +88,6 @@ fn check_all(name: &str, lines: &[&str]) {
     assert!(errs.is_empty(), "{name}: {errs:?}");
 }
 
-fn check(name: &str, line: &str) {
-    check_all(name, &[line]);
-}
-
 /// `sticky ARGS`' standard output (it must succeed).
 fn sticky(args: &[&str]) -> String {
     let out = Command::new(env!("CARGO_BIN_EXE_sticky"))
