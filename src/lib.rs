@@ -41,7 +41,7 @@
 //!   `json`;
 //! * `json` — every JSON output as a serde type (the state, the events,
 //!   `compare`'s report, the export, the proof records, the Coq rows),
-//!   printed in one spelling by [`json`] (serde, serde_json);
+//!   printed in one spelling by `json` (serde, serde_json);
 //! * `report` — charts, the atlas and the benchmark (plotters, indicatif);
 //!   implies `json`.
 //!

@@ -203,8 +203,8 @@ pub fn rows(claim_id: &str) -> Vec<CoqRow> {
 /// The `"coq"` field of `sticky claims --json`:
 /// `"coq": [{"file", "theorem", "kind", "statement", "note"}, …]` — the
 /// claims ledger's writer splices it in until the ledger is a serde type
-/// too (then it holds a `Vec<CoqRow>` from [`rows`] and this goes); a test
-/// ties it to the serialised [`CoqRow`]s, byte for byte.
+/// too (then it holds a `Vec<CoqRow>` from `rows` and this goes); a test
+/// ties it to the serialised `CoqRow`s, byte for byte.
 pub fn json_field(claim_id: &str) -> String {
     let s = crate::text::string;
     let items: Vec<String> = coq_theorems(claim_id)

@@ -1,6 +1,6 @@
 //! The report layer: what turns the engines, the reference solvers, the
 //! claims and the hydrodynamic limit into files a person reads — the
-//! machine-readable JSON of the interop contract ([`json`]), the CSV files of
+//! machine-readable JSON of the interop contract (`json`, feature `json`), the CSV files of
 //! the convergence study ([`converge`](mod@converge)), the file helpers
 //! ([`io`]: whole writes, CSV fields), the exact reading of another solver's
 //! answer ([`solution`]) and the export of a scene as a peer reads it
