@@ -42,9 +42,11 @@
 //!
 //! * `cli` (default) — the `sticky` binary (clap); implies `report` and
 //!   `json`;
-//! * `json` — the JSON of `sticky compare`'s report
-//!   (`report::compare::json`; serde, serde_json);
-//! * `report` — charts, the atlas and the benchmark (plotters, indicatif).
+//! * `json` — every JSON output as a serde type (the state, the events,
+//!   `compare`'s report, the export, the proof records, the Coq rows),
+//!   printed in one spelling by `json` (serde, serde_json);
+//! * `report` — charts, the atlas and the benchmark (plotters, indicatif);
+//!   implies `json`.
 //!
 //! `cargo build --lib --no-default-features` builds the library alone, with
 //! no command-line or chart dependency.
@@ -83,6 +85,8 @@ pub mod error;
 pub mod gcd;
 pub mod generate;
 pub mod initial;
+#[cfg(feature = "json")]
+pub mod json;
 pub mod progress;
 pub mod projection;
 pub mod quantile;

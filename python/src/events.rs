@@ -66,12 +66,16 @@ impl Event {
     /// The event as `sticky events --json` prints it: {"t": "p/q", "first",
     /// "size", "parts"}.
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let d = PyDict::new(py);
-        d.set_item("t", self.t.render())?;
-        d.set_item("first", self.first)?;
-        d.set_item("size", self.size)?;
-        d.set_item("parts", self.parts.clone())?;
-        Ok(d)
+        let event = sticky::report::json::EventJson {
+            t: sticky::json::Rational::of(&self.t),
+            first: self.first,
+            size: self.size,
+            parts: self.parts.clone(),
+        };
+        py.import("json")?
+            .call_method1("loads", (sticky::json::to_string(&event),))?
+            .cast_into::<PyDict>()
+            .map_err(Into::into)
     }
 
     fn __repr__(&self) -> String {

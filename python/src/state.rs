@@ -273,18 +273,14 @@ impl State {
     /// indices from 0).
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let s = self.exact(py)?;
-        let text = |v: &[BigRational]| v.iter().map(Scalar::render).collect::<Vec<_>>();
         let radius = self.scene.radius().map_err(py_error)?;
-        let d = PyDict::new(py);
-        d.set_item("n", s.positions.len())?;
-        d.set_item("radius", radius.render())?;
-        d.set_item("t", s.t.render())?;
-        d.set_item("positions", text(&s.positions))?;
-        d.set_item("velocities", text(&s.velocities))?;
-        d.set_item("multipliers", text(&s.multipliers))?;
-        let clusters: Vec<[usize; 2]> = s.clusters.iter().map(|c| [c.first, c.size]).collect();
-        d.set_item("clusters", clusters)?;
-        Ok(d)
+        // The object `sticky run --json` prints, serialised once by the
+        // library and parsed here.
+        let text = sticky::report::json::state(s, &radius);
+        py.import("json")?
+            .call_method1("loads", (text,))?
+            .cast_into::<PyDict>()
+            .map_err(Into::into)
     }
 
     fn __repr__(&self, py: Python<'_>) -> String {

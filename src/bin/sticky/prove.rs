@@ -106,7 +106,7 @@ pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
             let r = prove::prove_target_observed(t, n, limits, &ClaimBar { bar: &bar, claim });
             let mut text = String::new();
             if args.json {
-                text.push_str(&prove::json(&r, t.erratum));
+                text.push_str(&prove::json::line(&r, t.erratum));
                 text.push('\n');
             } else {
                 text.push_str(&format!(
