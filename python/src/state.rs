@@ -16,7 +16,7 @@ use sticky::cluster::Cluster;
 use sticky::fast::dyadic::DyadicBlocks;
 use sticky::fast::stream::LeanBlocks;
 use sticky::progress::Progress;
-use sticky::{Error, Scalar};
+use sticky::Error;
 
 use crate::convert;
 use crate::scene::{py_error, Inner};
