@@ -38,6 +38,16 @@ pub struct UnitLine<R> {
     pub result: R,
 }
 
+/// A shard's results: its lines, and the number of units of the whole
+/// campaign (for the header).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ShardLines<R> {
+    /// Units of the whole campaign.
+    pub units: usize,
+    /// This shard's units, in order.
+    pub lines: Vec<UnitLine<R>>,
+}
+
 /// Why shards' files do not merge.
 #[derive(Debug, Clone, PartialEq, Eq)]
 #[non_exhaustive]

@@ -4,7 +4,7 @@
 use std::io::Write;
 use std::num::NonZeroUsize;
 
-use sticky::campaign::file::{self, Header, UnitLine};
+use sticky::campaign::file::{self, Header, ShardLines, UnitLine};
 use sticky::campaign::jobs::run_units;
 use sticky::campaign::Shard;
 
@@ -47,14 +47,29 @@ impl Split {
             .zip(results)
             .map(|(unit, result)| UnitLine { unit, result })
             .collect();
-        let header = Header {
-            campaign: campaign.to_string(),
-            setup,
-            shard,
+        let run = ShardLines {
             units: units.len(),
+            lines,
         };
-        file::write(out, &header, &lines).map_err(io_err)
+        write_shard(campaign, setup, shard, &run, out)
     }
+}
+
+/// Writes a shard's file.
+pub fn write_shard<R: serde::Serialize>(
+    campaign: &str,
+    setup: serde_json::Value,
+    shard: Shard,
+    run: &ShardLines<R>,
+    out: &mut impl Write,
+) -> Result<(), Failure> {
+    let header = Header {
+        campaign: campaign.to_string(),
+        setup,
+        shard,
+        units: run.units,
+    };
+    file::write(out, &header, &run.lines).map_err(io_err)
 }
 
 /// The setup as the header's JSON value.

@@ -7,6 +7,7 @@ use std::path::PathBuf;
 
 use serde::de::DeserializeOwned;
 use sticky::campaign::file::{self, Merged};
+use sticky::claims::campaign::{ClaimsSetup, UnitResult};
 
 use crate::{io_err, Failure};
 
@@ -65,6 +66,12 @@ pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
             let (setup, lines) = merged(&files)?;
             let text = sticky::prove::campaign::render(&setup, &lines, how.json);
             out.write_all(text.as_bytes()).map_err(io_err)
+        }
+        "claims" => {
+            let (setup, results) = merged::<ClaimsSetup, UnitResult>(&files)?;
+            let entries = sticky::claims::campaign::entries(&setup, &results)
+                .map_err(|e| Failure(format!("the shards do not make one ledger: {e}")))?;
+            crate::claims::render(out, &entries, setup.into(), how.json, how.markdown)
         }
         other => Err(Failure(format!(
             "{name}: unknown campaign `{other}` (claims, prove or converge)"
