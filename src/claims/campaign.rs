@@ -402,3 +402,83 @@ mod tests {
         }
     }
 }
+
+#[cfg(test)]
+mod shard_tests {
+    use super::*;
+
+    /// The outcome of one statement when its units are spread over
+    /// `count` shards, each skipping its later blocks after a violation.
+    fn sharded(
+        claims: &[Claim<BigRational>],
+        all: &[ClaimsUnit],
+        statement: Statement,
+        count: usize,
+        budget: Budget,
+        shipped: &[(&'static str, Case<BigRational>)],
+    ) -> Outcome {
+        let mut results = vec![None; all.len()];
+        for index in 0..count {
+            let mut failed = false;
+            for u in (Shard { index, count }).units(all.len()) {
+                if all[u].statement != statement {
+                    continue;
+                }
+                let r = if failed {
+                    UnitResult::Skipped
+                } else {
+                    run_unit(claims, &all[u], budget, shipped)
+                };
+                failed |= matches!(r, UnitResult::Cases { counterexample: Some(_), .. });
+                results[u] = Some(r);
+            }
+        }
+        statement_outcome(results.iter().flatten()).unwrap()
+    }
+
+    /// Blocks of every case statement of the first claims, spread over 1, 3
+    /// and 4 shards, add up to the single run's outcome (status, cases,
+    /// witness): one that holds and one refuted by a shrunk random witness
+    /// at least.
+    #[test]
+    fn blocks_merge_to_the_single_run_outcome() {
+        let claims: Vec<Claim<BigRational>> = registry();
+        let shipped = shipped_cases();
+        let setup = ClaimsSetup {
+            cases: 10,
+            max_n: 4,
+            scaling_max_n: 8,
+            seed: 0x5EED,
+        };
+        let budget = Budget::from(setup);
+        let all = units(&claims, &setup, shipped.len());
+        let mut seen = (false, false);
+        for (claim, c) in claims.iter().enumerate().take(12) {
+            for version in [Version::Printed, Version::Corrected] {
+                let Some(kind @ Kind::Case(_)) = kind_of(c, version) else {
+                    continue;
+                };
+                let single = run_kind(kind, c.applies, budget, &shipped).0;
+                seen.0 |= single.status == Status::Holds;
+                seen.1 |= single.status == Status::Counterexample;
+                for count in [1, 3, 4] {
+                    let merged = sharded(
+                        &claims,
+                        &all,
+                        Statement { claim, version },
+                        count,
+                        budget,
+                        &shipped,
+                    );
+                    assert_eq!(
+                        OutcomeLine::from(&merged),
+                        OutcomeLine::from(&single),
+                        "{} {version:?}, {count} shards",
+                        c.id
+                    );
+                }
+            }
+        }
+        assert_eq!(seen, (true, true), "a claim that holds and one refuted");
+    }
+}
