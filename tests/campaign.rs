@@ -86,9 +86,9 @@ fn slurm_campaign(dir: &Path, campaign: &str, shards: usize, merge: &[&str]) -> 
         .parent()
         .expect("binary folder")
         .to_path_buf();
-    let path = std::env::join_paths(
-        std::iter::once(bin).chain(std::env::split_paths(&std::env::var_os("PATH").unwrap_or_default())),
-    )
+    let path = std::env::join_paths(std::iter::once(bin).chain(std::env::split_paths(
+        &std::env::var_os("PATH").unwrap_or_default(),
+    )))
     .expect("PATH");
     for task in 0..shards {
         let out = Command::new("bash")
@@ -135,9 +135,12 @@ fn prove_shards_from_the_slurm_script_merge_to_the_single_run() {
             .collect()
     };
     let single = stdout(sticky().args(["prove", "--n", "1"]));
-    let merged = stdout(sticky().arg("merge").arg(dir.join("shards/2.jsonl")).args(
-        [0, 1, 3].map(|t| dir.join(format!("shards/{t}.jsonl"))),
-    ));
+    let merged = stdout(
+        sticky()
+            .arg("merge")
+            .arg(dir.join("shards/2.jsonl"))
+            .args([0, 1, 3].map(|t| dir.join(format!("shards/{t}.jsonl")))),
+    );
     assert_eq!(table(&merged), table(&single));
     // Two units at a time: the same report.
     let jobs = stdout(sticky().args(["prove", "--n", "1", "--json", "--jobs", "2"]));
@@ -158,7 +161,15 @@ fn merge_refuses_missing_duplicated_and_mixed_shards() {
     let shard = |spec: &str, extra: &[&str], name: &str| -> PathBuf {
         let text = stdout(
             sticky()
-                .args(["prove", "--n", "1", "--claim", "prop:Oleinik", "--shard", spec])
+                .args([
+                    "prove",
+                    "--n",
+                    "1",
+                    "--claim",
+                    "prop:Oleinik",
+                    "--shard",
+                    spec,
+                ])
                 .args(extra),
         );
         let path = dir.join(name);
@@ -175,7 +186,10 @@ fn merge_refuses_missing_duplicated_and_mixed_shards() {
     let e = refusal(sticky().arg("merge").args([&a, &b, &b]));
     assert!(e.contains("shard 1/2 given twice"), "{e}");
     let e = refusal(sticky().arg("merge").args([&a, &other]));
-    assert!(e.contains("not a shard of the same campaign") && e.contains("setup"), "{e}");
+    assert!(
+        e.contains("not a shard of the same campaign") && e.contains("setup"),
+        "{e}"
+    );
     let e = refusal(sticky().arg("merge").args([&a, &thirds]));
     assert!(e.contains("not a shard of the same campaign"), "{e}");
     // A file cut short: the header alone.

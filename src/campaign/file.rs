@@ -114,7 +114,12 @@ impl fmt::Display for MergeError {
             ),
             MergeError::MissingShards { shards } => {
                 let list: Vec<String> = shards.iter().map(Shard::to_string).collect();
-                write!(f, "missing shard{}: {}", plural(shards.len()), list.join(", "))
+                write!(
+                    f,
+                    "missing shard{}: {}",
+                    plural(shards.len()),
+                    list.join(", ")
+                )
             }
             MergeError::DuplicateShard { shard, files } => write!(
                 f,
@@ -208,10 +213,7 @@ pub fn merge<R: DeserializeOwned>(files: &[(String, String)]) -> Result<Merged<R
             )));
         }
         if h.setup != first.setup {
-            return Err(mixed(format!(
-                "setup {}, not {}",
-                h.setup, first.setup
-            )));
+            return Err(mixed(format!("setup {}, not {}", h.setup, first.setup)));
         }
         if h.shard.count != count || h.units != first.units {
             return Err(mixed(format!(

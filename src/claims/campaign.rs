@@ -126,14 +126,16 @@ pub fn units(
             };
             let statement = Statement { claim, version };
             match kind {
-                Kind::Case(_) => out.extend(
-                    blocks(setup.cases, shipped)
-                        .into_iter()
-                        .map(|r| ClaimsUnit {
-                            statement,
-                            cases: Some(r),
-                        }),
-                ),
+                Kind::Case(_) => {
+                    out.extend(
+                        blocks(setup.cases, shipped)
+                            .into_iter()
+                            .map(|r| ClaimsUnit {
+                                statement,
+                                cases: Some(r),
+                            }),
+                    )
+                }
                 _ => out.push(ClaimsUnit {
                     statement,
                     cases: None,
@@ -291,9 +293,7 @@ pub fn run_shard(
 }
 
 /// The outcome of one statement from its units' results, in order.
-fn statement_outcome<'a>(
-    results: impl Iterator<Item = &'a UnitResult>,
-) -> Result<Outcome, String> {
+fn statement_outcome<'a>(results: impl Iterator<Item = &'a UnitResult>) -> Result<Outcome, String> {
     let mut applied = 0;
     for r in results {
         match r {
@@ -340,8 +340,7 @@ pub fn entries(setup: &ClaimsSetup, results: &[UnitResult]) -> Result<Vec<Entry>
             .zip(results)
             .filter(|(u, _)| u.statement == statement)
             .map(|(_, r)| r);
-        statement_outcome(of_it)
-            .map_err(|e| format!("{}: {e}", claims[statement.claim].id))
+        statement_outcome(of_it).map_err(|e| format!("{}: {e}", claims[statement.claim].id))
     };
     let mut out = Vec::with_capacity(claims.len());
     for (claim, c) in claims.iter().enumerate() {
@@ -429,7 +428,13 @@ mod shard_tests {
                 } else {
                     run_unit(claims, &all[u], budget, shipped)
                 };
-                failed |= matches!(r, UnitResult::Cases { counterexample: Some(_), .. });
+                failed |= matches!(
+                    r,
+                    UnitResult::Cases {
+                        counterexample: Some(_),
+                        ..
+                    }
+                );
                 results[u] = Some(r);
             }
         }
@@ -441,6 +446,7 @@ mod shard_tests {
     /// witness): one that holds and one refuted by a shrunk random witness
     /// at least.
     #[test]
+    #[ignore = "campaign: twelve claims' case statements, 4 times each, about 70 s"]
     fn blocks_merge_to_the_single_run_outcome() {
         let claims: Vec<Claim<BigRational>> = registry();
         let shipped = shipped_cases();
