@@ -18,7 +18,7 @@ use super::Shard;
 /// The first line of a shard's file.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Header {
-    /// The campaign: `claims`, `prove` or `converge`.
+    /// The campaign: `claims` or `prove`.
     pub campaign: String,
     /// Everything the results depend on (budget, limits, the solver's
     /// version, the scene): equal in every shard of one campaign.

@@ -93,7 +93,7 @@ pub struct ClaimsUnit {
 }
 
 /// The kind of a statement's checker.
-fn kind_of<'a>(claim: &'a Claim<BigRational>, version: Version) -> Option<&'a Kind<BigRational>> {
+fn kind_of(claim: &Claim<BigRational>, version: Version) -> Option<&Kind<BigRational>> {
     match version {
         Version::Printed => Some(&claim.kind),
         Version::Corrected => claim.correction.as_ref().map(|c| &c.check),

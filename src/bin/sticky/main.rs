@@ -93,8 +93,8 @@ enum Command {
     /// at N = 1 … N (symbolic execution of the engine and the checkers, z3),
     /// or refutes it with an exact, replayed counterexample.
     Prove(prove::Args),
-    /// Combines the shards' files of one campaign (`claims`, `prove`,
-    /// `converge` with `--shard I/N`) into exactly the report a single run
+    /// Combines the shards' files of one campaign (`claims` or `prove`
+    /// with `--shard I/N`) into exactly the report a single run
     /// prints; refuses missing or duplicated shards and mixed campaigns.
     Merge(merge::Args),
 }

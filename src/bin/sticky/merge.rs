@@ -1,5 +1,5 @@
 //! `sticky merge FILES…`: the shards' files of one campaign (`--shard I/N`
-//! of `claims`, `prove` or `converge`) combined into the report a single
+//! of `claims` or `prove`) combined into the report a single
 //! run prints.
 
 use std::io::Write;
@@ -23,10 +23,6 @@ pub struct Args {
     /// The claims ledger as Markdown (`claims --markdown`).
     #[arg(long)]
     markdown: bool,
-    /// Output folder of the files a campaign writes (`converge`; default
-    /// ./out/COMMAND/).
-    #[arg(long)]
-    out: Option<PathBuf>,
 }
 
 /// How the merged report is printed.
@@ -35,8 +31,6 @@ pub struct Rendering {
     pub json: bool,
     /// `--markdown`.
     pub markdown: bool,
-    /// `--out`.
-    pub out: Option<PathBuf>,
 }
 
 /// Runs `sticky merge`.
@@ -54,7 +48,6 @@ pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
     let how = Rendering {
         json: args.json,
         markdown: args.markdown,
-        out: args.out,
     };
     if how.markdown && campaign != "claims" {
         return Err(Failure(format!(
@@ -74,7 +67,7 @@ pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
             crate::claims::render(out, &entries, setup.into(), how.json, how.markdown)
         }
         other => Err(Failure(format!(
-            "{name}: unknown campaign `{other}` (claims, prove or converge)"
+            "{name}: unknown campaign `{other}` (claims or prove)"
         ))),
     }
 }
