@@ -77,6 +77,7 @@
 
 // 1. The model core.
 pub mod blockwise;
+pub mod campaign;
 pub mod checked;
 pub mod cluster;
 pub mod columns;

@@ -31,6 +31,8 @@
 //! [`Trajectory::at`]: crate::trajectory::Trajectory::at
 
 pub mod budget;
+#[cfg(feature = "json")]
+pub mod campaign;
 pub mod eliminate;
 pub mod explore;
 #[cfg(feature = "json")]

@@ -18,6 +18,7 @@
 
 mod atlas;
 mod bench;
+mod campaign;
 mod check;
 mod claims;
 mod compare;
@@ -25,6 +26,7 @@ mod converge;
 mod events;
 mod export;
 mod generate;
+mod merge;
 mod plot;
 mod prove;
 mod run;
@@ -91,6 +93,10 @@ enum Command {
     /// at N = 1 … N (symbolic execution of the engine and the checkers, z3),
     /// or refutes it with an exact, replayed counterexample.
     Prove(prove::Args),
+    /// Combines the shards' files of one campaign (`claims` or `prove`
+    /// with `--shard I/N`) into exactly the report a single run
+    /// prints; refuses missing or duplicated shards and mixed campaigns.
+    Merge(merge::Args),
 }
 
 fn parse_time(s: &str) -> Result<BigRational, String> {
@@ -162,6 +168,7 @@ fn main() -> ExitCode {
         Some(Command::Compare(args)) => compare::exec(args, &mut out),
         Some(Command::Export(args)) => export::exec(args, &mut out),
         Some(Command::Prove(args)) => prove::exec(args, &mut out),
+        Some(Command::Merge(args)) => merge::exec(args, &mut out),
     };
     let flushed = out.flush();
     // `sticky bench --e2e` runs this binary as a child and asks it for its
