@@ -387,6 +387,7 @@ pub(crate) fn engines(kind: &Kind<BigRational>) -> Vec<&'static str> {
 /// the cases in `range` applied up to the first violation (included), and
 /// that violation's outcome, whose `cases` is that count. A campaign's
 /// shard runs blocks; `claims::campaign` adds the counts up.
+#[cfg_attr(not(feature = "json"), allow(dead_code))]
 pub(crate) fn run_case_range(
     check: super::CaseCheck<BigRational>,
     applies: fn(&Case<BigRational>) -> bool,
