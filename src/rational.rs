@@ -1,6 +1,6 @@
 //! Exact reading and writing of rational numbers.
 //!
-//! Accepted text (DESIGN.md §2), always read exactly:
+//! Accepted text (docs/guide/scenes.md), always read exactly:
 //!
 //! * an integer: `"3"`, `"-12"`, `"+7"`;
 //! * a fraction: `"-7/4"` (the denominator a positive integer, never zero);
@@ -13,7 +13,7 @@
 //!   2,000,000-digit position is refused with a message naming the cap.
 //!
 //! Output is `"p/q"` in lowest terms with the sign on `p`, or `"p"` when
-//! `q = 1`: the JSON contract of DESIGN.md §3.
+//! `q = 1`: the JSON contract of docs/guide/json.md.
 
 use std::fmt;
 

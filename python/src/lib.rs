@@ -1,6 +1,6 @@
 //! The native part of the `sticky` Python package (`sticky._sticky`):
 //! bindings of the library's public API — no engine or metric code of its
-//! own (DESIGN.md §4).
+//! own (docs/guide/architecture.md).
 //!
 //! * [`scene`] — `Scene`: input, validation, the state at t, events, P_K;
 //! * [`state`] — `State`: nearest doubles at once, exact values on demand;

@@ -1,5 +1,5 @@
-//! `sticky prove --json`: one [`ProofRecord`] per claim and N (DESIGN.md
-//! §3), one line each, in the contract's spelling ([`crate::json`]).
+//! `sticky prove --json`: one [`ProofRecord`] per claim and N
+//! (docs/guide/json.md), one line each, in the contract's spelling ([`crate::json`]).
 
 use serde::Serialize;
 

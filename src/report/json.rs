@@ -1,4 +1,4 @@
-//! The machine-readable output of DESIGN.md §3 — the interop contract —
+//! The machine-readable output of docs/guide/json.md — the interop contract —
 //! as serde types, printed by [`crate::json`] in the contract's spelling:
 //!
 //! ```json

@@ -1,4 +1,4 @@
-//! Scene files (TOML), DESIGN.md §2.
+//! Scene files (TOML), docs/guide/scenes.md.
 //!
 //! A scene is one TOML document:
 //!

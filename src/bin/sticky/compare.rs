@@ -1,6 +1,6 @@
 //! `sticky compare SCENE SOLUTION [--json] [--out DIR] [--contact-tol TOL |
 //! --contact-tol-rel K] [--overlap-tol TOL] [--fail-on VERDICT]`: another
-//! solver's answer against the exact one, exactly (DESIGN.md §3).
+//! solver's answer against the exact one, exactly (docs/guide/json.md).
 //!
 //! Argument parsing, file reading and printing only: the figures, the
 //! verdict and both reports are the library's
