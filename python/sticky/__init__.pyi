@@ -188,6 +188,9 @@ class Scene:
         """The exact state at t ≥ 0."""
     def states(self, ts: _Numbers) -> List[State]:
         """The exact state at every t of ts."""
+    def explain(self) -> str:
+        """The engine the library chooses for this scene and why: the line `sticky run --explain` prints."""
+        ...
     def events(self) -> List[Event]:
         """Every cluster formed by a collision, by time then first particle."""
     def project(self, z: _Numbers, exact: bool = False) -> Union[_FloatArray, List[Fraction]]:
