@@ -13,7 +13,7 @@ pub struct Violation {
     /// What failed, with the exact values on both sides.
     pub witness: String,
     /// The same in machine-readable form, when the checker gives it.
-    pub detail: Detail,
+    pub detail: Box<Detail>,
 }
 
 /// The machine-readable part of a violation: where it fails and the two
@@ -53,7 +53,7 @@ impl Violation {
         Violation {
             claim,
             witness: witness.into(),
-            detail: Detail::default(),
+            detail: Box::default(),
         }
     }
     /// The same with the time of the failure.

@@ -14,6 +14,12 @@ const TABLE: &str = include_str!("../../proofs/coq/claims.tsv");
 
 /// Which statement of a claim a theorem is about.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(
+    feature = "json",
+    derive(serde::Serialize),
+    serde(rename_all = "lowercase")
+)]
+#[cfg_attr(all(test, feature = "json"), derive(schemars::JsonSchema))]
 pub enum Statement {
     /// The statement as printed in the paper.
     Printed,
@@ -23,6 +29,12 @@ pub enum Statement {
 
 /// What a theorem does for the statement.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(
+    feature = "json",
+    derive(serde::Serialize),
+    serde(rename_all = "lowercase")
+)]
+#[cfg_attr(all(test, feature = "json"), derive(schemars::JsonSchema))]
 pub enum CoqKind {
     /// With the claim's other `Proves` rows, it is the statement, for every N
     /// over Q.
@@ -152,27 +164,40 @@ pub fn coq_theorems(claim_id: &str) -> &'static [CoqTheorem] {
     }
 }
 
-/// The `"coq"` field of `sticky claims --json`:
-/// `"coq": [{"file", "theorem", "kind", "statement", "note"}, …]`.
-pub fn json_field(claim_id: &str) -> String {
-    let s = crate::text::string;
-    let items: Vec<String> = coq_theorems(claim_id)
+/// One Coq theorem about a claim, as `sticky claims --json` lists it in
+/// the claim's `"coq"` array.
+#[cfg(feature = "json")]
+#[derive(Debug, Clone, PartialEq, Eq, serde::Serialize)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
+pub struct CoqRow {
+    /// The `.v` file, from the repository's root.
+    pub file: String,
+    /// The theorem's fully qualified name (`Sticky.Module.name`).
+    pub theorem: String,
+    /// `proves` (with the claim's other `proves` rows, the statement for
+    /// every N over Q), `part` (part of it, the note says which) or
+    /// `refutes` (the negation of the statement, machine-checked).
+    pub kind: CoqKind,
+    /// Whether it is about the `printed` statement or the ledger's
+    /// `corrected` one.
+    pub statement: Statement,
+    /// Hypotheses and scope, in words.
+    pub note: String,
+}
+
+/// The Coq rows of `claim_id`, in table order.
+#[cfg(feature = "json")]
+pub fn rows(claim_id: &str) -> Vec<CoqRow> {
+    coq_theorems(claim_id)
         .iter()
-        .map(|t| {
-            format!(
-                "{{\"file\": {}, \"theorem\": {}, \"kind\": {}, \"statement\": {}, \"note\": {}}}",
-                s(&format!("proofs/coq/theories/{}", t.file)),
-                s(&t.qualified()),
-                s(t.kind.label()),
-                s(match t.statement {
-                    Statement::Printed => "printed",
-                    Statement::Corrected => "corrected",
-                }),
-                s(t.note)
-            )
+        .map(|t| CoqRow {
+            file: format!("proofs/coq/theories/{}", t.file),
+            theorem: t.qualified(),
+            kind: t.kind,
+            statement: t.statement,
+            note: t.note.to_string(),
         })
-        .collect();
-    format!("\"coq\": [{}]", items.join(", "))
+        .collect()
 }
 
 /// The line under a claim in `sticky claims --markdown` (empty when no Coq
@@ -306,13 +331,10 @@ mod tests {
         assert_eq!(rows.len(), 4);
         assert!(rows.iter().all(|r| r.claim == "eq:dyn-micro"));
         assert!(coq_theorems("no-such-claim").is_empty());
-        assert!(json_field("no-such-claim") == "\"coq\": []");
-        let j = json_field("prop:Oleinik");
-        let v: serde_json::Value =
-            serde_json::from_str(&format!("{{{j}}}")).expect("the coq field is JSON");
-        assert_eq!(v["coq"][0]["theorem"], "Sticky.Oleinik.oleinik");
-        assert_eq!(v["coq"][0]["kind"], "proves");
-        assert_eq!(v["coq"][0]["file"], "proofs/coq/theories/Oleinik.v");
+        let oleinik = coq_theorems("prop:Oleinik");
+        assert_eq!(oleinik[0].qualified(), "Sticky.Oleinik.oleinik");
+        assert_eq!(oleinik[0].kind.label(), "proves");
+        assert_eq!(oleinik[0].file, "Oleinik.v");
         assert!(markdown_line("no-such-claim").is_empty());
         assert!(markdown_line("prop:Oleinik")
             .starts_with("Coq (every N, over Q): proves `Sticky.Oleinik.oleinik` (t > 0"));

@@ -1,38 +1,26 @@
 //! `sticky claims --json`, typed with serde: one [`ClaimJson`] per claim,
 //! so the keys cannot drift and no JSON is built by hand. Documented in
-//! `docs/guide/json.md` ("sticky claims --json").
+//! `docs/guide/json.md` ("sticky claims --json"), schema
+//! `docs/guide/schema/claims.json`.
 
 use serde::Serialize;
 
-use super::coq::{coq_theorems, Statement};
+use super::coq::{rows, CoqRow};
 use super::ledger::{Entry, Outcome, Status};
 use super::witness::WitnessData;
 
-/// A Coq theorem about the claim.
-#[derive(Debug, Clone, Serialize)]
-pub struct CoqJson {
-    /// `proofs/coq/theories/<file>`.
-    pub file: String,
-    /// The qualified theorem name.
-    pub theorem: String,
-    /// proves, refutes, part.
-    pub kind: &'static str,
-    /// `printed` or `corrected`.
-    pub statement: &'static str,
-    /// What it covers.
-    pub note: &'static str,
-}
-
 /// The outcome of one statement (as printed, or its correction).
 #[derive(Debug, Clone, Serialize)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
 pub struct OutcomeJson {
-    /// holds, counterexample, not checkable, identity.
+    /// `holds`, `counterexample`, `not checkable` or `identity`.
     pub status: &'static str,
     /// Cases run.
     pub cases: usize,
     /// The counterexample in words, with the witness scene.
     pub witness: Option<String>,
-    /// The counterexample in machine-readable form.
+    /// The counterexample in machine-readable form (`null` unless the
+    /// status is `counterexample`).
     pub witness_data: Option<WitnessData>,
     /// Measurements, or the reason of `not checkable` / `identity`.
     pub note: Option<String>,
@@ -47,7 +35,7 @@ impl OutcomeJson {
             witness_data: o.witness_data.clone(),
             note: o.note.clone().or_else(|| match &o.status {
                 Status::NotCheckable(r) | Status::Identity(r) => Some(r.clone()),
-                _ => None,
+                Status::Holds | Status::Counterexample => None,
             }),
         }
     }
@@ -55,6 +43,7 @@ impl OutcomeJson {
 
 /// A corrected statement and its outcome.
 #[derive(Debug, Clone, Serialize)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
 pub struct CorrectionJson {
     /// The corrected statement.
     pub statement: &'static str,
@@ -67,6 +56,8 @@ pub struct CorrectionJson {
 
 /// One claim of `sticky claims --json`.
 #[derive(Debug, Clone, Serialize)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(test, schemars(rename = "Claim"))]
 pub struct ClaimJson {
     /// `\label` or `\label#step`.
     pub id: &'static str,
@@ -82,7 +73,7 @@ pub struct ClaimJson {
     /// The corrected statement, for a counterexample.
     pub correction: Option<CorrectionJson>,
     /// The Coq theorems about it.
-    pub coq: Vec<CoqJson>,
+    pub coq: Vec<CoqRow>,
 }
 
 impl ClaimJson {
@@ -99,25 +90,17 @@ impl ClaimJson {
                 outcome: OutcomeJson::of(o),
                 conclusion: concl,
             }),
-            coq: coq_theorems(e.id)
-                .iter()
-                .map(|t| CoqJson {
-                    file: format!("proofs/coq/theories/{}", t.file),
-                    theorem: t.qualified(),
-                    kind: t.kind.label(),
-                    statement: match t.statement {
-                        Statement::Printed => "printed",
-                        Statement::Corrected => "corrected",
-                    },
-                    note: t.note,
-                })
-                .collect(),
+            coq: rows(e.id),
         }
     }
 }
 
-/// The ledger as JSON: an array of [`ClaimJson`], pretty-printed.
+/// The ledger as JSON: an array of [`ClaimJson`], one claim per line in
+/// the contract's spelling ([`crate::json`]).
 pub fn json(entries: &[Entry]) -> String {
-    let items: Vec<ClaimJson> = entries.iter().map(ClaimJson::of).collect();
-    serde_json::to_string_pretty(&items).unwrap_or_default()
+    let items: Vec<String> = entries
+        .iter()
+        .map(|e| crate::json::to_string(&ClaimJson::of(e)))
+        .collect();
+    format!("[\n{}\n]", items.join(",\n"))
 }

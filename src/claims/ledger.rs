@@ -39,6 +39,27 @@ pub struct Budget {
     pub seed: u64,
 }
 
+impl Budget {
+    /// The budget a caller asks for (the command line's flags, Python's
+    /// arguments): each field its [default](Budget::default) when not
+    /// given, the sizes clamped to what the checks need (a random case
+    /// has at least 1 particle, the checks across N go up to at least 8).
+    pub fn asked(
+        cases: Option<usize>,
+        max_n: Option<usize>,
+        scaling_max_n: Option<usize>,
+        seed: Option<u64>,
+    ) -> Budget {
+        let d = Budget::default();
+        Budget {
+            cases: cases.unwrap_or(d.cases),
+            max_n: max_n.unwrap_or(d.max_n).max(1),
+            scaling_max_n: scaling_max_n.unwrap_or(d.scaling_max_n).max(8),
+            seed: seed.unwrap_or(d.seed),
+        }
+    }
+}
+
 impl Default for Budget {
     fn default() -> Self {
         Budget {
@@ -268,7 +289,7 @@ fn unreachable_shrink() -> ! {
     panic!("shrink called on a passing input")
 }
 
-fn shipped_cases() -> Vec<(&'static str, Case<BigRational>)> {
+pub(crate) fn shipped_cases() -> Vec<(&'static str, Case<BigRational>)> {
     scene::SHIPPED
         .iter()
         .filter_map(|(name, text)| {
@@ -316,6 +337,56 @@ fn report(
     (text, data)
 }
 
+/// The outcome of a random case that fails `check` inside `domain`: shrunk
+/// to a small witness scene; `cases` counts the cases run, this one included.
+fn random_counterexample(
+    cases: usize,
+    bytes: Vec<u8>,
+    limits: Limits,
+    check: super::CaseCheck<BigRational>,
+    domain: &Domain,
+) -> Outcome {
+    let (b, l, found) = shrink(bytes, limits, check, domain);
+    let data = initial_data(&b, l);
+    let (text, wd) = report(
+        &found,
+        witness::particles(&data),
+        domain,
+        format!(
+            "\nwitness scene (N = {}):\n{}",
+            data.n(),
+            particles_toml(&data, Some("witness"))
+        ),
+    );
+    Outcome {
+        status: Status::Counterexample,
+        cases,
+        witness: Some(text),
+        note: None,
+        witness_data: Some(wd),
+    }
+}
+
+/// The outcome of a shipped scene that fails inside `domain`: the
+/// violation and the file.
+fn shipped_counterexample(cases: usize, name: &str, found: &Found, domain: &Domain) -> Outcome {
+    let (text, wd) = report(
+        found,
+        WitnessScene::Shipped {
+            name: name.to_string(),
+        },
+        domain,
+        format!("\nwitness: scenes/{name}.toml"),
+    );
+    Outcome {
+        status: Status::Counterexample,
+        cases,
+        witness: Some(text),
+        note: None,
+        witness_data: Some(wd),
+    }
+}
+
 /// Runs one case-checker over the random cases then the shipped scenes,
 /// keeping only failures inside `domain`.
 fn run_case_check(
@@ -335,25 +406,7 @@ fn run_case_check(
         }
         cases += 1;
         if failure_in_domain(check, &case, domain).is_some() {
-            let (b, l, found) = shrink(bytes, limits, check, domain);
-            let data = initial_data(&b, l);
-            let (text, wd) = report(
-                &found,
-                witness::particles(&data),
-                domain,
-                format!(
-                    "\nwitness scene (N = {}):\n{}",
-                    data.n(),
-                    particles_toml(&data, Some("witness"))
-                ),
-            );
-            return Outcome {
-                status: Status::Counterexample,
-                cases,
-                witness: Some(text),
-                note: None,
-                witness_data: Some(wd),
-            };
+            return random_counterexample(cases, bytes, limits, check, domain);
         }
     }
     for (name, case) in shipped {
@@ -362,21 +415,7 @@ fn run_case_check(
         }
         cases += 1;
         if let Some(found) = failure_in_domain(check, case, domain) {
-            let (text, wd) = report(
-                &found,
-                WitnessScene::Shipped {
-                    name: (*name).to_string(),
-                },
-                domain,
-                format!("\nwitness: scenes/{name}.toml"),
-            );
-            return Outcome {
-                status: Status::Counterexample,
-                cases,
-                witness: Some(text),
-                note: None,
-                witness_data: Some(wd),
-            };
+            return shipped_counterexample(cases, name, &found, domain);
         }
     }
     Outcome {
@@ -417,7 +456,7 @@ fn timeless(v: &Violation, domain: &Domain) -> WitnessData {
     }
 }
 
-fn run_kind(
+pub(crate) fn run_kind(
     kind: &Kind<BigRational>,
     applies: fn(&Case<BigRational>) -> bool,
     domain: &Domain,
@@ -427,7 +466,7 @@ fn run_kind(
     match kind {
         Kind::Case(check) => (
             run_case_check(*check, applies, domain, budget, shipped),
-            CASE_ENGINES.to_vec(),
+            engines(kind),
         ),
         Kind::Scaling(check) => {
             let sb = scaling::Budget::up_to(budget.scaling_max_n);
@@ -454,7 +493,7 @@ fn run_kind(
                     note: None,
                 },
             };
-            (outcome, vec!["ledger (across N)"])
+            (outcome, engines(kind))
         }
         Kind::Formula(check) => {
             let outcome = match check() {
@@ -473,7 +512,7 @@ fn run_kind(
                     note: None,
                 },
             };
-            (outcome, vec!["ledger (exact formula)", "cargo test"])
+            (outcome, engines(kind))
         }
         Kind::NotCheckable(reason) => (
             Outcome {
@@ -483,7 +522,7 @@ fn run_kind(
                 note: None,
                 witness_data: None,
             },
-            vec![],
+            engines(kind),
         ),
     }
 }
@@ -517,6 +556,66 @@ fn entry(
         outcome,
         correction,
     }
+}
+
+/// The engines that check a statement of this kind.
+pub(crate) fn engines(kind: &Kind<BigRational>) -> Vec<&'static str> {
+    match kind {
+        Kind::Case(_) => CASE_ENGINES.to_vec(),
+        Kind::Scaling(_) => vec!["ledger (across N)"],
+        Kind::Formula(_) => vec!["ledger (exact formula)", "cargo test"],
+        Kind::NotCheckable(_) => vec![],
+    }
+}
+
+/// A block of a case-checker's sequence (as [`run_case_check`] runs it:
+/// the random cases `0 … cases − 1`, then the shipped scenes): how many of
+/// the cases in `range` applied up to the first violation (included), and
+/// that violation's outcome, whose `cases` is that count. A campaign's
+/// shard runs blocks; `claims::campaign` adds the counts up.
+#[cfg_attr(not(feature = "json"), allow(dead_code))]
+pub(crate) fn run_case_range(
+    check: super::CaseCheck<BigRational>,
+    applies: fn(&Case<BigRational>) -> bool,
+    domain: &Domain,
+    budget: Budget,
+    shipped: &[(&'static str, Case<BigRational>)],
+    range: std::ops::Range<usize>,
+) -> (usize, Option<Outcome>) {
+    let mut rng = SplitMix64::new(budget.seed);
+    let mut cases = 0;
+    for k in 0..range.end {
+        if k < budget.cases && k < range.start {
+            // The generator's draws of case k, skipped: its size, then its
+            // bytes (as `random_bytes` draws them).
+            let n = 1 + (rng.next_u64() % budget.max_n.max(1) as u64) as usize;
+            rng.skip(6 * n + 8);
+        } else if k < budget.cases {
+            let (bytes, limits) = random_bytes(&mut rng, budget.max_n);
+            let case = case_of(&bytes, limits);
+            if !applies(&case) {
+                continue;
+            }
+            cases += 1;
+            if failure_in_domain(check, &case, domain).is_some() {
+                let outcome = random_counterexample(cases, bytes, limits, check, domain);
+                return (cases, Some(outcome));
+            }
+        } else if k >= range.start {
+            let Some((name, case)) = shipped.get(k - budget.cases) else {
+                break;
+            };
+            if !applies(case) {
+                continue;
+            }
+            cases += 1;
+            if let Some(found) = failure_in_domain(check, case, domain) {
+                let outcome = shipped_counterexample(cases, name, &found, domain);
+                return (cases, Some(outcome));
+            }
+        }
+    }
+    (cases, None)
 }
 
 /// Runs the whole registry, telling `progress` of each claim as it starts

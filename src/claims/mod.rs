@@ -25,6 +25,8 @@ use crate::state::State;
 use crate::trajectory::Trajectory;
 
 pub(crate) mod bump;
+#[cfg(feature = "json")]
+pub mod campaign;
 pub mod continuum;
 pub mod coq;
 pub mod density;

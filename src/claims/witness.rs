@@ -18,6 +18,7 @@ use crate::violation::{Detail, Violation};
 /// The scene a witness lives on.
 #[derive(Debug, Clone, PartialEq, Eq)]
 #[cfg_attr(feature = "json", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(all(test, feature = "json"), derive(schemars::JsonSchema))]
 #[cfg_attr(feature = "json", serde(tag = "kind", rename_all = "snake_case"))]
 pub enum WitnessScene {
     /// A particle datum, every number an exact string.
@@ -50,6 +51,7 @@ pub enum WitnessScene {
 /// (`hi = None` after the last) holding the witness times.
 #[derive(Debug, Clone, PartialEq, Eq)]
 #[cfg_attr(feature = "json", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(all(test, feature = "json"), derive(schemars::JsonSchema))]
 pub struct Interval {
     /// The left end: 0 or a collision instant.
     pub lo: String,
@@ -60,6 +62,7 @@ pub struct Interval {
 /// The failure at one time (or the only failure of a timeless claim).
 #[derive(Debug, Clone, PartialEq, Eq)]
 #[cfg_attr(feature = "json", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(all(test, feature = "json"), derive(schemars::JsonSchema))]
 pub struct Failure {
     /// The time, when there is one.
     pub t: Option<String>,
@@ -90,7 +93,7 @@ impl Failure {
             w,
             test_function,
             sides,
-        } = v.detail.clone();
+        } = (*v.detail).clone();
         let (lhs_is, lhs, rhs_is, rhs) = match sides {
             Some(s) => (Some(s.lhs_is), Some(s.lhs), Some(s.rhs_is), Some(s.rhs)),
             None => (None, None, None, None),
@@ -112,6 +115,7 @@ impl Failure {
 /// The domain a witness was accepted in, in words.
 #[derive(Debug, Clone, PartialEq, Eq)]
 #[cfg_attr(feature = "json", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(all(test, feature = "json"), derive(schemars::JsonSchema))]
 pub struct DomainData {
     /// The `\label` that states it.
     pub label: String,
@@ -168,6 +172,7 @@ impl DomainData {
 /// A counterexample in machine-readable form.
 #[derive(Debug, Clone, PartialEq, Eq)]
 #[cfg_attr(feature = "json", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(all(test, feature = "json"), derive(schemars::JsonSchema))]
 pub struct WitnessData {
     /// The scene.
     pub scene: WitnessScene,
