@@ -313,12 +313,11 @@ fn report(
     let mut text = found.violations[0].witness.clone();
     if let (Some(iv), [_, b]) = (&found.interval, found.violations.as_slice()) {
         text.push_str(&format!(
-            "\nfor a.e. t: it fails at t = {} and at t = {}, both in the open interval ({}, {}) between collision instants; at t = {}: {}",
+            "\nfor a.e. t: it fails at t = {} and at t = {}, both in the open interval ({}, {}) between collision instants; the second: {}",
             found.times[0].render(),
             found.times[1].render(),
             iv.lo.render(),
             iv.hi.as_ref().map_or("∞".to_string(), |h| h.render()),
-            found.times[1].render(),
             b.witness.lines().next().unwrap_or("")
         ));
     }
