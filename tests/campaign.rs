@@ -1,6 +1,7 @@
 //! Campaigns split into shards (issue 38, item 3): `--shard I/N` of every
 //! shard, then `sticky merge`, prints the single run's report; `--jobs K`
-//! too. The fast tests use `prove` at N = 1 (seconds); the ledger and
+//! too. The fast tests use `prove` at N = 1 and `converge` to N = 64
+//! (seconds each); the ledger and
 //! `prove` at N ≤ 2 are campaigns (`cargo test --release --test campaign
 //! -- --ignored`).
 
