@@ -1,6 +1,7 @@
 //! Campaigns split into shards (issue 38, item 3): `--shard I/N` of every
 //! shard, then `sticky merge`, prints the single run's report; `--jobs K`
-//! too. The fast tests use `prove` at N = 1 (seconds); the ledger and
+//! too. The fast tests use `prove` at N = 1 and `converge` to N = 64
+//! (seconds each); the ledger and
 //! `prove` at N ≤ 2 are campaigns (`cargo test --release --test campaign
 //! -- --ignored`).
 
@@ -241,5 +242,124 @@ fn claims_shards_merge_to_the_single_run_byte_for_byte() {
     assert_eq!(table, stdout(sticky().args(LEDGER)));
     let jobs = stdout(sticky().args(LEDGER).args(["--json", "--jobs", "2"]));
     assert_eq!(jobs, single);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The converge campaign of the tests: the smallest study with an exact
+/// and an `f64` part (N = 8 … 64, exact to 32, and the engine check).
+fn converge_args() -> Vec<String> {
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/riemann-compression.toml");
+    [
+        "converge",
+        scene.to_str().expect("UTF-8 path"),
+        "--n-max",
+        "64",
+        "--exact-max",
+        "32",
+    ]
+    .map(String::from)
+    .to_vec()
+}
+
+/// A converge summary without its `seconds` column (each N's wall time,
+/// the one measurement) and with the output folder's name taken out.
+fn converge_text(text: &str, dir: &Path) -> String {
+    let dir = format!("{}/", dir.display());
+    text.lines()
+        .map(|l| {
+            let row = matches!(l.split_whitespace().nth(1), Some("exact" | "f64"));
+            match (row, l.get(..15), l.get(23..)) {
+                (true, Some(head), Some(tail)) => format!("{head}{tail}\n"),
+                _ => format!("{}\n", l.replace(&dir, "")),
+            }
+        })
+        .collect()
+}
+
+/// `convergence.csv` without its `seconds` column (the fourth).
+fn without_seconds_column(csv: &str) -> Vec<String> {
+    csv.lines()
+        .map(|l| {
+            let mut fields: Vec<&str> = l.split(',').collect();
+            assert_eq!(fields[3].trim(), fields[3]);
+            fields.remove(3);
+            fields.join(",")
+        })
+        .collect()
+}
+
+#[test]
+fn converge_shards_merge_to_the_single_run() {
+    let dir = scratch("converge");
+    let args = converge_args();
+    let single_dir = dir.join("single");
+    let single = stdout(sticky().args(&args).arg("--out").arg(&single_dir));
+    std::fs::create_dir_all(dir.join("work")).expect("work folder");
+    let merged_dir = dir.join("merged");
+    let merged = slurm_campaign(
+        &dir.join("work"),
+        &args.join(" "),
+        4,
+        &["--out", merged_dir.to_str().expect("UTF-8 path")],
+    );
+    assert!(single.contains("engine check at N = 32"), "{single}");
+    assert_eq!(
+        converge_text(&merged, &merged_dir),
+        converge_text(&single, &single_dir)
+    );
+    let names: Vec<String> = std::fs::read_dir(&single_dir)
+        .expect("single run's files")
+        .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
+        .collect();
+    assert!(names.len() >= 6, "{names:?}");
+    for name in &names {
+        let a = std::fs::read(single_dir.join(name)).expect("single file");
+        let b = std::fs::read(merged_dir.join(name)).expect("merged file");
+        if name == "convergence.csv" {
+            let text = |v: Vec<u8>| String::from_utf8(v).expect("UTF-8");
+            assert_eq!(
+                without_seconds_column(&text(b)),
+                without_seconds_column(&text(a))
+            );
+        } else {
+            assert!(a == b, "{name} differs");
+        }
+    }
+    // Two units at a time in one process: the same report.
+    let jobs_dir = dir.join("jobs");
+    let jobs = stdout(
+        sticky()
+            .args(&args)
+            .args(["--jobs", "2", "--out"])
+            .arg(&jobs_dir),
+    );
+    assert_eq!(
+        converge_text(&jobs, &jobs_dir),
+        converge_text(&single, &single_dir)
+    );
+    // A shard missing, and a shard of another study.
+    let shards = |k: usize| dir.join("work/shards").join(format!("{k}.jsonl"));
+    let e = refusal(
+        sticky()
+            .arg("merge")
+            .args([shards(0), shards(1), shards(3)]),
+    );
+    assert!(e.contains("missing shard: 2/4"), "{e}");
+    let other = dir.join("other.jsonl");
+    let text = stdout(
+        sticky()
+            .args(&args[..4])
+            .args(["--exact-max", "16", "--shard", "2/4"]),
+    );
+    std::fs::write(&other, text).expect("shard written");
+    let e = refusal(
+        sticky()
+            .arg("merge")
+            .args([shards(0), shards(1), other, shards(3)]),
+    );
+    assert!(
+        e.contains("not a shard of the same campaign") && e.contains("setup"),
+        "{e}"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }

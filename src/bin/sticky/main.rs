@@ -93,7 +93,7 @@ enum Command {
     /// at N = 1 … N (symbolic execution of the engine and the checkers, z3),
     /// or refutes it with an exact, replayed counterexample.
     Prove(prove::Args),
-    /// Combines the shards' files of one campaign (`claims` or `prove`
+    /// Combines the shards' files of one campaign (`claims`, `prove` or `converge`
     /// with `--shard I/N`) into exactly the report a single run
     /// prints; refuses missing or duplicated shards and mixed campaigns.
     Merge(merge::Args),

@@ -1,13 +1,15 @@
 //! `sticky merge FILES…`: the shards' files of one campaign (`--shard I/N`
-//! of `claims` or `prove`) combined into the report a single
-//! run prints.
+//! of `claims`, `prove` or `converge`) combined into the report a single
+//! run prints (for `converge`, with its files under `--out`).
 
 use std::io::Write;
 use std::path::PathBuf;
 
 use serde::de::DeserializeOwned;
 use sticky::campaign::file::{self, Merged};
-use sticky::claims::campaign::{ClaimsSetup, UnitResult};
+use sticky::claims::campaign::{self as ledger, ClaimsSetup};
+use sticky::limit::converge::campaign::ConvergeSetup;
+use sticky::limit::converge::UnitResult;
 
 use crate::{io_err, Failure};
 
@@ -23,6 +25,10 @@ pub struct Args {
     /// The claims ledger as Markdown (`claims --markdown`).
     #[arg(long)]
     markdown: bool,
+    /// The output folder of a campaign that writes files (`converge`;
+    /// default, as for the single run, ./out/converge/).
+    #[arg(long)]
+    out: Option<PathBuf>,
 }
 
 /// How the merged report is printed.
@@ -49,6 +55,16 @@ pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
         json: args.json,
         markdown: args.markdown,
     };
+    if args.out.is_some() && campaign != "converge" {
+        return Err(Failure(format!(
+            "--out is for campaigns that write files (converge), not `{campaign}`"
+        )));
+    }
+    if how.json && campaign == "converge" {
+        return Err(Failure(
+            "--json is for the claims ledger and prove, not `converge`".to_string(),
+        ));
+    }
     if how.markdown && campaign != "claims" {
         return Err(Failure(format!(
             "--markdown is for the claims ledger, not `{campaign}`"
@@ -61,13 +77,28 @@ pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
             out.write_all(text.as_bytes()).map_err(io_err)
         }
         "claims" => {
-            let (setup, results) = merged::<ClaimsSetup, UnitResult>(&files)?;
+            let (setup, results) = merged::<ClaimsSetup, ledger::UnitResult>(&files)?;
             let entries = sticky::claims::campaign::entries(&setup, &results)
                 .map_err(|e| Failure(format!("the shards do not make one ledger: {e}")))?;
             crate::claims::render(out, &entries, setup.into(), how.json, how.markdown)
         }
+        "converge" => {
+            let (setup, results) = merged::<ConvergeSetup, Result<UnitResult, String>>(&files)?;
+            let results = results
+                .into_iter()
+                .collect::<Result<Vec<_>, _>>()
+                .map_err(|e| Failure(format!("a shard's unit failed: {e}")))?;
+            let study = setup
+                .study()
+                .map_err(|e| Failure(format!("{name}: the campaign's scene: {e}")))?;
+            let report = study.report(&results).map_err(crate::lib_err)?;
+            let dir = args
+                .out
+                .unwrap_or_else(|| PathBuf::from(crate::converge::DEFAULT_OUT));
+            crate::converge::publish(out, &report, &dir)
+        }
         other => Err(Failure(format!(
-            "{name}: unknown campaign `{other}` (claims or prove)"
+            "{name}: unknown campaign `{other}` (claims, prove or converge)"
         ))),
     }
 }

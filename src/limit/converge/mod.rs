@@ -27,7 +27,8 @@
 //! [`Quantity`], [`Row`]) and the fitted [`rates`]; `distance.rs`: the
 //! `L²`/`L¹` distances of `thm:main` (iii); `particles.rs`: one N, the
 //! particle side against the continuum samples; `summary.rs`: the text
-//! table. The CSV files are written by `report::converge`.
+//! table; `campaign.rs`: the study as a campaign of units (`--shard`). The
+//! CSV files are written by `report::converge`.
 
 use num_bigint::BigInt;
 use num_rational::BigRational;
@@ -43,6 +44,8 @@ use crate::progress::{Progress, Silent};
 use crate::scalar::Scalar;
 use crate::scene::{Scene, SceneKind};
 
+#[cfg(feature = "json")]
+pub mod campaign;
 mod distance;
 mod particles;
 mod quantity;
@@ -89,6 +92,7 @@ impl Default for ConvergeOptions {
 
 /// Which engine computed a row.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "json", derive(serde::Serialize, serde::Deserialize))]
 pub enum Engine {
     /// `BigRational`, exact.
     Exact,
@@ -193,196 +197,307 @@ pub fn converge_with_progress(
     opts: &ConvergeOptions,
     progress: &dyn Progress,
 ) -> Result<ConvergenceReport, Error> {
-    let SceneKind::Macro { datum, .. } = &scene.kind else {
-        return Err(Error::Unsupported {
-            message: "the convergence study needs a [macro] scene (a macroscopic datum to sample)"
-                .to_string(),
-        });
-    };
-    if opts.n_max > crate::scene::MAX_MACRO_PARTICLES {
-        return Err(Error::Unsupported {
-            message: format!(
-                "N = {} exceeds the limit of {} particles",
-                opts.n_max,
-                crate::scene::MAX_MACRO_PARTICLES
-            ),
-        });
-    }
-    let t_end = opts
-        .t_end
-        .clone()
-        .or_else(|| scene.t_end.clone())
-        .unwrap_or_else(|| BigRational::from_integer(1.into()));
-    if t_end <= BigRational::from_integer(0.into()) {
-        return Err(Error::Unsupported {
-            message: format!("the horizon T must be positive, got {}", t_end.render()),
-        });
-    }
-    if opts.delta <= BigRational::from_integer(0.into()) {
-        return Err(Error::Unsupported {
-            message: format!("δ must be positive, got {}", opts.delta.render()),
-        });
-    }
-    let k = opts.time_samples.max(1);
-    let mut times = vec![BigRational::from_integer(0.into())];
-    times.extend(
-        (1..=k).map(|j| &t_end * BigRational::new(BigInt::from(3 * j - 1), BigInt::from(3 * k))),
-    );
-    times.push(t_end.clone());
-    let continuum = Continuum::new(datum);
-    let profiles: Vec<Profile<Surd>> = times
-        .iter()
-        .map(|t| continuum.profile(t))
-        .collect::<Result<_, _>>()?;
-    let samples: Vec<Sample> = profiles.iter().map(Sample::new).collect();
-    let (center, scale) = support_window(&continuum, &t_end);
-    let tests = test_family(&t_end, &center, &scale);
-    let last = samples.last().ok_or_else(|| Error::Unsupported {
-        message: "no sample time".to_string(),
-    })?;
-    let lambda_end = last.exact.as_ref().map(|p| p.lambda_integral());
-    let lambda_end_f = {
-        let v = last.float.lambda_integral();
-        (
-            v,
-            last.conversion_bound() * 2.0 + 64.0 * f64::EPSILON * v.abs(),
-        )
-    };
-    let ctx = Context {
-        datum: datum.clone(),
-        times: times.clone(),
-        samples,
-        t_end: t_end.clone(),
-        delta: opts.delta.clone(),
-        tests,
-        lambda_end: lambda_end
-            .clone()
-            .unwrap_or_else(|| BigRational::from_integer(0.into())),
-        lambda_end_f,
-    };
-    let ns = n_values(opts);
-    if ns.is_empty() {
-        return Err(Error::Unsupported {
-            message: format!("no power of two N with {} ≤ N ≤ {}", opts.n_min, opts.n_max),
-        });
-    }
-    let mut rows = Vec::new();
-    let mut residual_columns = Vec::new();
-    let checked = opts.n_max > opts.exact_max && ns.iter().any(|&n| n <= opts.exact_max);
-    let steps = ns.len() + usize::from(checked);
+    let study = Study::new(scene, opts)?;
+    let units = study.units();
     progress.stage(
         &format!(
             "{}: N = {} … {}",
-            scene.name.as_deref().unwrap_or("scene"),
-            ns[0],
-            ns[ns.len() - 1]
+            study.scene,
+            study.ns[0],
+            study.ns[study.ns.len() - 1]
         ),
-        Some(steps as u64),
+        Some(units.len() as u64),
     );
-    for n in ns {
+    let mut results = Vec::with_capacity(units.len());
+    for unit in units {
         if progress.cancelled() {
             break;
         }
-        let engine = if n <= opts.exact_max {
+        progress.note(&match unit {
+            Unit::Particles { n } => {
+                format!("{}: N = {n} ({})", study.scene, study.engine(n).name())
+            }
+            Unit::EngineCheck { n } => format!("engine check: N = {n} on f64"),
+        });
+        results.push(study.run_unit(unit)?);
+        progress.advance(1);
+    }
+    study.report(&results)
+}
+
+/// One independent piece of a study (a campaign's unit, issue 38 item 3).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Unit {
+    /// The particles at this N against the continuum.
+    Particles {
+        /// N.
+        n: usize,
+    },
+    /// The `f64` engine at this N (the largest exactly computed one), to
+    /// compare with the exact row ([`EngineCheck`]).
+    EngineCheck {
+        /// N.
+        n: usize,
+    },
+}
+
+/// What a [`Unit`] computed.
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "json", derive(serde::Serialize, serde::Deserialize))]
+pub enum UnitResult {
+    /// The row of one N and its momentum residual per test function.
+    Particles {
+        /// The row.
+        row: Row,
+        /// `R_mom^N(φ)` per test function.
+        #[cfg_attr(feature = "json", serde(with = "crate::campaign::bits::many"))]
+        residuals: Vec<f64>,
+    },
+    /// The `f64` engine's row at the N of the engine check.
+    EngineCheck {
+        /// The row.
+        row: Row,
+    },
+}
+
+/// A study set up: the continuum at the sample times and the test
+/// functions, which every unit compares with, and the N to run.
+pub struct Study {
+    scene: String,
+    opts: ConvergeOptions,
+    continuum: Continuum,
+    profiles: Vec<Profile<Surd>>,
+    lambda_end: Option<BigRational>,
+    ctx: Context,
+    ns: Vec<usize>,
+}
+
+impl Study {
+    /// Sets up the study of a `[macro]` scene (the continuum side is cheap
+    /// beside the particles: every shard and the merge set it up).
+    pub fn new(scene: &Scene, opts: &ConvergeOptions) -> Result<Study, Error> {
+        let SceneKind::Macro { datum, .. } = &scene.kind else {
+            return Err(Error::Unsupported {
+                message:
+                    "the convergence study needs a [macro] scene (a macroscopic datum to sample)"
+                        .to_string(),
+            });
+        };
+        if opts.n_max > crate::scene::MAX_MACRO_PARTICLES {
+            return Err(Error::Unsupported {
+                message: format!(
+                    "N = {} exceeds the limit of {} particles",
+                    opts.n_max,
+                    crate::scene::MAX_MACRO_PARTICLES
+                ),
+            });
+        }
+        let t_end = opts
+            .t_end
+            .clone()
+            .or_else(|| scene.t_end.clone())
+            .unwrap_or_else(|| BigRational::from_integer(1.into()));
+        if t_end <= BigRational::from_integer(0.into()) {
+            return Err(Error::Unsupported {
+                message: format!("the horizon T must be positive, got {}", t_end.render()),
+            });
+        }
+        if opts.delta <= BigRational::from_integer(0.into()) {
+            return Err(Error::Unsupported {
+                message: format!("δ must be positive, got {}", opts.delta.render()),
+            });
+        }
+        let k = opts.time_samples.max(1);
+        let mut times = vec![BigRational::from_integer(0.into())];
+        times.extend(
+            (1..=k)
+                .map(|j| &t_end * BigRational::new(BigInt::from(3 * j - 1), BigInt::from(3 * k))),
+        );
+        times.push(t_end.clone());
+        let continuum = Continuum::new(datum);
+        let profiles: Vec<Profile<Surd>> = times
+            .iter()
+            .map(|t| continuum.profile(t))
+            .collect::<Result<_, _>>()?;
+        let samples: Vec<Sample> = profiles.iter().map(Sample::new).collect();
+        let (center, scale) = support_window(&continuum, &t_end);
+        let tests = test_family(&t_end, &center, &scale);
+        let last = samples.last().ok_or_else(|| Error::Unsupported {
+            message: "no sample time".to_string(),
+        })?;
+        let lambda_end = last.exact.as_ref().map(|p| p.lambda_integral());
+        let lambda_end_f = {
+            let v = last.float.lambda_integral();
+            (
+                v,
+                last.conversion_bound() * 2.0 + 64.0 * f64::EPSILON * v.abs(),
+            )
+        };
+        let ctx = Context {
+            datum: datum.clone(),
+            times: times.clone(),
+            samples,
+            t_end: t_end.clone(),
+            delta: opts.delta.clone(),
+            tests,
+            lambda_end: lambda_end
+                .clone()
+                .unwrap_or_else(|| BigRational::from_integer(0.into())),
+            lambda_end_f,
+        };
+        let ns = n_values(opts);
+        if ns.is_empty() {
+            return Err(Error::Unsupported {
+                message: format!("no power of two N with {} ≤ N ≤ {}", opts.n_min, opts.n_max),
+            });
+        }
+        Ok(Study {
+            scene: scene.name.clone().unwrap_or_else(|| "scene".to_string()),
+            opts: opts.clone(),
+            continuum,
+            profiles,
+            lambda_end,
+            ctx,
+            ns,
+        })
+    }
+
+    fn engine(&self, n: usize) -> Engine {
+        if n <= self.opts.exact_max {
             Engine::Exact
         } else {
             Engine::Float
-        };
-        progress.note(&format!(
-            "{}: N = {n} ({})",
-            scene.name.as_deref().unwrap_or("scene"),
-            engine.name()
-        ));
-        let (row, res) = run_n(&ctx, n, engine)?;
-        progress.advance(1);
-        rows.push(row);
-        residual_columns.push(res);
-    }
-    let engine_check = match rows.iter().rev().find(|r| r.engine == Engine::Exact) {
-        Some(r) if opts.n_max > opts.exact_max && !progress.cancelled() => {
-            progress.note(&format!("engine check: N = {} on f64", r.n));
-            let (f, _) = run_n(&ctx, r.n, Engine::Float)?;
-            progress.advance(1);
-            let differences = Quantity::ALL
-                .iter()
-                .filter_map(|&q| {
-                    let (a, b) = (r.get(q)?.value, f.get(q)?.value);
-                    Some((q, (a - b).abs() / a.abs().max(1e-300)))
-                })
-                .collect();
-            Some(EngineCheck {
-                n: r.n,
-                differences,
-            })
         }
-        _ => None,
-    };
-    let particle_residuals = (0..ctx.tests.len())
-        .map(|k| {
-            residual_columns
-                .iter()
-                .map(|c| c.get(k).copied().unwrap_or(f64::NAN))
-                .collect()
-        })
-        .collect();
-    // The continuum side.
-    let rational = ctx.samples.iter().all(|s| s.exact.is_some());
-    let mut max_density = Measure::float(0.0, 0.0);
-    let mut oleinik = Some(0.0f64);
-    let mut defect = Measure::float(0.0, 0.0);
-    for (s, p) in ctx.samples.iter().zip(&profiles) {
-        let m = match &s.exact {
-            Some(e) => exact_measure(&e.max_density()),
-            None => Measure::float(s.float.max_density(), s.conversion_bound()),
-        };
-        max_density = max_measure(max_density, m);
-        let d = match &s.exact {
-            Some(e) => exact_measure(&complementarity_defect(e)),
-            None => Measure::float(complementarity_defect(&s.float), s.conversion_bound()),
-        };
-        defect = max_measure(defect, d);
-        let t = p.t.to_f64_lossy();
-        let tol = 4.0 * s.conversion_bound() + 16.0 * f64::EPSILON * s.range;
-        oleinik = match (oleinik, oleinik_margin(&s.float, &t, &tol)) {
-            (Some(a), Some(b)) => Some(a.max(b)),
-            _ => None,
-        };
     }
-    let residuals = if opts.panels > 0 {
-        continuum_residuals(&continuum, &ctx.tests, opts.panels)?
-    } else {
-        Vec::new()
-    };
-    let pressure_mass = match &lambda_end {
-        Some(q) => exact_measure(q),
-        None => Measure::float(ctx.lambda_end_f.0, ctx.lambda_end_f.1),
-    };
-    let summary = ContinuumSummary {
-        rational,
-        plateaus: profiles.iter().map(|p| p.plateaus.len()).collect(),
-        pressure_mass,
-        spread: ctx.samples.iter().map(|s| s.spread).collect(),
-        tv_u: ctx.samples.iter().map(|s| s.tv).collect(),
-        lambda_integral: ctx
-            .samples
-            .iter()
-            .map(|s| s.float.lambda_integral())
-            .collect(),
-        max_density,
-        oleinik,
-        complementarity_defect: defect,
-        residuals,
-    };
-    Ok(ConvergenceReport {
-        scene: scene.name.clone().unwrap_or_else(|| "scene".to_string()),
-        t_end,
-        times,
-        delta: opts.delta.clone(),
-        test_functions: ctx.tests.iter().map(|f| f.name()).collect(),
-        rates: rates(&rows),
-        rows,
-        particle_residuals,
-        continuum: summary,
-        engine_check,
-    })
+
+    /// The units, in the order of a single run: every N, then the engine
+    /// check (both engines at the largest exact N) when N goes past
+    /// `exact_max`.
+    pub fn units(&self) -> Vec<Unit> {
+        let mut units: Vec<Unit> = self.ns.iter().map(|&n| Unit::Particles { n }).collect();
+        let largest_exact = self.ns.iter().rev().find(|&&n| n <= self.opts.exact_max);
+        if let (Some(&n), true) = (largest_exact, self.opts.n_max > self.opts.exact_max) {
+            units.push(Unit::EngineCheck { n });
+        }
+        units
+    }
+
+    /// Runs one unit.
+    pub fn run_unit(&self, unit: Unit) -> Result<UnitResult, Error> {
+        Ok(match unit {
+            Unit::Particles { n } => {
+                let (row, residuals) = run_n(&self.ctx, n, self.engine(n))?;
+                UnitResult::Particles { row, residuals }
+            }
+            Unit::EngineCheck { n } => UnitResult::EngineCheck {
+                row: run_n(&self.ctx, n, Engine::Float)?.0,
+            },
+        })
+    }
+
+    /// The report from the results of the units (of [`Study::units`], in
+    /// order; a prefix when the study was stopped early).
+    pub fn report(&self, results: &[UnitResult]) -> Result<ConvergenceReport, Error> {
+        let ctx = &self.ctx;
+        let profiles = &self.profiles;
+        let opts = &self.opts;
+        let mut rows: Vec<Row> = Vec::new();
+        let mut residual_columns: Vec<&[f64]> = Vec::new();
+        let mut engine_check = None;
+        for result in results {
+            match result {
+                UnitResult::Particles { row, residuals } => {
+                    rows.push(row.clone());
+                    residual_columns.push(residuals);
+                }
+                UnitResult::EngineCheck { row: f } => {
+                    let Some(r) = rows
+                        .iter()
+                        .find(|r| r.n == f.n && r.engine == Engine::Exact)
+                    else {
+                        continue;
+                    };
+                    let differences = Quantity::ALL
+                        .iter()
+                        .filter_map(|&q| {
+                            let (a, b) = (r.get(q)?.value, f.get(q)?.value);
+                            Some((q, (a - b).abs() / a.abs().max(1e-300)))
+                        })
+                        .collect();
+                    engine_check = Some(EngineCheck {
+                        n: r.n,
+                        differences,
+                    });
+                }
+            }
+        }
+        let particle_residuals = (0..ctx.tests.len())
+            .map(|k| {
+                residual_columns
+                    .iter()
+                    .map(|c| c.get(k).copied().unwrap_or(f64::NAN))
+                    .collect()
+            })
+            .collect();
+        // The continuum side.
+        let rational = ctx.samples.iter().all(|s| s.exact.is_some());
+        let mut max_density = Measure::float(0.0, 0.0);
+        let mut oleinik = Some(0.0f64);
+        let mut defect = Measure::float(0.0, 0.0);
+        for (s, p) in ctx.samples.iter().zip(profiles) {
+            let m = match &s.exact {
+                Some(e) => exact_measure(&e.max_density()),
+                None => Measure::float(s.float.max_density(), s.conversion_bound()),
+            };
+            max_density = max_measure(max_density, m);
+            let d = match &s.exact {
+                Some(e) => exact_measure(&complementarity_defect(e)),
+                None => Measure::float(complementarity_defect(&s.float), s.conversion_bound()),
+            };
+            defect = max_measure(defect, d);
+            let t = p.t.to_f64_lossy();
+            let tol = 4.0 * s.conversion_bound() + 16.0 * f64::EPSILON * s.range;
+            oleinik = match (oleinik, oleinik_margin(&s.float, &t, &tol)) {
+                (Some(a), Some(b)) => Some(a.max(b)),
+                _ => None,
+            };
+        }
+        let residuals = if opts.panels > 0 {
+            continuum_residuals(&self.continuum, &ctx.tests, opts.panels)?
+        } else {
+            Vec::new()
+        };
+        let pressure_mass = match &self.lambda_end {
+            Some(q) => exact_measure(q),
+            None => Measure::float(ctx.lambda_end_f.0, ctx.lambda_end_f.1),
+        };
+        let summary = ContinuumSummary {
+            rational,
+            plateaus: profiles.iter().map(|p| p.plateaus.len()).collect(),
+            pressure_mass,
+            spread: ctx.samples.iter().map(|s| s.spread).collect(),
+            tv_u: ctx.samples.iter().map(|s| s.tv).collect(),
+            lambda_integral: ctx
+                .samples
+                .iter()
+                .map(|s| s.float.lambda_integral())
+                .collect(),
+            max_density,
+            oleinik,
+            complementarity_defect: defect,
+            residuals,
+        };
+        Ok(ConvergenceReport {
+            scene: self.scene.clone(),
+            t_end: ctx.t_end.clone(),
+            times: ctx.times.clone(),
+            delta: opts.delta.clone(),
+            test_functions: ctx.tests.iter().map(|f| f.name()).collect(),
+            rates: rates(&rows),
+            rows,
+            particle_residuals,
+            continuum: summary,
+            engine_check,
+        })
+    }
 }

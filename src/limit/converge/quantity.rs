@@ -7,8 +7,10 @@ use super::Engine;
 
 /// One measured number.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "json", derive(serde::Serialize, serde::Deserialize))]
 pub struct Measure {
     /// The value (nearest double of the exact value when there is one).
+    #[cfg_attr(feature = "json", serde(with = "crate::campaign::bits::one"))]
     pub value: f64,
     /// A bound on `|value − true value|` from the rounding of the
     /// continuum profile to doubles (`3β` for coefficients within `β`, plus
@@ -19,6 +21,7 @@ pub struct Measure {
     /// double aside).
     /// It does not cover the `f64` particle engine (see
     /// [`EngineCheck`](super::EngineCheck)).
+    #[cfg_attr(feature = "json", serde(with = "crate::campaign::bits::one"))]
     pub bound: f64,
     /// The exact value, when exact and short (a rational `p/q`, or
     /// `sqrt(p/q)` for a norm whose square is rational).
@@ -37,6 +40,7 @@ impl Measure {
 
 /// The quantities of one row.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[cfg_attr(feature = "json", derive(serde::Serialize, serde::Deserialize))]
 pub enum Quantity {
     /// `max_j ‖X_N(t_j) − X(t_j)‖_{L²(0,1)}`.
     XL2,
@@ -153,6 +157,7 @@ impl Quantity {
 
 /// One N.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "json", derive(serde::Serialize, serde::Deserialize))]
 pub struct Row {
     /// N.
     pub n: usize,
@@ -161,6 +166,7 @@ pub struct Row {
     /// `true` when the comparisons with the continuum were exact.
     pub exact_comparisons: bool,
     /// Wall-clock seconds for this row.
+    #[cfg_attr(feature = "json", serde(with = "crate::campaign::bits::one"))]
     pub seconds: f64,
     /// Number of collisions up to `T`.
     pub collisions: usize,
