@@ -86,3 +86,48 @@ Proof.
       apply Qmult_le_l; [|exact HX]. apply Qlt_shift_div_l; lra. }
   lra.
 Qed.
+
+(** ** The corrected [prop:2ndorder-LagrPDE#UN-L1] step away from [t = 0] *)
+
+Lemma qsum_map_scale (c : Q) (f : nat -> Q) (l : list nat) :
+  qsum (map (fun i => c * f i) l) == c * qsum (map f l).
+Proof. induction l as [|a l IH]; simpl; [ring|]. rewrite IH. ring. Qed.
+
+Lemma qsum_map_qeq (f g : nat -> Q) (l : list nat) :
+  (forall i, f i == g i) -> qsum (map f l) == qsum (map g l).
+Proof. intro H. induction l as [|a l IH]; simpl; [reflexivity|]. rewrite IH, H. reflexivity. Qed.
+
+(** [∫|Ṽ_N − V_N| = Σ|v_i − v_{i−1}|/(2N)] is [‖∂_w Ṽ_N‖_{L¹}/(2N)]. *)
+Lemma l1_gap_bv (v : seqQ) (N : nat) :
+  (1 <= N)%nat -> l1_gap v N == 1 / (2 * qn N) * bv v N.
+Proof.
+  intro HN. pose proof (qn_pos N HN) as Hn. unfold l1_gap, bv.
+  rewrite (qsum_map_qeq (fun i => Qabs (v i - v (i - 1)%nat) / (2 * qn N))
+                        (fun i => 1 / (2 * qn N) * Qabs (v i - v (i - 1)%nat)))
+    by (intro i; field; lra).
+  rewrite (qsum_map_qeq (fun i => 1 / qn N * Qabs (pslope v N i))
+                        (fun i => Qabs (v i - v (i - 1)%nat))).
+  2: { intro i. unfold pslope. rewrite Qabs_Qmult, (Qabs_pos (qn N)) by lra. field. lra. }
+  rewrite qsum_map_scale. reflexivity.
+Qed.
+
+(** Paper, [prop:2ndorder-LagrPDE#UN-L1] as the ledger corrects it
+    ("(1/2N) Σ |u_i − u_{i−1}| ≤ C/N", not "= (1/2N)|u_N − u_0|"), for
+    [t ∈ [α, T]]: [Σ_{i=1}^N |u_i − u_{i−1}|/(2N) ≤ C_α/(2N)] with the
+    [C_α] of [pwUN_L1], same hypotheses. *)
+Theorem UN_L1_away (x0 u0 : list Q) (r t T α M δ C0' : Q) :
+  0 < α -> α <= t -> t <= T -> 0 < r -> 0 < δ -> InK r x0 -> length u0 = length x0 ->
+  SupBound M u0 -> (1 <= length x0)%nat ->
+  xs δ x0 (length x0) - xs δ x0 0%nat + M <= C0' ->
+  let u := us (velocities (dynamics x0 u0 r t)) in
+  let N := length x0 in
+  l1_gap u N <= (2 * (1 + 2 * T) * C0' / α + 2 * M) / (2 * qn N).
+Proof.
+  intros Hα Hαt HtT Hr Hδ HK L HB HN HC u N.
+  destruct (pwUN_L1 x0 u0 r t T α M δ C0' Hα Hαt HtT Hr Hδ HK L HB HN HC) as [_ B].
+  fold u N in B. pose proof (qn_pos N HN) as Hn.
+  rewrite (l1_gap_bv u N HN).
+  setoid_replace ((2 * (1 + 2 * T) * C0' / α + 2 * M) / (2 * qn N))
+    with (1 / (2 * qn N) * (2 * (1 + 2 * T) * C0' / α + 2 * M)) by (field; lra).
+  apply Qmult_le_l; [apply Qlt_shift_div_l; lra|exact B].
+Qed.
