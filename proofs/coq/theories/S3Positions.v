@@ -12,14 +12,6 @@ Open Scope Q_scope.
 
 (** ** Lists equal up to [Qeq] *)
 
-Lemma qeq_nth (a b : list Q) (i : nat) : qeq_list a b -> nth i a 0 == nth i b 0.
-Proof.
-  intro H. revert i. induction H as [|x y a b Hxy _ IH]; intros [|i]; simpl; auto; reflexivity.
-Qed.
-
-Lemma qeq_length (a b : list Q) : qeq_list a b -> length a = length b.
-Proof. induction 1; simpl; [reflexivity|f_equal; assumption]. Qed.
-
 Lemma sqnorm_vsub_self (a : list Q) : sqnorm (vsub a a) == 0.
 Proof. induction a as [|x a IH]; simpl; [reflexivity|rewrite IH; ring]. Qed.
 
@@ -64,7 +56,7 @@ Lemma positions_length (x0 u0 : list Q) (r t : Q) :
   0 <= t -> InK r x0 -> length u0 = length x0 ->
   length (positions (dynamics x0 u0 r t)) = length x0.
 Proof.
-  intros Ht HK L. rewrite (qeq_length _ _ (dynamics_is_proj_K x0 u0 r t Ht HK L)).
+  intros Ht HK L. rewrite (qeq_list_length _ _ (dynamics_is_proj_K x0 u0 r t Ht HK L)).
   rewrite proj_K_length. apply free_flight_length, L.
 Qed.
 
@@ -72,7 +64,7 @@ Lemma positions_inK (x0 u0 : list Q) (r t : Q) :
   0 <= t -> InK r x0 -> length u0 = length x0 -> InK r (positions (dynamics x0 u0 r t)).
 Proof.
   intros Ht HK L i Hi. pose proof (dynamics_is_proj_K x0 u0 r t Ht HK L) as E.
-  rewrite !(qeq_nth _ _ _ E). rewrite (qeq_length _ _ E) in Hi.
+  rewrite !(qeq_list_nth _ _ E). rewrite (qeq_list_length _ _ E) in Hi.
   apply proj_K_in_K, Hi.
 Qed.
 
@@ -93,8 +85,8 @@ Proof.
     nra. }
   pose proof (proj_K_sup_lipschitz (t * M) r z x0 ltac:(lia) HS i) as P.
   rewrite proj_K_length, Lz in P. specialize (P Hi).
-  rewrite (qeq_nth _ _ _ (dynamics_is_proj_K x0 u0 r t Ht HK L)).
-  fold z. rewrite (qeq_nth _ _ i (proj_K_fixed r x0 HK)) in P. exact P.
+  rewrite (qeq_list_nth _ _ (dynamics_is_proj_K x0 u0 r t Ht HK L)).
+  fold z. rewrite (qeq_list_nth _ _ (proj_K_fixed r x0 HK) i) in P. exact P.
 Qed.
 
 (** ** Monotone sequences and telescoping sums over the cells *)

@@ -203,9 +203,9 @@ Proof.
   pose proof (positions_length _ _ _ t ltac:(lra) HK L) as Lx. fold x in Lx.
   pose proof (velocities_length _ _ _ t ltac:(lra) HK L) as Lu. fold u in Lu.
   rewrite block_length in Lx, Lu.
-  pose proof (qeq_nth _ _ k H) as E. rewrite nth_affine in E by lia.
-  pose proof (qeq_nth _ _ k (compression_still m (t + d) Hm ltac:(lra))) as A.
-  pose proof (qeq_nth _ _ k (compression_still m t Hm ltac:(lra))) as B. fold N x in B.
+  pose proof (qeq_list_nth _ _ H k) as E. rewrite nth_affine in E by lia.
+  pose proof (qeq_list_nth _ _ (compression_still m (t + d) Hm ltac:(lra)) k) as A.
+  pose proof (qeq_list_nth _ _ (compression_still m t Hm ltac:(lra)) k) as B. fold N x in B.
   assert (Z : d * nth k u 0 == 0) by (fold N in A; lra).
   apply Qmult_integral in Z. destruct Z as [Z|Z]; [lra|exact Z].
 Qed.
