@@ -1,6 +1,6 @@
 //! Bounded proofs (`verify_*`): every case claim of the registry, on every
 //! admissible datum of a small domain, in the fixed-width rational kernel
-//! `Ratio<i64>` (DESIGN.md §5).
+//! `Ratio<i64>` (docs/guide/testing.md).
 //!
 //! **What was run, and how.** Kani cannot be installed on these machines, so
 //! no Kani run has been made. The harnesses below are written for Kani

@@ -1,5 +1,5 @@
 //! Columnar particle data: the two columns `position, velocity` of a big
-//! scene, kept in a file beside its TOML (DESIGN.md §2, `[particles] data =
+//! scene, kept in a file beside its TOML (docs/guide/scenes.md, `[particles] data =
 //! "…"`), the way numerical users hold them.
 //!
 //! * **CSV** — a header `position,velocity`, then one particle per line,

@@ -136,6 +136,16 @@ pub enum Error {
         /// What was asked.
         message: String,
     },
+    /// The exact answer would need more machine work than the cap (the
+    /// environment variable `STICKY_MAX_WORK` raises it).
+    WorkLimit {
+        /// The estimated work, in word operations.
+        work: u64,
+        /// The cap, in word operations.
+        cap: u64,
+        /// The whole explanation (engine, N, denominators, how to go on).
+        message: String,
+    },
     /// Long work stopped early because its watcher asked it to (Ctrl-C:
     /// [`crate::progress::Progress::cancelled`]); there is no answer.
     Interrupted {
@@ -195,7 +205,9 @@ impl fmt::Display for Error {
                 write!(f, "particle data file {file}: {message}")
             }
             Error::NegativeTime { t } => write!(f, "time {t} is negative"),
-            Error::Unsupported { message } => write!(f, "{message}"),
+            Error::Unsupported { message } | Error::WorkLimit { message, .. } => {
+                write!(f, "{message}")
+            }
             Error::Interrupted { during } => write!(f, "interrupted during {during}"),
         }
     }

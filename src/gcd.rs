@@ -1,9 +1,9 @@
 //! Greatest common divisors of big integers, and fractions reduced with them.
 //!
 //! `num-bigint`'s `gcd` is Stein's binary algorithm: one shift and one
-//! subtraction of the whole number per bit, `O(bits · words)`. On the
-//! common denominators of hostile data (velocities `1/(i+1)`, `i < 20,000`:
-//! `lcm(1, …, 20000)`, ~28,800 bits) one gcd costs ~10 ms, and every
+//! subtraction of the whole number per bit, `O(bits · words)`, which is
+//! slow on the common denominators of hostile data (velocities `1/(i+1)`,
+//! `i < 20,000`: `lcm(1, …, 20000)`, ~28,800 bits), and every
 //! `BigRational::new` of an answer runs one. [`gcd`] here is Lehmer's
 //! algorithm (Knuth, TAOCP vol. 2, §4.5.2, Algorithm L): the quotients of
 //! Euclid's algorithm are found on the leading 63 bits, and applied to the

@@ -385,6 +385,13 @@ impl SplitMix64 {
         z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
         z ^ (z >> 31)
     }
+    /// Skips `draws` draws of [`next_u64`](Self::next_u64) (the state moves
+    /// by a constant per draw).
+    pub fn skip(&mut self, draws: usize) {
+        self.0 = self
+            .0
+            .wrapping_add(0x9E37_79B9_7F4A_7C15u64.wrapping_mul(draws as u64));
+    }
     /// `len` random bytes.
     pub fn bytes(&mut self, len: usize) -> Vec<u8> {
         (0..len).map(|_| self.next_u64() as u8).collect()
@@ -394,6 +401,19 @@ impl SplitMix64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn skip_equals_drawing() {
+        let mut a = SplitMix64::new(0x5EED);
+        let mut b = a.clone();
+        for draws in [0, 1, 7, 1000] {
+            for _ in 0..draws {
+                a.next_u64();
+            }
+            b.skip(draws);
+            assert_eq!(a.next_u64(), b.next_u64(), "{draws}");
+        }
+    }
 
     #[test]
     fn every_byte_string_decodes() {

@@ -23,14 +23,17 @@
 //!    [`generate`], [`rate`] (log-log slopes), [`violation`], [`text`],
 //!    [`error`], [`progress`] (the observer of long work).
 //! 2. [`fast`] — the exact integer engines (kernel, adaptive, integer merge).
-//! 3. [`reference`](mod@reference) — the `f64` solvers, and
+//! 3. [`solver`] — the one front door: [`solver::Solver`] chooses the engine
+//!    (fast paths, cost model, work check, fallbacks) and answers states,
+//!    events and projections; the command line and Python ask it alone.
+//! 4. [`reference`](mod@reference) — the `f64` solvers, and
 //!    [`reference::measure`](mod@reference::measure), the one
 //!    owner of every error metric.
-//! 4. [`limit`] — the hydrodynamic limit (section 3, Appendix C).
-//! 5. [`claims`] — one checker per claim of the paper, the ledger.
-//! 6. [`prove`] — the symbolic prover: the engine and the checkers on a
+//! 5. [`limit`] — the hydrodynamic limit (section 3, Appendix C).
+//! 6. [`claims`] — one checker per claim of the paper, the ledger.
+//! 7. [`prove`] — the symbolic prover: the engine and the checkers on a
 //!    symbolic scalar, every comparison decided by an SMT solver (z3).
-//! 7. [`report`] — JSON output, and (feature `report`) charts, atlas, bench.
+//! 8. [`report`] — JSON output, and (feature `report`) charts, atlas, bench.
 //!
 //! The `sticky` command line (feature `cli`, on by default) sits above all
 //! of them, in `src/bin/sticky/`, one module per command.
@@ -39,9 +42,11 @@
 //!
 //! * `cli` (default) — the `sticky` binary (clap); implies `report` and
 //!   `json`;
-//! * `json` — the JSON of `sticky compare`'s report
-//!   (`report::compare::json`; serde, serde_json);
-//! * `report` — charts, the atlas and the benchmark (plotters, indicatif).
+//! * `json` — every JSON output as a serde type (the state, the events,
+//!   `compare`'s report, the export, the proof records, the Coq rows),
+//!   printed in one spelling by `json` (serde, serde_json);
+//! * `report` — charts, the atlas and the benchmark (plotters, indicatif);
+//!   implies `json`.
 //!
 //! `cargo build --lib --no-default-features` builds the library alone, with
 //! no command-line or chart dependency.
@@ -72,6 +77,7 @@
 
 // 1. The model core.
 pub mod blockwise;
+pub mod campaign;
 pub mod checked;
 pub mod cluster;
 pub mod columns;
@@ -80,6 +86,8 @@ pub mod error;
 pub mod gcd;
 pub mod generate;
 pub mod initial;
+#[cfg(feature = "json")]
+pub mod json;
 pub mod progress;
 pub mod projection;
 pub mod quantile;
@@ -92,13 +100,14 @@ pub mod text;
 pub mod trajectory;
 pub mod violation;
 
-// 2–7. The layers above it.
+// 2–8. The layers above it.
 pub mod claims;
 pub mod fast;
 pub mod limit;
 pub mod prove;
 pub mod reference;
 pub mod report;
+pub mod solver;
 
 // The few types a caller needs: scene → initial data → state at t,
 // trajectory, events.

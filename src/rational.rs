@@ -1,6 +1,6 @@
 //! Exact reading and writing of rational numbers.
 //!
-//! Accepted text (DESIGN.md §2), always read exactly:
+//! Accepted text (docs/guide/scenes.md), always read exactly:
 //!
 //! * an integer: `"3"`, `"-12"`, `"+7"`;
 //! * a fraction: `"-7/4"` (the denominator a positive integer, never zero);
@@ -13,15 +13,14 @@
 //!   2,000,000-digit position is refused with a message naming the cap.
 //!
 //! Output is `"p/q"` in lowest terms with the sign on `p`, or `"p"` when
-//! `q = 1`: the JSON contract of DESIGN.md §3.
+//! `q = 1`: the JSON contract of docs/guide/json.md.
 
 use std::fmt;
 
-use num_bigint::BigInt;
+use num_bigint::{BigInt, BigUint};
+use num_integer::Integer;
 use num_rational::BigRational;
-use num_traits::{Pow, Signed, ToPrimitive, Zero};
-
-use crate::scalar::Scalar;
+use num_traits::{Pow, Signed, Zero};
 
 /// Largest exponent magnitude accepted in scientific form.
 pub const MAX_EXPONENT: u32 = 4096;
@@ -198,42 +197,94 @@ pub fn render_exact(q: &BigRational) -> String {
     q.to_string()
 }
 
-/// The nearest double of `q` (round to nearest, ties to even), or `None`
-/// when `q` is beyond the largest finite double (it would round to an
-/// infinity). Checked exactly against both neighbours, so the answer does
-/// not rest on any library's rounding.
+/// The nearest double of `q` (round to nearest, ties to even, subnormals
+/// included), or `None` when `q` is beyond the largest finite double (it
+/// would round to an infinity). Integer arithmetic only: `⌊|q| · 2^k⌋` with
+/// 60 significant bits and a sticky bit, rounded by [`nearest_double_of`].
+/// The word-sized fast path of the streaming engine
+/// (`fast::stream::nearest_ratio`) is tested against it.
 pub fn nearest_f64(q: &BigRational) -> Option<f64> {
-    let f = q.to_f64()?;
-    if !f.is_finite() {
-        return None;
+    if Zero::is_zero(q) {
+        return Some(0.0);
     }
-    let dist = |g: f64| g.to_big_rational().map(|r| (&r - q).abs());
-    let mut best = f;
-    let mut best_d = dist(f)?;
-    for g in [
-        next_toward(f, f64::INFINITY),
-        next_toward(f, f64::NEG_INFINITY),
-    ] {
-        if let Some(d) = dist(g) {
-            let even = g.to_bits() & 1 == 0;
-            if d < best_d || (d == best_d && even) {
-                best = g;
-                best_d = d;
-            }
-        }
-    }
-    Some(best)
+    let (n, d) = (q.numer().magnitude(), q.denom().magnitude());
+    // 2^E ≤ |q| < 2^(E+1): E is the difference of the bit lengths, or one less.
+    let bits = n.bits() as i64 - d.bits() as i64;
+    let at_least = if bits >= 0 {
+        *n >= d << bits as u64
+    } else {
+        n << bits.unsigned_abs() >= *d
+    };
+    let big_e = if at_least { bits } else { bits - 1 };
+    nearest_double_of(big_e, Signed::is_negative(q), |k| {
+        let (num, den) = if k >= 0 {
+            (n << k as u64, d.clone())
+        } else {
+            (n.clone(), d << k.unsigned_abs())
+        };
+        let (f, r) = num.div_rem(&den);
+        (f, !r.is_zero())
+    })
 }
 
-/// The next double after `f` toward `dir` (finite `f`).
-fn next_toward(f: f64, dir: f64) -> f64 {
-    if f == 0.0 {
-        let tiny = f64::from_bits(1);
-        return if dir > 0.0 { tiny } else { -tiny };
+/// The nearest double (ties to even, subnormals included) of a non-zero
+/// value `v` with `2^big_e ≤ |v| < 2^(big_e + 1)`, given the sign and
+/// `scaled_floor(k) = (⌊|v| · 2^k⌋, whether |v| · 2^k is not an integer)`;
+/// `None` beyond the largest double. The one rounding step of every exact
+/// value to a double (rationals here, square roots of rationals in
+/// `report::compare::decimal`).
+pub fn nearest_double_of(
+    big_e: i64,
+    negative: bool,
+    scaled_floor: impl FnOnce(i64) -> (BigUint, bool),
+) -> Option<f64> {
+    if big_e > 1023 {
+        return None;
     }
-    let bits = f.to_bits();
-    let up = (dir > f) == (f > 0.0);
-    f64::from_bits(if up { bits + 1 } else { bits - 1 })
+    if big_e < -1075 {
+        // |v| < 2^−1075, below half the smallest subnormal: zero, signed.
+        return Some(if negative { -0.0 } else { 0.0 });
+    }
+    // Keep 60 bits: m = ⌊|v|·2^k⌋, 2^59 ≤ m < 2^60.
+    let k = 59 - big_e;
+    let (m, inexact) = scaled_floor(k);
+    debug_assert!(m.bits() == 60, "2^59 ≤ m < 2^60");
+    // The precision left at this exponent: 53 bits, fewer below 2^−1022
+    // (none at 2^−1075, where only the rounding up to 2^−1074 is left).
+    let precision = if big_e >= -1022 {
+        53
+    } else {
+        53 - (-1022 - big_e)
+    };
+    debug_assert!((0..=53).contains(&precision));
+    // Drop `shift = 60 − precision ≥ 7` bits, rounding half to even; the
+    // value dropped is `rest + (inexact ? a positive fraction : 0)`.
+    let shift = (60 - precision) as u64;
+    let kept = &m >> shift;
+    let rest = &m - (&kept << shift);
+    let half = BigUint::from(1u32) << (shift - 1);
+    let up = rest > half || (rest == half && (inexact || kept.is_odd()));
+    let kept = if up { kept + 1u32 } else { kept };
+    // kept ≤ 2^53 is an exact double; the value is kept · 2^(shift − k).
+    let mantissa = u64::try_from(&kept).ok()? as f64;
+    let x = times_power_of_two(mantissa, shift as i64 - k);
+    let x = if negative { -x } else { x };
+    x.is_finite().then_some(x)
+}
+
+/// `x · 2^e`, exact when the result is a double (`x` an integer ≤ 2^53):
+/// in steps that each stay exact.
+fn times_power_of_two(mut x: f64, mut e: i64) -> f64 {
+    let pow2 = |k: i64| f64::from_bits(((k + 1023) as u64) << 52);
+    while e > 1000 {
+        x *= pow2(1000);
+        e -= 1000;
+    }
+    while e < -1000 {
+        x *= pow2(-1000);
+        e += 1000;
+    }
+    x * pow2(e)
 }
 
 #[cfg(test)]
@@ -241,6 +292,90 @@ mod tests {
     use super::*;
 
     use super::ratio as q;
+
+    /// The next double after the finite `f`, toward `+∞` or `−∞`.
+    fn neighbour(f: f64, up: bool) -> f64 {
+        if f == 0.0 {
+            let tiny = f64::from_bits(1);
+            return if up { tiny } else { -tiny };
+        }
+        let bits = f.to_bits();
+        f64::from_bits(if up == (f > 0.0) { bits + 1 } else { bits - 1 })
+    }
+
+    fn exact(f: f64) -> BigRational {
+        crate::scalar::Scalar::to_big_rational(&f).expect("finite")
+    }
+
+    /// The definition of the nearest double, checked exactly: neither
+    /// neighbour of `f` is closer to `q`, and at a tie `f` is even.
+    fn is_nearest(f: f64, q: &BigRational) -> bool {
+        let dist = |g: f64| (exact(g) - q).abs();
+        let d = dist(f);
+        [neighbour(f, true), neighbour(f, false)]
+            .into_iter()
+            .filter(|g| g.is_finite())
+            .all(|g| {
+                let e = dist(g);
+                e > d || (e == d && f.to_bits() & 1 == 0)
+            })
+    }
+
+    /// Random rationals over the whole range (subnormals and near-overflow
+    /// included), ties between two doubles, and every double itself.
+    #[test]
+    fn nearest_f64_is_the_nearest_double() {
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        let two = BigRational::from_integer(BigInt::from(2));
+        let big = |e: u32| BigRational::from_integer(BigInt::from(2).pow(e));
+        for _ in 0..3000 {
+            let n = BigInt::from(next() >> (next() % 64)) - BigInt::from(1u64 << 40);
+            let d = BigInt::from((next() >> (next() % 64)).max(1));
+            let e = (next() % 2200) as i32 - 1100;
+            let q = BigRational::new(n, d) * Pow::pow(&two, e);
+            match nearest_f64(&q) {
+                Some(f) => assert!(is_nearest(f, &q), "{q} gave {f:e}"),
+                None => assert!(q.abs() > big(1023)),
+            }
+        }
+        for f in [
+            5e-324,
+            1e-310,
+            f64::MIN_POSITIVE,
+            0.1,
+            -3.5,
+            1.0 / 3.0,
+            f64::MAX,
+        ] {
+            assert_eq!(nearest_f64(&exact(f)).map(f64::to_bits), Some(f.to_bits()));
+            // The midpoint to the next double up rounds to the even one.
+            let g = neighbour(f, true);
+            if g.is_finite() {
+                let mid = (exact(f) + exact(g)) / &two;
+                let want = if f.to_bits() & 1 == 0 { f } else { g };
+                assert_eq!(nearest_f64(&mid), Some(want), "midpoint above {f:e}");
+            }
+        }
+        // Half the smallest subnormal is a tie with 0 (even): 0; above it,
+        // the subnormal.
+        let tiny = exact(5e-324);
+        assert_eq!(nearest_f64(&(&tiny / &two)), Some(0.0));
+        assert_eq!(nearest_f64(&(&tiny * ratio(3, 4))), Some(5e-324));
+        let above_half = &tiny / &two + ratio(1, 1) / big(1200);
+        assert_eq!(nearest_f64(&above_half), Some(5e-324));
+        // Far below (not a power of two): zero, with the value's sign.
+        let far_below = &tiny * ratio(3, 4) / big(40);
+        let bits = |q: &BigRational| nearest_f64(q).map(f64::to_bits);
+        assert_eq!(bits(&far_below), Some(0.0f64.to_bits()));
+        assert_eq!(bits(&-far_below), Some((-0.0f64).to_bits()));
+        assert_eq!(nearest_f64(&big(1024)), None);
+    }
 
     #[test]
     fn reads_every_documented_form_exactly() {

@@ -3,7 +3,7 @@
 use crate::cluster::Cluster;
 
 /// Positions, velocities, multipliers and contact clusters at time `t` —
-/// exactly the fields of the JSON contract (DESIGN.md §3).
+/// exactly the fields of the JSON contract (docs/guide/json.md).
 #[derive(Debug, Clone, PartialEq)]
 pub struct State<S> {
     /// The time `t ≥ 0`.

@@ -1,4 +1,4 @@
-//! The command-line contract of `sticky` (DESIGN.md §2–§3): the summary of
+//! The command-line contract of `sticky` (docs/guide/scenes.md and json.md): the summary of
 //! the embedded default scene, the shape of `run --json` and
 //! `events --json`, one clean error line per bad input, and no panic on a
 //! closed pipe.

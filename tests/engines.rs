@@ -407,7 +407,9 @@ fn the_ranges_reach_every_width() {
 /// N = 400 (lcm(1..400): 574 bits) but keeps the kernel at N = 8.
 #[test]
 fn hostile_common_denominators() {
-    use sticky::fast::engine::{auto, Bits, Cost};
+    use sticky::solver::choice::cheapest;
+    use sticky::solver::cost::{Bits, Cost};
+    let auto = |d: &InitialData<BigRational>| cheapest(&Cost::of(d));
     let hostile = |n: i64| {
         InitialData::new(
             q(1, 2),

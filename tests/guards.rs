@@ -12,8 +12,8 @@ use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::One;
 
-use sticky::fast::engine::{check_work, work_estimate, MAX_WORK};
 use sticky::rational::{parse_exact, NumberError, MAX_DIGITS};
+use sticky::solver::work::{check_work, work_estimate, MAX_WORK};
 use sticky::InitialData;
 
 const STICKY: &str = env!("CARGO_BIN_EXE_sticky");
@@ -136,7 +136,13 @@ fn huge_common_denominators_are_refused_up_front() {
     // 200 particles, denominators of 2 or 3 words each, but their common
     // denominator lcm(2, …, 201) · 10^40 has 431 bits (7 words), which the
     // integer engines scale to: 200 · 49 = 9800.
-    for args in [vec!["events", s], vec!["run", s, "--at", "1", "--json"]] {
+    // `run` with `--engine kernel` forces the common-denominator engine;
+    // `events` has only the event merge. (With `auto`, `run` falls back to
+    // the blockwise projection on local denominators: below.)
+    for args in [
+        vec!["events", s],
+        vec!["run", s, "--at", "1", "--json", "--engine", "kernel"],
+    ] {
         let o = sticky(&args, &[("STICKY_MAX_WORK", "9799")]);
         let err = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(1), "{err}");
@@ -149,5 +155,31 @@ fn huge_common_denominators_are_refused_up_front() {
         let o = sticky(&args, &[("STICKY_MAX_WORK", "9800")]);
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     }
+    // `auto`: the work check refuses the kernel, the Solver falls back to
+    // the blockwise projection (200 particles over a largest single
+    // denominator of 3 words: 200 · 9 = 1800), says so with `--explain`,
+    // and answers the same bytes as the kernel; below 1800 both are
+    // refused, with the kernel's message.
+    let auto = ["run", s, "--at", "1", "--json", "--explain"];
+    let kernel = sticky(
+        &["run", s, "--at", "1", "--json", "--engine", "kernel"],
+        &[("STICKY_MAX_WORK", "9800")],
+    );
+    let o = sticky(&auto, &[("STICKY_MAX_WORK", "9799")]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(
+        err.starts_with("engine: blockwise (N = 200,")
+            && err.contains("the cost model chose kernel, which the work check refuses"),
+        "{err}"
+    );
+    assert_eq!(o.stdout, kernel.stdout);
+    let o = sticky(&auto, &[("STICKY_MAX_WORK", "1799")]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.contains("common denominator of 431 bits"), "{err}");
+    assert!(sticky(&auto, &[("STICKY_MAX_WORK", "1800")])
+        .status
+        .success());
     std::fs::remove_dir_all(&d).unwrap();
 }

@@ -12,7 +12,15 @@ use std::path::Path;
 
 /// Rank of a top-level module: the model core is 0, then the layers.
 fn rank(module: &str) -> Option<usize> {
-    const LAYERS: [&str; 6] = ["fast", "reference", "limit", "claims", "prove", "report"];
+    const LAYERS: [&str; 7] = [
+        "fast",
+        "solver",
+        "reference",
+        "limit",
+        "claims",
+        "prove",
+        "report",
+    ];
     match LAYERS.iter().position(|l| *l == module) {
         Some(i) => Some(i + 1),
         None if module.chars().all(|c| c.is_ascii_lowercase() || c == '_') => Some(0),

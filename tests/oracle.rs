@@ -2,7 +2,7 @@
 //! `scripts/oracle.py` (Python 3 standard library, written from the model,
 //! with a different algorithm: repeated scans of adjacent cluster pairs
 //! instead of a priority queue, no pool-adjacent-violators), bit for bit on
-//! stdout — the JSON contract of DESIGN.md §3.
+//! stdout — the JSON contract of docs/guide/json.md.
 //!
 //! * every scene in `scenes/`: `events --json`, and `run --json` at t = 0,
 //!   `t_end`, every collision time, midpoints between consecutive collision

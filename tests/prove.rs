@@ -382,7 +382,7 @@ fn only_implied_decisions_leave_the_query() {
 }
 
 /// `sticky prove --json`: one object per claim and N with the fields of
-/// DESIGN.md §3; a witness for the erratum, null for the proved claim.
+/// docs/guide/json.md; a witness for the erratum, null for the proved claim.
 #[test]
 fn cli_json_contract() {
     if !solver() {

@@ -82,6 +82,33 @@ fn table(proofs: &Proofs) -> String {
             ));
         }
     }
+    out.push_str(&missing());
+    out
+}
+
+/// For every Coq row marked *part*: what it proves and what is missing, the
+/// row's note in `proofs/coq/claims.tsv`.
+fn missing() -> String {
+    let mut out = String::from(
+        "\n### What the Coq rows marked *in part* leave out\n\n\
+         Each line is one row of `proofs/coq/claims.tsv`: the claim, the theorem, and its note \
+         (what the theorem states and what it does not).\n\n",
+    );
+    for row in sticky::claims::coq::all()
+        .iter()
+        .filter(|t| t.kind == CoqKind::Part)
+    {
+        let statement = match row.statement {
+            Statement::Printed => "printed",
+            Statement::Corrected => "corrected",
+        };
+        out.push_str(&format!(
+            "- `{}` ({statement}), `{}`: {}\n",
+            row.claim,
+            row.qualified().trim_start_matches("Sticky."),
+            row.note
+        ));
+    }
     out
 }
 

@@ -1,4 +1,4 @@
-//! `[particles] data = "…"`: column files beside the scene (DESIGN.md §2),
+//! `[particles] data = "…"`: column files beside the scene (docs/guide/scenes.md),
 //! read exactly, with the same validation and clear errors.
 
 use std::path::{Path, PathBuf};

@@ -12,12 +12,13 @@ need=()
 command -v coqc >/dev/null || need+=(coq)
 command -v ocamlfind >/dev/null || need+=(ocaml ocaml-findlib)
 ocamlfind query zarith >/dev/null 2>&1 || need+=(libzarith-ocaml-dev)
+[ -d "$(coqc -where 2>/dev/null)/user-contrib/Coquelicot" ] || need+=(libcoq-coquelicot)
 if [ "${#need[@]}" -gt 0 ]; then
   step "installing ${need[*]}"
   sudo_cmd=""
   [ "$(id -u)" = 0 ] || sudo_cmd="sudo"
   $sudo_cmd apt-get update
-  $sudo_cmd apt-get install -y --no-install-recommends coq ocaml ocaml-findlib libzarith-ocaml-dev
+  $sudo_cmd apt-get install -y --no-install-recommends coq ocaml ocaml-findlib libzarith-ocaml-dev libcoq-coquelicot
 fi
 step "$(coqc --version | head -1)"
 

@@ -2,8 +2,9 @@
 examples/check_a_solver.rs.
 
 A ten-line time-stepping solver (explicit Euler step, then the projection
-onto the admissible set K, in floating point) runs the three-cluster scene
-to T = 3 at several step sizes h; sticky.compare measures each answer
+onto the admissible set K, in floating point) runs the scene
+scenes/random-1000.toml (N = 1000) to T = 1 at step sizes h = 1/10 …
+1/1000; sticky.compare measures each answer
 exactly against the exact solution and gives its verdict. The scheme is
 exact in exact arithmetic (the semigroup property eq:semigroup: x(t + h) =
 P_K(x(t) + h u(t))), so what the chart shows is floating-point rounding,

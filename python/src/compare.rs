@@ -5,8 +5,9 @@
 use std::sync::Arc;
 
 use num_rational::BigRational;
-use pyo3::exceptions::{PyAttributeError, PyValueError};
+use pyo3::exceptions::PyAttributeError;
 use pyo3::prelude::*;
+use pyo3::types::{PyList, PyTuple};
 use sticky::cluster::Cluster;
 use sticky::reference::measure::{MaxError, PairValue};
 use sticky::report::compare::decimal::{nearest_f64, Value};
@@ -14,9 +15,9 @@ use sticky::report::compare::{
     compare_solution_with, CompareFailure, CompareOptions, ContactTolerance, FrameReport, Report,
 };
 use sticky::report::solution::Frame;
-use sticky::Scalar;
 
 use crate::convert::{self, Column};
+use crate::errors;
 use crate::interrupt;
 use crate::scene::Scene;
 
@@ -39,26 +40,70 @@ fn optional_column(
         .transpose()
 }
 
-/// The solver's contacts from its clusters `(first, size)`: `contacts[j]`
-/// for the pair `(j, j + 1)` is whether both lie in one cluster.
-fn contacts(clusters: &[(usize, usize)], n: usize) -> PyResult<Vec<bool>> {
+/// A solver's cluster: its first particle and its size.
+#[derive(Debug, Clone, Copy)]
+struct Given {
+    first: usize,
+    size: usize,
+}
+
+/// The solver's clusters: an iterable of `(first, size)` pairs of ints;
+/// errors name `clusters[k]`.
+fn given_clusters(obj: &Bound<'_, PyAny>) -> PyResult<Vec<Given>> {
+    let py = obj.py();
+    let wrong = |what: &str| {
+        let message = format!("{what} must be a (first, size) pair of integers");
+        errors::argument_type(py, what, message)
+    };
+    if obj.is_instance_of::<pyo3::types::PyString>() {
+        return Err(wrong("clusters"));
+    }
+    let items = obj.try_iter().map_err(|_| wrong("clusters"))?;
+    let mut out = Vec::new();
+    for (k, item) in items.enumerate() {
+        let what = convert::entry("clusters", k);
+        let item = item?;
+        let pair: Vec<Bound<'_, PyAny>> = match item.try_iter() {
+            Ok(i) if !item.is_instance_of::<pyo3::types::PyString>() => {
+                i.collect::<PyResult<_>>()?
+            }
+            _ => return Err(wrong(&what)),
+        };
+        let [first, size] = pair.as_slice() else {
+            return Err(wrong(&what));
+        };
+        out.push(Given {
+            first: convert::count(first, &what)?,
+            size: convert::count(size, &what)?,
+        });
+    }
+    Ok(out)
+}
+
+/// The solver's contacts from its clusters: `contacts[j]` for the pair
+/// `(j, j + 1)` is whether both lie in one cluster.
+fn contacts(py: Python<'_>, clusters: &[Given], n: usize) -> PyResult<Vec<bool>> {
     let mut joined = vec![false; n.saturating_sub(1)];
     let mut next = 0usize;
-    for (k, &(first, size)) in clusters.iter().enumerate() {
-        if first != next || size == 0 || first + size > n {
-            return Err(PyValueError::new_err(format!(
-                "clusters[{k}] = ({first}, {size}): clusters must be (first, size) pairs that tile 0 … {} left to right",
+    for (k, &Given { first, size }) in clusters.iter().enumerate() {
+        let end = first.checked_add(size).filter(|&e| e <= n);
+        let Some(end) = end.filter(|_| first == next && size > 0) else {
+            let what = convert::entry("clusters", k);
+            let message = format!(
+                "{what} = ({first}, {size}): clusters must be (first, size) pairs that tile 0 … {} left to right",
                 n.saturating_sub(1)
-            )));
-        }
-        joined[first..first + size - 1].fill(true);
-        next = first + size;
+            );
+            return Err(errors::argument(py, &what, message));
+        };
+        joined[first..end - 1].fill(true);
+        next = end;
     }
     if next != n {
-        return Err(PyValueError::new_err(format!(
+        let message = format!(
             "clusters cover particles 0 … {} of {n}: they must tile them all",
             next as i64 - 1
-        )));
+        );
+        return Err(errors::argument(py, "clusters", message));
     }
     Ok(joined)
 }
@@ -76,19 +121,23 @@ fn contacts(clusters: &[(usize, usize)], n: usize) -> PyResult<Vec<bool>> {
 /// ≤ 2r + contact_tol counts as a contact. `overlap_tol`: the rounding
 /// tolerance, relative to 2r. Indices from 0.
 #[pyfunction]
-#[pyo3(signature = (scene, t, positions, velocities=None, *, multipliers=None, clusters=None, contact_tol=None, overlap_tol=None))]
+#[pyo3(
+    signature = (scene, t, positions, velocities=None, *, multipliers=None, clusters=None, contact_tol=None, overlap_tol=None),
+    text_signature = "(scene, t, positions, velocities=None, *, multipliers=None, clusters=None, contact_tol=0, overlap_tol=0)"
+)]
 #[allow(clippy::too_many_arguments)]
 pub fn compare(
     py: Python<'_>,
-    scene: &Scene,
+    scene: &Bound<'_, Scene>,
     t: &Bound<'_, PyAny>,
     positions: &Bound<'_, PyAny>,
     velocities: Option<&Bound<'_, PyAny>>,
     multipliers: Option<&Bound<'_, PyAny>>,
-    clusters: Option<Vec<(usize, usize)>>,
+    clusters: Option<&Bound<'_, PyAny>>,
     contact_tol: Option<&Bound<'_, PyAny>>,
     overlap_tol: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<CompareReport> {
+    let clusters = clusters.map(given_clusters).transpose()?;
     let t = convert::exact(t, "t")?;
     let positions = convert::column(positions, "positions")?.into_exact("positions")?;
     let mut frame = Frame::new(t, positions);
@@ -105,26 +154,38 @@ pub fn compare(
             None => zero(),
         },
     };
+    let given = scene;
+    let scene = given.get();
     let file = scene.file(py)?;
     let n = file.n();
     if let Some(c) = &clusters {
-        frame.contacts = Some(contacts(c, n)?);
+        frame.contacts = Some(contacts(py, c, n)?);
     }
+    let kept = frame.clone();
     let inner = Arc::clone(&scene.inner);
-    let report = interrupt::run_sized(py, n, move |stop| -> Result<Report, String> {
-        let data = &inner.scene().map_err(|e| e.to_string())?.data;
-        compare_solution_with(data, &[frame], &options, stop).map_err(|e| match e {
+    let report = interrupt::run_sized(py, n, move |stop| -> Result<_, sticky::Error> {
+        let data = &inner.scene()?.data;
+        Ok(compare_solution_with(data, &[frame], &options, stop))
+    })?
+    .map_err(errors::py_error)?
+    .map_err(|e| {
+        let message = match e {
             CompareFailure::Frame { error, .. } => error.to_string(),
             other => other.to_string(),
-        })
-    })?
-    .map_err(PyValueError::new_err)?;
+        };
+        errors::raise(py, "CompareError", message, vec![])
+    })?;
     let frames = report
         .frames
         .iter()
         .map(|f| Py::new(py, FrameFigures(f.clone())))
         .collect::<PyResult<Vec<_>>>()?;
-    Ok(CompareReport { report, frames })
+    Ok(CompareReport {
+        report,
+        frames,
+        scene: given.clone().unbind(),
+        frame: kept,
+    })
 }
 
 /// The comparison of one time: every figure exact (`Fraction`) and as the
@@ -302,9 +363,9 @@ impl FrameFigures {
         let c = &self.0.comparison;
         format!(
             "CompareFrame(t={}, verdict={:?}, position_max={} at {}, overlaps={}, missed_contacts={}, spurious_contacts={})",
-            c.t.render(),
+            convert::shown(&c.t),
             self.0.verdict.name(),
-            c.position_max.value.render(),
+            convert::shown(&c.position_max.value),
             c.position_max.index,
             c.overlaps.len(),
             c.missed_contacts,
@@ -321,6 +382,24 @@ impl FrameFigures {
 pub struct CompareReport {
     report: Report,
     frames: Vec<Py<FrameFigures>>,
+    /// The scene compared with, and the answer compared (for pickling).
+    scene: Py<Scene>,
+    frame: Frame,
+}
+
+/// The clusters `(first, size)` of a contact set (`contacts[j]`: the pair
+/// `(j, j + 1)` touches).
+fn clusters_of(contacts: &[bool]) -> Vec<(usize, usize)> {
+    let mut out = Vec::new();
+    let mut first = 0;
+    for (j, &touch) in contacts.iter().enumerate() {
+        if !touch {
+            out.push((first, j + 1 - first));
+            first = j + 1;
+        }
+    }
+    out.push((first, contacts.len() + 1 - first));
+    out
 }
 
 #[pymethods]
@@ -377,5 +456,34 @@ impl CompareReport {
 
     fn __str__(&self) -> String {
         self.report.text()
+    }
+
+    /// Pickling and deep copies: the comparison made again from the exact
+    /// answer compared (`sticky._values.report_again`).
+    fn __reduce__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyTuple>)> {
+        let f = &self.frame;
+        let list = |v: &Option<Vec<BigRational>>| -> PyResult<Option<Bound<'py, PyList>>> {
+            v.as_deref().map(|v| convert::fractions(py, v)).transpose()
+        };
+        let contact_tol = match &self.report.options.contact_tol {
+            ContactTolerance::Absolute(q) => q.clone(),
+            _ => self.report.contact_tol.clone(),
+        };
+        let args = (
+            self.scene.clone_ref(py),
+            convert::fraction(py, &f.t)?,
+            convert::fractions(py, &f.positions)?,
+            list(&f.velocities)?,
+            list(&f.multipliers)?,
+            f.contacts.as_deref().map(clusters_of),
+            convert::fraction(py, &contact_tol)?,
+            convert::fraction(py, &self.report.options.overlap_tol)?,
+        )
+            .into_pyobject(py)?;
+        let again = py.import("sticky._values")?.getattr("report_again")?;
+        Ok((again, args))
     }
 }

@@ -6,18 +6,22 @@
 //! itself, a string by the scene files' reader
 //! ([`sticky::rational::parse_exact`]: `"1/3"`, `"0.125"`, `"1e-3"`). Every
 //! output rational is a `fractions.Fraction`, every `float` output the
-//! nearest double of the exact value.
+//! nearest double of the exact value. A `bool` is refused everywhere (a
+//! Python `bool` and numpy's `bool_` alike): `True` is not the number 1
+//! here. Every error names its argument (`positions[3]`, `clusters[1]`).
 
 use num_bigint::BigInt;
 use num_rational::BigRational;
-use num_traits::Zero;
-use numpy::PyReadonlyArray1;
-use pyo3::exceptions::{PyTypeError, PyValueError};
+use num_traits::{ToPrimitive, Zero};
+use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
-use pyo3::types::{PyFloat, PyList, PyString};
+use pyo3::sync::PyOnceLock;
+use pyo3::types::{PyBool, PyFloat, PyInt, PyList, PyString, PyType};
 use sticky::columns::f64_exact;
 use sticky::rational::parse_exact;
 use sticky::Scalar;
+
+use crate::errors;
 
 /// A column of input numbers: all doubles (the fast path reads them on
 /// machine words), or exact rationals of any kind.
@@ -59,26 +63,62 @@ pub fn entry(name: &str, i: usize) -> String {
 /// The exact value of the double `d`, or the `ValueError` that names `what`.
 pub fn double(d: f64, what: &str) -> PyResult<BigRational> {
     f64_exact(d).ok_or_else(|| {
-        PyValueError::new_err(format!(
-            "{what} is {d}: every value must be a finite number"
-        ))
+        Python::attach(|py| {
+            let message = format!("{what} is {d}: every value must be a finite number");
+            errors::argument(py, what, message)
+        })
     })
+}
+
+/// Whether `obj` is a Python `bool` or a numpy `bool_`.
+fn is_bool(obj: &Bound<'_, PyAny>) -> bool {
+    obj.is_instance_of::<PyBool>()
+        || obj
+            .get_type()
+            .name()
+            .is_ok_and(|n| n.to_cow().is_ok_and(|n| n == "bool" || n == "bool_"))
+}
+
+/// The `TypeError` (a `sticky.ArgumentTypeError`) for a bool at `what`.
+fn no_bool(py: Python<'_>, what: &str) -> PyErr {
+    errors::argument_type(
+        py,
+        what,
+        format!("{what} is a bool: a number is needed (write 0 or 1)"),
+    )
 }
 
 /// One Python number as an exact rational; errors name `what`.
 pub fn exact(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<BigRational> {
+    let py = obj.py();
+    if is_bool(obj) {
+        return Err(no_bool(py, what));
+    }
     if let Ok(s) = obj.cast::<PyString>() {
         let text = s.to_cow()?;
         return parse_exact(&text)
-            .map_err(|e| PyValueError::new_err(format!("{what}: {text:?} is refused: {e}")));
+            .map_err(|e| errors::argument(py, what, format!("{what}: {text:?} is refused: {e}")));
     }
     if let Ok(f) = obj.cast::<PyFloat>() {
         return double(f.value(), what);
     }
     let ratio = |num: Bound<'_, PyAny>, den: Bound<'_, PyAny>| -> PyResult<BigRational> {
-        let (num, den): (BigInt, BigInt) = (num.extract()?, den.extract()?);
+        let int = |v: Bound<'_, PyAny>| -> PyResult<BigInt> {
+            v.extract().map_err(|_| {
+                errors::argument_type(
+                    py,
+                    what,
+                    format!("{what}: its numerator and denominator must be integers"),
+                )
+            })
+        };
+        let (num, den) = (int(num)?, int(den)?);
         if den.is_zero() {
-            return Err(PyValueError::new_err(format!("{what}: zero denominator")));
+            return Err(errors::argument(
+                py,
+                what,
+                format!("{what}: zero denominator"),
+            ));
         }
         Ok(BigRational::new(num, den))
     };
@@ -87,18 +127,50 @@ pub fn exact(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<BigRational> {
     }
     if obj.hasattr("as_integer_ratio")? {
         // numpy's float32/float16, decimal.Decimal: their own exact ratio.
-        let pair = obj.call_method0("as_integer_ratio").map_err(|_| {
-            PyValueError::new_err(format!(
-                "{what} is {} (not finite): every value must be a finite number",
-                obj.repr().map(|r| r.to_string()).unwrap_or_default()
-            ))
-        })?;
-        return ratio(pair.get_item(0)?, pair.get_item(1)?);
+        let not_finite = || {
+            let shown = obj.repr().map(|r| r.to_string()).unwrap_or_default();
+            let message =
+                format!("{what} is {shown} (not finite): every value must be a finite number");
+            errors::argument(py, what, message)
+        };
+        let pair = obj
+            .call_method0("as_integer_ratio")
+            .map_err(|_| not_finite())?;
+        let (num, den) = (
+            pair.get_item(0).map_err(|_| not_finite())?,
+            pair.get_item(1).map_err(|_| not_finite())?,
+        );
+        return ratio(num, den);
     }
-    Err(PyTypeError::new_err(format!(
-        "{what}: expected a float, an int, a fractions.Fraction or an exact string such as \"1/3\", got {}",
-        obj.get_type().name()?
-    )))
+    Err(errors::argument_type(
+        py,
+        what,
+        format!(
+            "{what}: expected a float, an int, a fractions.Fraction or an exact string such as \"1/3\", got {}",
+            obj.get_type().name()?
+        ),
+    ))
+}
+
+/// A count or an index (an `int` in `0 … 2^64 - 1`, not a bool) at `what`.
+pub fn count(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<usize> {
+    let py = obj.py();
+    if is_bool(obj) {
+        return Err(no_bool(py, what));
+    }
+    if !obj.is_instance_of::<PyInt>() && !obj.hasattr("__index__")? {
+        let kind = obj.get_type().name()?;
+        let message = format!("{what}: an integer is needed, got {kind}");
+        return Err(errors::argument_type(py, what, message));
+    }
+    let value: BigInt = obj
+        .call_method0("__index__")
+        .and_then(|i| i.extract())
+        .map_err(|_| errors::argument_type(py, what, format!("{what}: an integer is needed")))?;
+    value.to_usize().ok_or_else(|| {
+        let message = format!("{what} = {value} is out of range: a count is in 0 … 2^64 - 1");
+        errors::argument(py, what, message)
+    })
 }
 
 /// A column of numbers: a one-dimensional `float64` numpy array, or any
@@ -111,17 +183,18 @@ pub fn column(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Column> {
         };
         return Ok(Column::Doubles(values));
     }
+    let py = obj.py();
     if obj.is_instance_of::<PyString>() {
-        return Err(PyTypeError::new_err(format!(
-            "{name} must be a sequence of numbers, not a string"
-        )));
+        let message = format!("{name} must be a sequence of numbers, not a string");
+        return Err(errors::argument_type(py, name, message));
     }
     let items: Vec<Bound<'_, PyAny>> = obj
         .try_iter()
         .map_err(|_| {
-            PyTypeError::new_err(format!(
-                "{name} must be a sequence of numbers (a list or a numpy array)"
-            ))
+            let message = format!(
+                "{name} must be a sequence of numbers (a list or a one-dimensional numpy array)"
+            );
+            errors::argument_type(py, name, message)
         })?
         .collect::<PyResult<_>>()?;
     if items.iter().all(|x| x.is_instance_of::<PyFloat>()) {
@@ -139,9 +212,29 @@ pub fn column(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Column> {
     Ok(Column::Exact(values))
 }
 
-/// The class `fractions.Fraction`.
-pub fn fraction_class(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
-    py.import("fractions")?.getattr("Fraction")
+/// The class `fractions.Fraction`, imported once.
+pub fn fraction_class(py: Python<'_>) -> PyResult<&Bound<'_, PyType>> {
+    static FRACTION: PyOnceLock<Py<PyType>> = PyOnceLock::new();
+    FRACTION.import(py, "fractions", "Fraction")
+}
+
+/// `text`, an exact number as the library writes it (`"p/q"`), with the
+/// nearest double beside it when it is longer than a few digits:
+/// `5404319552844595/18014398509481984 (≈ 0.3)`.
+pub fn with_decimal(text: &str) -> String {
+    const SHORT: usize = 8;
+    if text.len() <= SHORT || !text.contains('/') {
+        return text.to_string();
+    }
+    match parse_exact(text) {
+        Ok(q) => format!("{text} (≈ {:?})", q.to_f64_lossy()),
+        Err(_) => text.to_string(),
+    }
+}
+
+/// `q` written exactly, with its decimal when it is long ([`with_decimal`]).
+pub fn shown(q: &BigRational) -> String {
+    with_decimal(&q.render())
 }
 
 /// `q` as a `fractions.Fraction`.
@@ -157,6 +250,14 @@ pub fn fractions<'py>(py: Python<'py>, v: &[BigRational]) -> PyResult<Bound<'py,
         .map(|q| class.call1((q.numer().clone(), q.denom().clone())))
         .collect::<PyResult<Vec<_>>>()?;
     PyList::new(py, items)
+}
+
+/// A numpy array of `v` that cannot be written to (`writeable=False`): the
+/// arrays a `State` keeps and hands out again.
+pub fn read_only(py: Python<'_>, v: Vec<f64>) -> PyResult<Bound<'_, PyArray1<f64>>> {
+    let array = PyArray1::from_vec(py, v);
+    array.getattr("flags")?.setattr("writeable", false)?;
+    Ok(array)
 }
 
 /// The nearest doubles of `v` (ties to even).

@@ -3,7 +3,8 @@
 use num_rational::BigRational;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use sticky::{Impulse, Scalar};
+use sticky::solver::Collision;
+use sticky::Scalar;
 
 use crate::convert;
 
@@ -19,13 +20,13 @@ pub struct Event {
 }
 
 impl Event {
-    /// The event of an impulse of the library's event history.
-    pub fn from_impulse(i: &Impulse<BigRational>) -> Event {
+    /// The event of a collision of the library's history.
+    pub fn from_collision(c: Collision) -> Event {
         Event {
-            t: i.t.clone(),
-            first: i.cluster.first,
-            size: i.cluster.size,
-            parts: i.parts.iter().map(|p| p.size).collect(),
+            t: c.t,
+            first: c.first,
+            size: c.size,
+            parts: c.parts,
         }
     }
 }
@@ -65,18 +66,22 @@ impl Event {
     /// The event as `sticky events --json` prints it: {"t": "p/q", "first",
     /// "size", "parts"}.
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let d = PyDict::new(py);
-        d.set_item("t", self.t.render())?;
-        d.set_item("first", self.first)?;
-        d.set_item("size", self.size)?;
-        d.set_item("parts", self.parts.clone())?;
-        Ok(d)
+        let event = sticky::report::json::EventJson {
+            t: sticky::json::Rational::of(&self.t),
+            first: self.first,
+            size: self.size,
+            parts: self.parts.clone(),
+        };
+        py.import("json")?
+            .call_method1("loads", (sticky::json::to_string(&event),))?
+            .cast_into::<PyDict>()
+            .map_err(Into::into)
     }
 
     fn __repr__(&self) -> String {
         format!(
             "Event(t={}, first={}, size={}, parts={:?})",
-            self.t.render(),
+            convert::shown(&self.t),
             self.first,
             self.size,
             self.parts

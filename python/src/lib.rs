@@ -1,20 +1,24 @@
 //! The native part of the `sticky` Python package (`sticky._sticky`):
 //! bindings of the library's public API — no engine or metric code of its
-//! own (DESIGN.md §4).
+//! own (docs/guide/architecture.md).
 //!
 //! * [`scene`] — `Scene`: input, validation, the state at t, events, P_K;
 //! * [`state`] — `State`: nearest doubles at once, exact values on demand;
 //! * [`events`] — `Event`;
 //! * [`isotonic`] — exact isotonic regression;
+//! * [`macro_scene`] — `Scene.from_macro`, through the library's `[macro]` checks;
 //! * [`compare`] — another solver's answer against the exact one;
 //! * [`convert`] — Python numbers to exact rationals and back;
+//! * [`errors`] — the library's errors as `sticky.errors` exceptions;
 //! * [`interrupt`] — long work off the interpreter's thread (GIL, Ctrl-C).
 
 mod compare;
 mod convert;
+mod errors;
 mod events;
 mod interrupt;
 mod isotonic;
+mod macro_scene;
 mod scene;
 mod state;
 
@@ -35,18 +39,17 @@ fn json_loads<'py>(py: Python<'py>, text: &str) -> PyResult<Bound<'py, PyAny>> {
 #[pyo3(signature = (cases=None, max_n=None, scaling_max_n=None, seed=None))]
 fn claims<'py>(
     py: Python<'py>,
-    cases: Option<usize>,
-    max_n: Option<usize>,
-    scaling_max_n: Option<usize>,
-    seed: Option<u64>,
+    cases: Option<&Bound<'py, PyAny>>,
+    max_n: Option<&Bound<'py, PyAny>>,
+    scaling_max_n: Option<&Bound<'py, PyAny>>,
+    seed: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let d = Budget::default();
-    let budget = Budget {
-        cases: cases.unwrap_or(d.cases),
-        max_n: max_n.unwrap_or(d.max_n).max(1),
-        scaling_max_n: scaling_max_n.unwrap_or(d.scaling_max_n).max(8),
-        seed: seed.unwrap_or(d.seed),
-    };
+    let count =
+        |v: Option<&Bound<'py, PyAny>>, name: &str| v.map(|v| convert::count(v, name)).transpose();
+    let (cases, max_n) = (count(cases, "cases")?, count(max_n, "max_n")?);
+    let scaling_max_n = count(scaling_max_n, "scaling_max_n")?;
+    let seed = count(seed, "seed")?.map(|s| s as u64);
+    let budget = Budget::asked(cases, max_n, scaling_max_n, seed);
     // The ledger stops between claims once Ctrl-C is pressed (its partial
     // answer is dropped: the caller already has KeyboardInterrupt).
     let text = interrupt::run(py, move |stop| ledger::json(&ledger::run(budget, stop)))?;
@@ -64,13 +67,14 @@ fn export<'py>(py: Python<'py>, scene: &scene::Scene) -> PyResult<Bound<'py, PyA
         .detach(|| {
             sticky::report::export::export(file).map(|e| sticky::report::export::json(file, &e))
         })
-        .map_err(|e| pyo3::exceptions::PyValueError::new_err(e.to_string()))?;
+        .map_err(|e| errors::raise(py, "UnsupportedError", e.to_string(), vec![]))?;
     json_loads(py, &text)
 }
 
 /// The module `sticky._sticky`.
 #[pymodule]
 fn _sticky(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add_class::<scene::Scene>()?;
     m.add_class::<state::State>()?;
     m.add_class::<events::Event>()?;
@@ -78,6 +82,7 @@ fn _sticky(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<compare::FrameFigures>()?;
     m.add_function(wrap_pyfunction!(compare::compare, m)?)?;
     m.add_function(wrap_pyfunction!(isotonic::isotonic, m)?)?;
+    m.add_function(wrap_pyfunction!(macro_scene::from_macro, m)?)?;
     m.add_function(wrap_pyfunction!(claims, m)?)?;
     m.add_function(wrap_pyfunction!(export, m)?)?;
     Ok(())

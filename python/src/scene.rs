@@ -3,31 +3,22 @@
 //! them: the state at any time (`prop:proj-micro`), the collision events,
 //! the projection onto `K` (`df:KN`).
 //!
-//! Three paths, one answer. Columns of doubles (numpy arrays, lists of
-//! `float`) go the library's dyadic path ([`sticky::fast::dyadic`]: `i128`
-//! columns over dyadic scales, the kernel's PAVA, one rounding per value
-//! with no big number); other data on machine words (small fractions) go
-//! the library's streaming path ([`sticky::fast::stream`]:
-//! `i64` columns, the integer kernel's PAVA, values in lowest terms on
-//! words); anything else — and the streaming path's refusals (a value off
-//! words, a time beyond its bound, invalid data, whose error of record the
-//! general path names) — goes the general path ([`sticky::fast::engine`]'s
-//! cheapest exact engine on the validated `BigRational` data).
+//! Every answer is the library's [`Solver`]'s, which chooses the path as
+//! it does for the command line: the dyadic path for columns of doubles,
+//! the streaming path on machine words, else the cost model's exact engine
+//! on the validated `BigRational` data (the same answer every way).
 
 use std::path::PathBuf;
-use std::sync::{Arc, OnceLock};
+use std::sync::Arc;
 
 use num_rational::BigRational;
 use numpy::PyArray1;
-use pyo3::exceptions::{PyOSError, PyValueError};
+use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyList;
-use sticky::fast::dyadic::Dyadic;
-use sticky::fast::engine;
-use sticky::fast::kernel::{self, IntegerData};
-use sticky::fast::stream::Lean;
 use sticky::progress::Progress;
 use sticky::scene::{Scene as SceneFile, SceneKind};
+use sticky::solver::{Answer as Solved, Options, Solver, WorkCap};
 use sticky::{Error, InitialData};
 
 use crate::convert::{self, Column};
@@ -35,163 +26,60 @@ use crate::events::Event;
 use crate::interrupt;
 use crate::state::{Answer, State};
 
-/// A library error as the Python exception the command line's message goes
-/// with: `OSError` for a file that cannot be read, `ValueError` otherwise.
-pub fn py_error(e: Error) -> PyErr {
-    match e {
-        Error::Io { .. } => PyOSError::new_err(e.to_string()),
-        _ => PyValueError::new_err(e.to_string()),
-    }
-}
+pub use crate::errors::py_error;
 
-/// Where the general path's data come from when they are built lazily.
-enum Source {
-    /// Already built (`Inner::general` is set).
-    Built,
-    /// Doubles of a numpy array, kept until the general path needs them.
-    Doubles {
-        radius: Option<BigRational>,
-        positions: Vec<f64>,
-        velocities: Vec<f64>,
-    },
-    /// A scene file the streaming path read.
-    File(PathBuf),
-}
-
-/// Everything a scene holds, shared with the worker threads.
+/// Everything a scene holds, shared with the worker threads: the library's
+/// [`Solver`], which chooses the engine of every answer.
 pub struct Inner {
-    dyadic: Option<Dyadic>,
-    lean: Option<Lean>,
-    source: Source,
-    general: OnceLock<SceneFile>,
-    scaled: OnceLock<IntegerData>,
+    solver: Solver,
 }
 
 impl Inner {
-    /// A scene from validated data (the general path), and the streaming
-    /// path when its values are on words.
-    fn from_scene(scene: SceneFile) -> Inner {
-        let lean = Lean::from_data(&scene.data);
-        let general = OnceLock::new();
-        let _ = general.set(scene);
+    /// A scene from validated data.
+    pub(crate) fn from_scene(scene: SceneFile) -> Inner {
+        Inner::new(Solver::from_scene(scene))
+    }
+
+    /// A scene answered by `solver` (work that can be interrupted: only
+    /// the hopeless is refused).
+    fn new(solver: Solver) -> Inner {
         Inner {
-            dyadic: None,
-            lean,
-            source: Source::Built,
-            general,
-            scaled: OnceLock::new(),
+            solver: solver.with_options(Options {
+                work: WorkCap::Watched,
+                ..Options::default()
+            }),
         }
     }
 
     /// The validated scene of the general path, built on first use.
     pub fn scene(&self) -> Result<&SceneFile, Error> {
-        if let Some(s) = self.general.get() {
-            return Ok(s);
-        }
-        let built = match &self.source {
-            // `Inner::from_scene` sets `general` with `Source::Built`.
-            Source::Built => {
-                return Err(Error::Unsupported {
-                    message: "a built scene without its data (a bug in sticky: please report it)"
-                        .into(),
-                })
-            }
-            Source::Doubles {
-                radius,
-                positions,
-                velocities,
-            } => {
-                let exact = |v: &[f64]| -> Result<Vec<BigRational>, Error> {
-                    v.iter()
-                        .map(|&d| {
-                            sticky::columns::f64_exact(d).ok_or_else(|| Error::Unsupported {
-                                message: format!("{d} is not a finite number"),
-                            })
-                        })
-                        .collect()
-                };
-                let (x, u) = (exact(positions)?, exact(velocities)?);
-                let data = match radius {
-                    Some(r) => InitialData::new(r.clone(), x, u)?,
-                    None => InitialData::with_paper_radius(x, u)?,
-                };
-                particles(data)
-            }
-            Source::File(path) => sticky::scene::load(path)?,
-        };
-        Ok(self.general.get_or_init(|| built))
-    }
-
-    /// The data scaled to integers once, for the integer kernel.
-    fn scaled(&self) -> Result<&IntegerData, Error> {
-        if let Some(s) = self.scaled.get() {
-            return Ok(s);
-        }
-        let data = &self.scene()?.data;
-        engine::check_work(data)?;
-        Ok(self.scaled.get_or_init(|| IntegerData::new(data)))
+        self.solver.scene()
     }
 
     /// The radius r.
     pub fn radius(&self) -> Result<BigRational, Error> {
-        if let Some(d) = &self.dyadic {
-            return Ok(d.radius().clone());
-        }
-        match &self.lean {
-            Some(l) => Ok(l.radius().clone()),
-            None => Ok(self.scene()?.data.radius().clone()),
-        }
+        self.solver.radius().cloned()
     }
 
     /// N.
     pub fn n(&self) -> Result<usize, Error> {
-        if let Some(d) = &self.dyadic {
-            return Ok(d.n());
-        }
-        match &self.lean {
-            Some(l) => Ok(l.n()),
-            None => Ok(self.scene()?.n()),
-        }
+        self.solver.n()
     }
 
-    /// The exact state at `t`: the dyadic path's or the streaming path's
-    /// blocks when they answer, the blockwise projection otherwise (the same
-    /// state: the library's tests compare them), which polls `stop` and
-    /// ends with [`Error::Interrupted`] on Ctrl-C.
+    /// The exact state at `t`, as the Solver's path left it, polling
+    /// `stop` (Ctrl-C ends it with [`Error::Interrupted`]).
     pub fn answer(&self, t: &BigRational, stop: &dyn Progress) -> Result<Answer, Error> {
-        if let Some(blocks) = self.dyadic.as_ref().and_then(|d| d.blocks_at(t)) {
-            return Answer::from_dyadic(blocks, stop);
+        match self.solver.state_with_progress(t, stop)? {
+            Solved::Dyadic(blocks) => Answer::from_dyadic(blocks, stop),
+            Solved::Words(blocks) => Ok(Answer::from_blocks(&blocks)),
+            solved => Answer::from_state(solved.into_state(), stop),
         }
-        if let Some(blocks) = self.lean.as_ref().and_then(|l| l.blocks_at(t)) {
-            return Ok(Answer::from_blocks(&blocks));
-        }
-        let data = &self.scene()?.data;
-        engine::check_work_watched(data, &engine::Blockwise)?;
-        let state = sticky::blockwise::state_at(data, t, stop)?;
-        Answer::from_state(state, stop)
     }
 
     /// The exact state at `t`, every value a `BigRational` (for the exact
     /// lists a `State` gives on demand).
     pub fn exact(&self, t: &BigRational) -> Result<sticky::State<BigRational>, Error> {
-        if let Some(blocks) = self.dyadic.as_ref().and_then(|d| d.blocks_at(t)) {
-            return Ok(blocks.exact_state());
-        }
-        if let Some(blocks) = self.lean.as_ref().and_then(|l| l.blocks_at(t)) {
-            return Ok(crate::state::exact_state(&blocks));
-        }
-        kernel::state_at(self.scaled()?, t)
-    }
-}
-
-/// A `[particles]` scene with no name around `data`.
-fn particles(data: InitialData<BigRational>) -> SceneFile {
-    SceneFile {
-        name: None,
-        description: None,
-        t_end: None,
-        kind: SceneKind::Particles,
-        data,
+        Ok(self.solver.state(t)?.into_state())
     }
 }
 
@@ -244,28 +132,16 @@ impl Scene {
                 velocities: u.len(),
             }));
         }
-        if let (Column::Doubles(xs), Column::Doubles(us)) = (&x, &u) {
-            let paths = py.detach(|| match Dyadic::from_doubles(radius.clone(), xs, us) {
-                Some(d) => Some((Some(d), None)),
-                None => Lean::from_doubles(radius.clone(), xs, us).map(|l| (None, Some(l))),
-            });
-            if let Some((dyadic, lean)) = paths {
-                let (Column::Doubles(positions), Column::Doubles(velocities)) = (x, u) else {
-                    return Err(PyValueError::new_err("unreachable: columns of doubles"));
-                };
-                return Ok(Scene::wrap(Inner {
-                    dyadic,
-                    lean,
-                    source: Source::Doubles {
-                        radius,
-                        positions,
-                        velocities,
-                    },
-                    general: OnceLock::new(),
-                    scaled: OnceLock::new(),
-                }));
+        let (x, u) = match (x, u) {
+            (Column::Doubles(xs), Column::Doubles(us)) => {
+                let r = radius.clone();
+                match py.detach(|| Solver::from_doubles(r, xs.clone(), us.clone())) {
+                    Some(solver) => return Ok(Scene::wrap(Inner::new(solver))),
+                    None => (Column::Doubles(xs), Column::Doubles(us)),
+                }
             }
-        }
+            other => other,
+        };
         let (x, u) = (x.into_exact("positions")?, u.into_exact("velocities")?);
         let data = py
             .detach(|| match radius {
@@ -274,7 +150,7 @@ impl Scene {
             })
             .map_err(py_error)?;
         Ok(Scene::wrap(
-            py.detach(|| Inner::from_scene(particles(data))),
+            py.detach(|| Inner::from_scene(SceneFile::particles(data))),
         ))
     }
 
@@ -285,18 +161,7 @@ impl Scene {
     /// when it is not a valid scene.
     #[staticmethod]
     fn load(py: Python<'_>, path: PathBuf) -> PyResult<Scene> {
-        let inner = py.detach(|| -> Result<Inner, Error> {
-            if let Some(lean) = Lean::load(&path) {
-                return Ok(Inner {
-                    dyadic: None,
-                    lean: Some(lean),
-                    source: Source::File(path),
-                    general: OnceLock::new(),
-                    scaled: OnceLock::new(),
-                });
-            }
-            Ok(Inner::from_scene(sticky::scene::load(&path)?))
-        });
+        let inner = py.detach(|| Solver::load(&path).map(Inner::new));
         Ok(Scene::wrap(inner.map_err(py_error)?))
     }
 
@@ -346,7 +211,7 @@ impl Scene {
     /// The initial positions x⁰ as a numpy float64 array (nearest doubles).
     #[getter]
     fn positions<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
-        if let Source::Doubles { positions, .. } = &self.inner.source {
+        if let Some((positions, _)) = self.inner.solver.doubles() {
             return Ok(PyArray1::from_slice(py, positions));
         }
         let v = convert::nearest(self.file(py)?.data.positions());
@@ -356,7 +221,7 @@ impl Scene {
     /// The initial velocities u⁰ as a numpy float64 array (nearest doubles).
     #[getter]
     fn velocities<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
-        if let Source::Doubles { velocities, .. } = &self.inner.source {
+        if let Some((_, velocities)) = self.inner.solver.doubles() {
             return Ok(PyArray1::from_slice(py, velocities));
         }
         let v = convert::nearest(self.file(py)?.data.velocities());
@@ -397,15 +262,19 @@ impl Scene {
     /// of the clusters that merged into it (the data of `sticky events`).
     fn events(&self, py: Python<'_>) -> PyResult<Vec<Event>> {
         let inner = Arc::clone(&self.inner);
-        let impulses = interrupt::run(py, move |stop| -> Result<_, Error> {
-            let data = &inner.scene()?.data;
-            engine::check_work_watched(data, &engine::Merge)?;
-            Ok(sticky::fast::merge::trajectory_with_progress(data, stop)?
-                .impulses()
-                .to_vec())
+        let collisions = interrupt::run(py, move |stop| -> Result<_, Error> {
+            Ok(inner.solver.events(stop)?.collisions())
         })?
         .map_err(py_error)?;
-        Ok(impulses.iter().map(Event::from_impulse).collect())
+        Ok(collisions.into_iter().map(Event::from_collision).collect())
+    }
+
+    /// explain() -> str: which engine answers this scene's states and why
+    /// (N, the common denominator, each candidate's estimated cost): the
+    /// line `sticky run --explain` prints.
+    fn explain(&self, py: Python<'_>) -> PyResult<String> {
+        let inner = &self.inner;
+        py.detach(|| inner.solver.explain()).map_err(py_error)
     }
 
     /// project(z, exact=False): the exact projection P_K(z) of an arbitrary
@@ -422,15 +291,15 @@ impl Scene {
         let z = convert::column(z, "z")?.into_exact("z")?;
         let n = self.n(py)?;
         if z.len() != n {
-            return Err(PyValueError::new_err(format!(
+            let message = format!(
                 "z has {} values but the scene has N = {n} particles",
                 z.len()
-            )));
+            );
+            return Err(crate::errors::argument(py, "z", message));
         }
-        let inner = &self.inner;
-        let r = py.detach(|| inner.radius()).map_err(py_error)?;
-        let two_r = &r + &r;
-        let x = interrupt::run_sized(py, n, move |_| sticky::projection::project_k(&z, &two_r))?;
+        let inner = Arc::clone(&self.inner);
+        let x =
+            interrupt::run_sized(py, n, move |_| inner.solver.project(&z))?.map_err(py_error)?;
         crate::isotonic::output(py, &x, exact)
     }
 
@@ -438,10 +307,7 @@ impl Scene {
         let n = self.n(py)?;
         let inner = &self.inner;
         let r = py.detach(|| inner.radius()).map_err(py_error)?;
-        Ok(format!(
-            "Scene(n={n}, radius={})",
-            sticky::rational::render_exact(&r)
-        ))
+        Ok(format!("Scene(n={n}, radius={})", convert::shown(&r)))
     }
 }
 

@@ -8,16 +8,15 @@
 
 use std::sync::{Arc, OnceLock};
 
-use num_bigint::BigInt;
 use num_rational::BigRational;
 use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use sticky::cluster::Cluster;
 use sticky::fast::dyadic::DyadicBlocks;
-use sticky::fast::stream::{Exact, LeanBlocks};
+use sticky::fast::stream::LeanBlocks;
 use sticky::progress::Progress;
-use sticky::{Error, Scalar};
+use sticky::Error;
 
 use crate::convert;
 use crate::scene::{py_error, Inner};
@@ -34,40 +33,6 @@ pub struct Answer {
     clusters: Vec<Cluster>,
     blocks: Option<DyadicBlocks>,
     exact: Option<sticky::State<BigRational>>,
-}
-
-/// Collects a visitor's values.
-fn collect<T>(
-    visit: impl FnOnce(&mut dyn FnMut(&Exact) -> std::io::Result<()>) -> std::io::Result<()>,
-    f: impl Fn(&Exact) -> T,
-) -> Vec<T> {
-    let mut out = Vec::new();
-    // The visitors fail only when their callback does; this one never does.
-    let _ = visit(&mut |e| {
-        out.push(f(e));
-        Ok(())
-    });
-    out
-}
-
-/// An exact value of the streaming path as a `BigRational` (already in
-/// lowest terms).
-fn big(e: &Exact) -> BigRational {
-    match e {
-        Exact::Small(n, d) => BigRational::new_raw(BigInt::from(*n), BigInt::from(*d)),
-        Exact::Big(q) => q.clone(),
-    }
-}
-
-/// The whole exact state from the streaming path's blocks.
-pub fn exact_state(b: &LeanBlocks<'_>) -> sticky::State<BigRational> {
-    sticky::State {
-        t: b.t().clone(),
-        positions: collect(|f| b.positions(f), big),
-        velocities: collect(|f| b.velocities(f), big),
-        multipliers: collect(|f| b.multipliers(f), big),
-        clusters: b.clusters(),
-    }
 }
 
 impl Answer {
@@ -143,7 +108,8 @@ const ROUNDING_CHUNK: usize = 4096;
 /// (i, i+1), indices from 0) and contact clusters. `positions`,
 /// `velocities`, `multipliers` are numpy float64 arrays of the nearest
 /// doubles (the velocities and multipliers computed on first access);
-/// `exact_positions()` and its siblings give the exact values.
+/// `exact_positions()` and its siblings give the exact values. The arrays
+/// are read-only (`writeable=False`): no call changes a state.
 #[pyclass(module = "sticky", frozen)]
 pub struct State {
     scene: Arc<Inner>,
@@ -173,19 +139,19 @@ impl State {
         if let Some(s) = a.exact {
             let _ = exact.set(s);
         }
-        let array = |v: Option<Vec<f64>>| {
+        let array = |v: Option<Vec<f64>>| -> PyResult<_> {
             let cell = OnceLock::new();
             if let Some(v) = v {
-                let _ = cell.set(PyArray1::from_vec(py, v).unbind());
+                let _ = cell.set(convert::read_only(py, v)?.unbind());
             }
-            cell
+            Ok(cell)
         };
         Ok(State {
             scene,
             t: a.t,
-            positions: PyArray1::from_vec(py, a.positions).unbind(),
-            velocities: array(a.velocities),
-            multipliers: array(a.multipliers),
+            positions: convert::read_only(py, a.positions)?.unbind(),
+            velocities: array(a.velocities)?,
+            multipliers: array(a.multipliers)?,
             clusters: a.clusters,
             blocks: a.blocks,
             exact,
@@ -221,7 +187,7 @@ impl State {
                 py.detach(|| convert::nearest(v))
             }
         };
-        let array = PyArray1::from_vec(py, values).unbind();
+        let array = convert::read_only(py, values)?.unbind();
         Ok(cell.get_or_init(|| array).bind(py).clone())
     }
 
@@ -243,6 +209,14 @@ impl State {
     #[getter]
     fn t<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         convert::fraction(py, &self.t)
+    }
+
+    /// The scene this is a state of.
+    #[getter]
+    fn scene(&self) -> crate::scene::Scene {
+        crate::scene::Scene {
+            inner: Arc::clone(&self.scene),
+        }
     }
 
     /// The number of particles N.
@@ -299,18 +273,14 @@ impl State {
     /// indices from 0).
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let s = self.exact(py)?;
-        let text = |v: &[BigRational]| v.iter().map(Scalar::render).collect::<Vec<_>>();
         let radius = self.scene.radius().map_err(py_error)?;
-        let d = PyDict::new(py);
-        d.set_item("n", s.positions.len())?;
-        d.set_item("radius", radius.render())?;
-        d.set_item("t", s.t.render())?;
-        d.set_item("positions", text(&s.positions))?;
-        d.set_item("velocities", text(&s.velocities))?;
-        d.set_item("multipliers", text(&s.multipliers))?;
-        let clusters: Vec<[usize; 2]> = s.clusters.iter().map(|c| [c.first, c.size]).collect();
-        d.set_item("clusters", clusters)?;
-        Ok(d)
+        // The object `sticky run --json` prints, serialised once by the
+        // library and parsed here.
+        let text = sticky::report::json::state(s, &radius);
+        py.import("json")?
+            .call_method1("loads", (text,))?
+            .cast_into::<PyDict>()
+            .map_err(Into::into)
     }
 
     fn __repr__(&self, py: Python<'_>) -> String {
@@ -323,7 +293,7 @@ impl State {
         let more = if self.clusters.len() > 8 { ", ..." } else { "" };
         format!(
             "State(t={}, n={}, clusters=[{}{more}])",
-            self.t.render(),
+            convert::shown(&self.t),
             self.n(py),
             shown.join(", ")
         )

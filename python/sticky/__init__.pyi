@@ -2,20 +2,83 @@
 
 from fractions import Fraction
 from os import PathLike
-from typing import Any, Iterable, List, Mapping, Optional, Sequence, Tuple, Union
+from typing import Any, Iterable, List, Literal, Mapping, Optional, Sequence, Tuple, Union, final
+
 
 import numpy as np
 import numpy.typing as npt
 
+from . import errors as errors
+from .errors import (
+    ArgumentError as ArgumentError,
+    ArgumentTypeError as ArgumentTypeError,
+    CompareError as CompareError,
+    InvalidDataError as InvalidDataError,
+    LengthMismatchError as LengthMismatchError,
+    MacroError as MacroError,
+    NegativeTimeError as NegativeTimeError,
+    NotSortedError as NotSortedError,
+    OverlapError as OverlapError,
+    SceneFormatError as SceneFormatError,
+    SceneReadError as SceneReadError,
+    StickyError as StickyError,
+    UnsupportedError as UnsupportedError,
+    VelocityConeError as VelocityConeError,
+    WorkLimitError as WorkLimitError,
+)
+
+__version__: str
+
+__all__ = [
+    "ArgumentError",
+    "ArgumentTypeError",
+    "CompareError",
+    "InvalidDataError",
+    "LengthMismatchError",
+    "MacroError",
+    "NegativeTimeError",
+    "NotSortedError",
+    "OverlapError",
+    "SceneFormatError",
+    "SceneReadError",
+    "StickyError",
+    "UnsupportedError",
+    "VelocityConeError",
+    "WorkLimitError",
+    "__version__",
+    "CompareFrame",
+    "CompareReport",
+    "Event",
+    "Scene",
+    "SceneKindName",
+    "State",
+    "Verdict",
+    "claims",
+    "compare",
+    "export",
+    "from_macro",
+    "isotonic",
+]
+
+# The verdict of a comparison, best first.
+Verdict = Literal["exact", "rounding", "inexact", "invalid"]
+# Where a scene's initial data came from.
+SceneKindName = Literal["particles", "macro"]
+
 # A number read exactly: a float (its binary value), an int, a Fraction, or
 # an exact string such as "1/3", "0.125", "1e-3".
-Number = Union[float, int, Fraction, str, np.floating, np.integer]
-Numbers = Union[npt.ArrayLike, Sequence[Number], Iterable[Number]]
-FloatArray = npt.NDArray[np.float64]
+# Bools are refused.
+_Number = Union[float, int, Fraction, str, np.floating, np.integer]
+_Numbers = Union[npt.ArrayLike, Sequence[_Number], Iterable[_Number]]
+_FloatArray = npt.NDArray[np.float64]
 
+@final
 class State:
-    """The state at one time t (indices from 0)."""
+    """The state at one time t (indices from 0); its arrays are read-only."""
 
+    @property
+    def scene(self) -> Scene:
+        """The scene this is a state of."""
     @property
     def t(self) -> Fraction:
         """The time, exact."""
@@ -23,13 +86,13 @@ class State:
     def n(self) -> int:
         """The number of particles N."""
     @property
-    def positions(self) -> FloatArray:
+    def positions(self) -> _FloatArray:
         """x(t), the nearest double of each exact value."""
     @property
-    def velocities(self) -> FloatArray:
+    def velocities(self) -> _FloatArray:
         """u(t) (right derivative), nearest doubles."""
     @property
-    def multipliers(self) -> FloatArray:
+    def multipliers(self) -> _FloatArray:
         """λ(t), N - 1 values (entry i: the pair (i, i+1)), nearest doubles."""
     @property
     def clusters(self) -> List[Tuple[int, int]]:
@@ -42,7 +105,9 @@ class State:
         """λ(t), exact."""
     def to_dict(self) -> dict[str, Any]:
         """The state as `sticky run --json` prints it (exact strings)."""
+    def _repr_html_(self) -> str: ...
 
+@final
 class Event:
     """A cluster formed by a collision."""
 
@@ -64,11 +129,14 @@ class Event:
     def to_dict(self) -> dict[str, Any]:
         """The event as `sticky events --json` prints it."""
 
+@final
 class Scene:
     """N particles of radius r on a line, validated; exact answers on demand."""
 
-    def __init__(self, positions: Numbers, velocities: Numbers, radius: Optional[Number] = None) -> None:
-        """Raises ValueError (overlap, velocity cone, NaN, length mismatch)."""
+    def __new__(cls, positions: _Numbers, velocities: _Numbers, radius: Optional[_Number] = None) -> Scene:
+        """Raises OverlapError, NotSortedError, VelocityConeError, ArgumentError
+        (NaN, infinity), LengthMismatchError (all ValueError), ArgumentTypeError
+        (a bool, a string: TypeError)."""
     @staticmethod
     def load(path: Union[str, PathLike[str]]) -> Scene:
         """A TOML scene file ([particles] inline, CSV or NPY columns, or [macro])."""
@@ -81,12 +149,18 @@ class Scene:
         blocks: Sequence[Union[Tuple[Any, Any, Any, Any], Mapping[str, Any]]],
         *,
         name: Optional[str] = None,
-        t_end: Any = None,
+        t_end: Optional[_Number] = None,
     ) -> Scene:
         """A [macro] scene: blocks (from, to, density, velocity) of a piecewise
         constant density, velocity a number or a pair (a, b) (affine), sampled
         with N = particles at the quantiles (thm:main); the same validation as
         a TOML [macro] section."""
+    def __eq__(self, other: object) -> bool: ...
+    def __hash__(self) -> int: ...
+    def _repr_html_(self) -> str: ...
+    def plot(self, t_end: _Number, ax: Any = None) -> Any:
+        """The worldlines x_i(t), 0 ≤ t ≤ t_end, coloured by cluster at t_end:
+        a matplotlib Figure (matplotlib is an optional extra)."""
     @property
     def n(self) -> int:
         """The number of particles N."""
@@ -98,28 +172,40 @@ class Scene:
     def name(self) -> Optional[str]:
         """The scene's name field."""
     @property
-    def kind(self) -> str:
+    def kind(self) -> SceneKindName:
         """"particles" or "macro"."""
     @property
-    def positions(self) -> FloatArray:
+    def positions(self) -> _FloatArray:
         """x⁰, nearest doubles."""
     @property
-    def velocities(self) -> FloatArray:
+    def velocities(self) -> _FloatArray:
         """u⁰, nearest doubles."""
     def exact_positions(self) -> List[Fraction]:
         """x⁰, exact."""
     def exact_velocities(self) -> List[Fraction]:
         """u⁰, exact."""
-    def state(self, t: Number) -> State:
+    def state(self, t: _Number) -> State:
         """The exact state at t ≥ 0."""
-    def states(self, ts: Numbers) -> List[State]:
+    def states(self, ts: _Numbers) -> List[State]:
         """The exact state at every t of ts."""
+    def explain(self) -> str:
+        """The engine the library chooses for this scene and why: the line `sticky run --explain` prints."""
+        ...
     def events(self) -> List[Event]:
         """Every cluster formed by a collision, by time then first particle."""
-    def project(self, z: Numbers, exact: bool = False) -> Union[FloatArray, List[Fraction]]:
+    def project(self, z: _Numbers, exact: bool = False) -> Union[_FloatArray, List[Fraction]]:
         """P_K(z), the exact projection onto K = {x : x[i+1] - x[i] ≥ 2r}."""
 
-def isotonic(z: Numbers, exact: bool = False) -> Union[FloatArray, List[Fraction]]:
+def from_macro(
+    particles: int,
+    blocks: Sequence[Union[Tuple[Any, Any, Any, Any], Mapping[str, Any]]],
+    *,
+    name: Optional[str] = None,
+    t_end: Optional[_Number] = None,
+) -> Scene:
+    """Scene.from_macro."""
+
+def isotonic(z: _Numbers, exact: bool = False) -> Union[_FloatArray, List[Fraction]]:
     """Exact isotonic regression (non-decreasing, equal weights)."""
 
 def claims(
@@ -133,15 +219,16 @@ def claims(
 def export(scene: Scene) -> dict[str, Any]:
     """The scene's data rounded to doubles, as `sticky export --format json`."""
 
-MaxError = Tuple[Fraction, Optional[float], int]
+_MaxError = Tuple[Fraction, Optional[float], int]
 
+@final
 class CompareFrame:
     """One time of a comparison: every figure exact and as a float (indices from 0)."""
 
     @property
     def t(self) -> Fraction: ...
     @property
-    def verdict(self) -> str:
+    def verdict(self) -> Verdict:
         """"exact", "rounding", "inexact" or "invalid"."""
     @property
     def exact(self) -> bool: ...
@@ -156,13 +243,13 @@ class CompareFrame:
     @property
     def position_l2_float(self) -> Optional[float]: ...
     @property
-    def velocity_max(self) -> Optional[MaxError]: ...
+    def velocity_max(self) -> Optional[_MaxError]: ...
     @property
     def velocity_l2_squared(self) -> Optional[Fraction]: ...
     @property
     def velocity_l2_float(self) -> Optional[float]: ...
     @property
-    def multiplier_max(self) -> Optional[MaxError]: ...
+    def multiplier_max(self) -> Optional[_MaxError]: ...
     @property
     def overlaps(self) -> List[Tuple[int, Fraction, Optional[float]]]:
         """[(pair j, depth 2r - gap, depth as float)]."""
@@ -181,11 +268,12 @@ class CompareFrame:
     @property
     def oleinik(self) -> Optional[List[int]]: ...
 
+@final
 class CompareReport:
     """The verdict and the figures; with one time, the frame's figures are attributes too."""
 
     @property
-    def verdict(self) -> str: ...
+    def verdict(self) -> Verdict: ...
     @property
     def frames(self) -> List[CompareFrame]: ...
     def text(self) -> str:
@@ -195,16 +283,17 @@ class CompareReport:
     def to_dict(self) -> dict[str, Any]:
         """The JSON of `sticky compare --json`."""
     def __getattr__(self, name: str) -> Any: ...
+    def _repr_html_(self) -> str: ...
 
 def compare(
     scene: Scene,
-    t: Number,
-    positions: Numbers,
-    velocities: Optional[Numbers] = None,
+    t: _Number,
+    positions: _Numbers,
+    velocities: Optional[_Numbers] = None,
     *,
-    multipliers: Optional[Numbers] = None,
+    multipliers: Optional[_Numbers] = None,
     clusters: Optional[Sequence[Tuple[int, int]]] = None,
-    contact_tol: Optional[Number] = None,
-    overlap_tol: Optional[Number] = None,
+    contact_tol: Optional[_Number] = 0,
+    overlap_tol: Optional[_Number] = 0,
 ) -> CompareReport:
     """Another solver's answer at t against the exact one, as `sticky compare` measures it."""

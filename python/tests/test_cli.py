@@ -41,3 +41,26 @@ def test_events_json_on_random_scenes(sticky_bin, tmp_path):
         path.write_text(scene_toml(x, u, r))
         (cli,) = run_cli(sticky_bin, "events", str(path), "--json")
         assert [e.to_dict() for e in sticky.Scene(x, u, r).events()] == cli["events"]
+
+
+def test_explain_is_the_cli_explain(sticky_bin, tmp_path):
+    """`Scene.explain()` is the line `sticky run --explain` prints on stderr:
+    the same Solver chooses the engine for both."""
+    rng = random.Random(37)
+    # A hostile scene too (velocities (-1)^i/(i+1): the cost model leaves
+    # the kernel for the blockwise projection).
+    n = 300
+    hostile = ([3 * i for i in range(n)], [F((-1) ** i, i + 1) for i in range(n)], F(1, 2))
+    scenes = [random_scene(rng) for _ in range(8)] + [hostile]
+    for k, (x, u, r) in enumerate(scenes):
+        path = tmp_path / f"x{k}.toml"
+        path.write_text(scene_toml(x, u, r))
+        done = subprocess.run(
+            [sticky_bin, "run", str(path), "--at", "1", "--explain"],
+            check=True, capture_output=True, text=True,
+        )
+        line = done.stderr.strip()
+        assert line.startswith("engine: ") and line.endswith("(chosen by the cost model)"), line
+        assert sticky.Scene.load(path).explain() == line
+        assert sticky.Scene(x, u, r).explain() == line
+    assert "engine: blockwise" in line

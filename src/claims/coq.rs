@@ -14,6 +14,12 @@ const TABLE: &str = include_str!("../../proofs/coq/claims.tsv");
 
 /// Which statement of a claim a theorem is about.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(
+    feature = "json",
+    derive(serde::Serialize),
+    serde(rename_all = "lowercase")
+)]
+#[cfg_attr(all(test, feature = "json"), derive(schemars::JsonSchema))]
 pub enum Statement {
     /// The statement as printed in the paper.
     Printed,
@@ -23,6 +29,12 @@ pub enum Statement {
 
 /// What a theorem does for the statement.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(
+    feature = "json",
+    derive(serde::Serialize),
+    serde(rename_all = "lowercase")
+)]
+#[cfg_attr(all(test, feature = "json"), derive(schemars::JsonSchema))]
 pub enum CoqKind {
     /// With the claim's other `Proves` rows, it is the statement, for every N
     /// over Q.
@@ -152,8 +164,47 @@ pub fn coq_theorems(claim_id: &str) -> &'static [CoqTheorem] {
     }
 }
 
+/// One Coq theorem about a claim, as `sticky claims --json` lists it in
+/// the claim's `"coq"` array.
+#[cfg(feature = "json")]
+#[derive(Debug, Clone, PartialEq, Eq, serde::Serialize)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
+pub struct CoqRow {
+    /// The `.v` file, from the repository's root.
+    pub file: String,
+    /// The theorem's fully qualified name (`Sticky.Module.name`).
+    pub theorem: String,
+    /// `proves` (with the claim's other `proves` rows, the statement for
+    /// every N over Q), `part` (part of it, the note says which) or
+    /// `refutes` (the negation of the statement, machine-checked).
+    pub kind: CoqKind,
+    /// Whether it is about the `printed` statement or the ledger's
+    /// `corrected` one.
+    pub statement: Statement,
+    /// Hypotheses and scope, in words.
+    pub note: String,
+}
+
+/// The Coq rows of `claim_id`, in table order.
+#[cfg(feature = "json")]
+pub fn rows(claim_id: &str) -> Vec<CoqRow> {
+    coq_theorems(claim_id)
+        .iter()
+        .map(|t| CoqRow {
+            file: format!("proofs/coq/theories/{}", t.file),
+            theorem: t.qualified(),
+            kind: t.kind,
+            statement: t.statement,
+            note: t.note.to_string(),
+        })
+        .collect()
+}
+
 /// The `"coq"` field of `sticky claims --json`:
-/// `"coq": [{"file", "theorem", "kind", "statement", "note"}, …]`.
+/// `"coq": [{"file", "theorem", "kind", "statement", "note"}, …]` — the
+/// claims ledger's writer splices it in until the ledger is a serde type
+/// too (then it holds a `Vec<CoqRow>` from `rows` and this goes); a test
+/// ties it to the serialised `CoqRow`s, byte for byte.
 pub fn json_field(claim_id: &str) -> String {
     let s = crate::text::string;
     let items: Vec<String> = coq_theorems(claim_id)
@@ -298,6 +349,18 @@ mod tests {
         assert!(parse("a\tprinted\tX\tt\tproves\tn\n").is_err());
         let split = "a\tprinted\tX.v\tt\tproves\tn\nb\tprinted\tX.v\tt\tproves\tn\na\tprinted\tX.v\tu\tproves\tn\n";
         assert_eq!(parse(split).map_err(|e| e.line), Err(3));
+    }
+
+    #[cfg(feature = "json")]
+    #[test]
+    fn the_ledger_field_is_the_serialised_rows() {
+        let mut claims: Vec<&str> = all().iter().map(|r| r.claim).collect();
+        claims.dedup();
+        claims.push("no-such-claim");
+        for id in claims {
+            let typed = crate::json::to_string(&rows(id));
+            assert_eq!(json_field(id), ["\"coq\": ", &typed].concat(), "{id}");
+        }
     }
 
     #[test]

@@ -36,6 +36,27 @@ pub struct Budget {
     pub seed: u64,
 }
 
+impl Budget {
+    /// The budget a caller asks for (the command line's flags, Python's
+    /// arguments): each field its [default](Budget::default) when not
+    /// given, the sizes clamped to what the checks need (a random case
+    /// has at least 1 particle, the checks across N go up to at least 8).
+    pub fn asked(
+        cases: Option<usize>,
+        max_n: Option<usize>,
+        scaling_max_n: Option<usize>,
+        seed: Option<u64>,
+    ) -> Budget {
+        let d = Budget::default();
+        Budget {
+            cases: cases.unwrap_or(d.cases),
+            max_n: max_n.unwrap_or(d.max_n).max(1),
+            scaling_max_n: scaling_max_n.unwrap_or(d.scaling_max_n).max(8),
+            seed: seed.unwrap_or(d.seed),
+        }
+    }
+}
+
 impl Default for Budget {
     fn default() -> Self {
         Budget {
@@ -202,7 +223,7 @@ fn unreachable_shrink() -> ! {
     panic!("shrink called on a passing input")
 }
 
-fn shipped_cases() -> Vec<(&'static str, Case<BigRational>)> {
+pub(crate) fn shipped_cases() -> Vec<(&'static str, Case<BigRational>)> {
     scene::SHIPPED
         .iter()
         .filter_map(|(name, text)| {
@@ -214,6 +235,39 @@ fn shipped_cases() -> Vec<(&'static str, Case<BigRational>)> {
             ))
         })
         .collect()
+}
+
+/// The outcome of a random case that fails `check`: shrunk to a small
+/// witness scene; `cases` counts the cases run, this one included.
+fn random_counterexample(
+    cases: usize,
+    bytes: Vec<u8>,
+    limits: Limits,
+    check: super::CaseCheck<BigRational>,
+) -> Outcome {
+    let (b, l, v) = shrink(bytes, limits, check);
+    let data = initial_data(&b, l);
+    Outcome {
+        status: Status::Counterexample,
+        cases,
+        witness: Some(format!(
+            "{}\nwitness scene (N = {}):\n{}",
+            v.witness,
+            data.n(),
+            particles_toml(&data, Some("witness"))
+        )),
+        note: None,
+    }
+}
+
+/// The outcome of a shipped scene that fails: the violation and the file.
+fn shipped_counterexample(cases: usize, name: &str, v: Violation) -> Outcome {
+    Outcome {
+        status: Status::Counterexample,
+        cases,
+        witness: Some(format!("{}\nwitness: scenes/{name}.toml", v.witness)),
+        note: None,
+    }
 }
 
 /// Runs one case-checker over the random cases then the shipped scenes.
@@ -233,19 +287,7 @@ fn run_case_check(
         }
         cases += 1;
         if check(&case).is_err() {
-            let (b, l, v) = shrink(bytes, limits, check);
-            let data = initial_data(&b, l);
-            return Outcome {
-                status: Status::Counterexample,
-                cases,
-                witness: Some(format!(
-                    "{}\nwitness scene (N = {}):\n{}",
-                    v.witness,
-                    data.n(),
-                    particles_toml(&data, Some("witness"))
-                )),
-                note: None,
-            };
+            return random_counterexample(cases, bytes, limits, check);
         }
     }
     for (name, case) in shipped {
@@ -254,12 +296,7 @@ fn run_case_check(
         }
         cases += 1;
         if let Err(v) = check(case) {
-            return Outcome {
-                status: Status::Counterexample,
-                cases,
-                witness: Some(format!("{}\nwitness: scenes/{name}.toml", v.witness)),
-                note: None,
-            };
+            return shipped_counterexample(cases, name, v);
         }
     }
     Outcome {
@@ -270,7 +307,7 @@ fn run_case_check(
     }
 }
 
-fn run_kind(
+pub(crate) fn run_kind(
     kind: &Kind<BigRational>,
     applies: fn(&Case<BigRational>) -> bool,
     budget: Budget,
@@ -279,7 +316,7 @@ fn run_kind(
     match kind {
         Kind::Case(check) => (
             run_case_check(*check, applies, budget, shipped),
-            CASE_ENGINES.to_vec(),
+            engines(kind),
         ),
         Kind::Scaling(check) => {
             let sb = scaling::Budget::up_to(budget.scaling_max_n);
@@ -304,7 +341,7 @@ fn run_kind(
                     note: None,
                 },
             };
-            (outcome, vec!["ledger (across N)"])
+            (outcome, engines(kind))
         }
         Kind::Formula(check) => {
             let outcome = match check() {
@@ -321,7 +358,7 @@ fn run_kind(
                     note: None,
                 },
             };
-            (outcome, vec!["ledger (exact formula)", "cargo test"])
+            (outcome, engines(kind))
         }
         Kind::NotCheckable(reason) => (
             Outcome {
@@ -330,9 +367,67 @@ fn run_kind(
                 witness: None,
                 note: None,
             },
-            vec![],
+            engines(kind),
         ),
     }
+}
+
+/// The engines that check a statement of this kind.
+pub(crate) fn engines(kind: &Kind<BigRational>) -> Vec<&'static str> {
+    match kind {
+        Kind::Case(_) => CASE_ENGINES.to_vec(),
+        Kind::Scaling(_) => vec!["ledger (across N)"],
+        Kind::Formula(_) => vec!["ledger (exact formula)", "cargo test"],
+        Kind::NotCheckable(_) => vec![],
+    }
+}
+
+/// A block of a case-checker's sequence (as [`run_case_check`] runs it:
+/// the random cases `0 … cases − 1`, then the shipped scenes): how many of
+/// the cases in `range` applied up to the first violation (included), and
+/// that violation's outcome, whose `cases` is that count. A campaign's
+/// shard runs blocks; `claims::campaign` adds the counts up.
+#[cfg_attr(not(feature = "json"), allow(dead_code))]
+pub(crate) fn run_case_range(
+    check: super::CaseCheck<BigRational>,
+    applies: fn(&Case<BigRational>) -> bool,
+    budget: Budget,
+    shipped: &[(&'static str, Case<BigRational>)],
+    range: std::ops::Range<usize>,
+) -> (usize, Option<Outcome>) {
+    let mut rng = SplitMix64::new(budget.seed);
+    let mut cases = 0;
+    for k in 0..range.end {
+        if k < budget.cases && k < range.start {
+            // The generator's draws of case k, skipped: its size, then its
+            // bytes (as `random_bytes` draws them).
+            let n = 1 + (rng.next_u64() % budget.max_n.max(1) as u64) as usize;
+            rng.skip(6 * n + 8);
+        } else if k < budget.cases {
+            let (bytes, limits) = random_bytes(&mut rng, budget.max_n);
+            let case = case_of(&bytes, limits);
+            if !applies(&case) {
+                continue;
+            }
+            cases += 1;
+            if check(&case).is_err() {
+                let outcome = random_counterexample(cases, bytes, limits, check);
+                return (cases, Some(outcome));
+            }
+        } else if k >= range.start {
+            let Some((name, case)) = shipped.get(k - budget.cases) else {
+                break;
+            };
+            if !applies(case) {
+                continue;
+            }
+            cases += 1;
+            if let Err(v) = check(case) {
+                return (cases, Some(shipped_counterexample(cases, name, v)));
+            }
+        }
+    }
+    (cases, None)
 }
 
 /// Runs the whole registry, telling `progress` of each claim as it starts

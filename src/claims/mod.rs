@@ -24,6 +24,8 @@ use crate::scalar::Scalar;
 use crate::state::State;
 use crate::trajectory::Trajectory;
 
+#[cfg(feature = "json")]
+pub mod campaign;
 pub mod continuum;
 pub mod coq;
 pub mod density;

@@ -6,8 +6,8 @@
 //!
 //! [`scale_words`] does it on machine words (a running lcm with a memo of
 //! `lcm / d`, divisibility tests and exact divisions without a division
-//! instruction): ~45 ns per particle at N = 10⁶, against ~1.3 µs through
-//! `BigInt`. [`scale_big`] is the `BigInt` path, for data whose scaled
+//! instruction), many times faster than through `BigInt`
+//! (`docs/journal.md`). [`scale_big`] is the `BigInt` path, for data whose scaled
 //! values do not fit `i128`.
 
 use num_bigint::{BigInt, BigUint};

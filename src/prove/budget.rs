@@ -58,9 +58,9 @@ struct Active {
 }
 
 /// How many [`tick`]s between two reads of the clock. A tick can be slow
-/// (an operation on coefficients of thousands of digits takes milliseconds):
-/// with one read in 1024, `prop:eulerian-formulation#mass` at N = 3 ended
-/// 3.3 s past its 600 s budget; a read costs tens of nanoseconds.
+/// (an operation on coefficients of thousands of digits), so the clock is
+/// read often: a sparser reading let a claim overrun its budget by
+/// seconds (`docs/journal.md`), while a read is cheap beside any tick.
 const TICKS_PER_CLOCK_READ: u32 = 16;
 
 thread_local! {

@@ -31,8 +31,12 @@
 //! [`Trajectory::at`]: crate::trajectory::Trajectory::at
 
 pub mod budget;
+#[cfg(feature = "json")]
+pub mod campaign;
 pub mod eliminate;
 pub mod explore;
+#[cfg(feature = "json")]
+pub mod json;
 pub mod lift;
 pub mod poly;
 pub mod record;
@@ -93,6 +97,12 @@ pub trait Program {
 
 /// The status of a claim at one N.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(
+    feature = "json",
+    derive(serde::Serialize),
+    serde(rename_all = "lowercase")
+)]
+#[cfg_attr(all(test, feature = "json"), derive(schemars::JsonSchema))]
 pub enum Status {
     /// Holds for every real input satisfying the hypotheses.
     Proved,
@@ -474,24 +484,4 @@ pub fn prove_target_observed(
         });
     }
     result
-}
-
-/// One JSON object (DESIGN.md §3): `{"id", "n", "status", "paths",
-/// "queries", "seconds", "hypotheses", "witness"}`, plus `"erratum"` (the
-/// ledger reports the printed claim false) and `"note"` (why `unknown`, or
-/// the exact checker's message on the witness).
-pub fn json(r: &ProofResult, erratum: bool) -> String {
-    use crate::text::string;
-    format!(
-        "{{\"id\": {}, \"n\": {}, \"status\": \"{}\", \"paths\": {}, \"queries\": {}, \"seconds\": {:.3}, \"hypotheses\": {}, \"witness\": {}, \"erratum\": {erratum}, \"note\": {}}}",
-        string(&r.id),
-        r.n,
-        r.status.as_str(),
-        r.paths,
-        r.queries,
-        r.seconds,
-        string(&r.hypotheses),
-        r.witness.as_deref().map_or_else(|| "null".to_string(), string),
-        r.note.as_deref().map_or_else(|| "null".to_string(), string),
-    )
 }

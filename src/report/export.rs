@@ -23,12 +23,14 @@
 
 use num_bigint::BigInt;
 use num_rational::BigRational;
+#[cfg(feature = "json")]
 use num_traits::Signed;
 
+#[cfg(feature = "json")]
+use crate::json::Rational;
 use crate::rational::render_exact;
 use crate::scalar::Scalar;
 use crate::scene::Scene;
-use crate::text::string;
 
 pub use crate::rational::nearest_f64;
 
@@ -122,39 +124,96 @@ fn double_text(f: f64) -> String {
     format!("{f:e}")
 }
 
+/// `sticky export --format json`: the scene as a floating-point solver
+/// reads it.
+#[cfg(feature = "json")]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(test, schemars(rename = "Export"))]
+pub struct ExportJson {
+    /// The scene's name (`null` when absent).
+    pub name: Option<String>,
+    /// N.
+    pub n: usize,
+    /// The scene's end time (`null` when absent).
+    pub t_end: Option<Rational>,
+    /// `r`.
+    pub radius: RoundedJson,
+    /// `x⁰`, index `i` from 0 in each array.
+    pub positions: ColumnJson,
+    /// `u⁰`, index `i` from 0 in each array.
+    pub velocities: ColumnJson,
+    /// Whether the doubles themselves satisfy `x_{i+1} − x_i ≥ 2r` (with
+    /// `2r` from `radius.f64`), exactly.
+    pub f64_admissible: bool,
+    /// The smallest `x_{i+1} − x_i − 2r` of the doubles, exact (`null` for
+    /// N = 1).
+    pub f64_min_gap_minus_2r: Option<Rational>,
+}
+
+/// One value: exact, its nearest double, the rounding error.
+#[cfg(feature = "json")]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(test, schemars(rename = "Rounded"))]
+pub struct RoundedJson {
+    /// The exact value.
+    pub exact: Rational,
+    /// Its nearest double (ties to even), written with the shortest decimal
+    /// that reads back as it.
+    pub f64: f64,
+    /// `exact − f64`, exact: `f64 + error = exact`.
+    pub error: Rational,
+}
+
+/// N values, as [`RoundedJson`] column by column.
+#[cfg(feature = "json")]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(test, schemars(rename = "RoundedColumn"))]
+pub struct ColumnJson {
+    /// The exact values.
+    pub exact: Vec<Rational>,
+    /// Their nearest doubles.
+    pub f64: Vec<f64>,
+    /// `exact − f64`, exact.
+    pub error: Vec<Rational>,
+}
+
+#[cfg(feature = "json")]
+impl ExportJson {
+    /// The contract object of `scene`'s export `e`.
+    pub fn of(scene: &Scene, e: &Exported) -> ExportJson {
+        let exact = |q: &BigRational| Rational(render_exact(q));
+        let column = |v: &[Rounded]| ColumnJson {
+            exact: v.iter().map(|r| exact(&r.exact)).collect(),
+            f64: v.iter().map(|r| r.f64).collect(),
+            error: v.iter().map(|r| exact(&r.error)).collect(),
+        };
+        ExportJson {
+            name: scene.name.clone(),
+            n: scene.n(),
+            t_end: scene.t_end.as_ref().map(exact),
+            radius: RoundedJson {
+                exact: exact(&e.radius.exact),
+                f64: e.radius.f64,
+                error: exact(&e.radius.error),
+            },
+            positions: column(&e.positions),
+            velocities: column(&e.velocities),
+            f64_admissible: e
+                .f64_min_gap_minus_2r
+                .as_ref()
+                .is_none_or(|g| !g.is_negative()),
+            f64_min_gap_minus_2r: e.f64_min_gap_minus_2r.as_ref().map(exact),
+        }
+    }
+}
+
 /// The JSON export (one line).
+#[cfg(feature = "json")]
 pub fn json(scene: &Scene, e: &Exported) -> String {
-    let column = |v: &[Rounded]| {
-        let exact: Vec<String> = v.iter().map(|r| string(&render_exact(&r.exact))).collect();
-        let f: Vec<String> = v.iter().map(|r| double_text(r.f64)).collect();
-        let err: Vec<String> = v.iter().map(|r| string(&render_exact(&r.error))).collect();
-        format!(
-            "{{\"exact\": [{}], \"f64\": [{}], \"error\": [{}]}}",
-            exact.join(", "),
-            f.join(", "),
-            err.join(", ")
-        )
-    };
-    format!(
-        "{{\"name\": {}, \"n\": {}, \"t_end\": {}, \"radius\": {{\"exact\": {}, \"f64\": {}, \"error\": {}}}, \"positions\": {}, \"velocities\": {}, \"f64_admissible\": {}, \"f64_min_gap_minus_2r\": {}}}",
-        scene.name.as_deref().map_or("null".into(), string),
-        scene.n(),
-        scene
-            .t_end
-            .as_ref()
-            .map_or("null".into(), |t| string(&render_exact(t))),
-        string(&render_exact(&e.radius.exact)),
-        double_text(e.radius.f64),
-        string(&render_exact(&e.radius.error)),
-        column(&e.positions),
-        column(&e.velocities),
-        e.f64_min_gap_minus_2r
-            .as_ref()
-            .is_none_or(|g| !g.is_negative()),
-        e.f64_min_gap_minus_2r
-            .as_ref()
-            .map_or("null".into(), |g| string(&render_exact(g))),
-    )
+    crate::json::to_string(&ExportJson::of(scene, e))
 }
 
 /// The CSV export.

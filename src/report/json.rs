@@ -1,4 +1,5 @@
-//! The machine-readable output of DESIGN.md §3 — the interop contract.
+//! The machine-readable output of docs/guide/json.md — the interop contract —
+//! as serde types, printed by [`crate::json`] in the contract's spelling:
 //!
 //! ```json
 //! {"n": 4, "radius": "1/8", "t": "3/2", "positions": ["-1/4", "0", "1/4", "1/2"], "velocities": ["0", "0", "0", "0"], "multipliers": ["1/4", "1/2", "1/4"], "clusters": [[0, 4]]}
@@ -10,185 +11,329 @@
 //! * `clusters` lists the contact clusters of `x(t)` as
 //!   `[first index (0-based), size]`, left to right.
 //!
-//! `sticky events --json` prints
+//! `sticky events --json` prints [`EventsJson`]:
 //! `{"events": [{"t": "...", "first": i, "size": k, "parts": [a, b, ...]}, ...]}`,
 //! one entry per cluster formed by a collision, sorted by time then `first`.
 //!
-//! The writer is hand-made and tiny: the values are numbers-as-strings and
-//! integers, so no escaping beyond what [`string`] does is needed, and the
-//! key order is the documented one.
+//! The streaming path ([`crate::fast::stream`]) fills the same types with
+//! columns that are computed while they are written ([`write_lean_state`],
+//! [`write_word_events`]): one set of keys, the same bytes.
+
+use std::io;
+
+use serde::ser::{Error as _, SerializeSeq};
+use serde::{Serialize, Serializer};
 
 use crate::cluster::Cluster;
 use crate::contact::Impulse;
+use crate::fast::merge::WordHistory;
+use crate::fast::stream::{Exact, LeanBlocks};
+use crate::json::{Displayed, Rational};
+use crate::limit::continuum::Profile;
+use crate::limit::surd::Surd;
 use crate::scalar::Scalar;
 use crate::state::State;
 
 pub use crate::text::string;
 
-/// A JSON array of numbers-as-strings.
-pub fn number_array<S: Scalar>(v: &[S]) -> String {
-    let items: Vec<String> = v.iter().map(|x| string(&x.render())).collect();
-    format!("[{}]", items.join(", "))
+/// `sticky run --json`: the state at one time (one line per time).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(test, schemars(rename = "State"))]
+pub struct StateJson<C = Vec<Rational>> {
+    /// The number of particles N.
+    pub n: usize,
+    /// The radius `r`.
+    pub radius: Rational,
+    /// The time `t`.
+    pub t: Rational,
+    /// `x(t)`, N values.
+    pub positions: C,
+    /// `u(t)`, the right derivative (after a collision at `t`), N values.
+    pub velocities: C,
+    /// `λ(t)` of `eq:dyn-micro`, N − 1 values: entry `i` is the force
+    /// between particles `i` and `i + 1` (the paper's `λ_{i+1}`).
+    pub multipliers: C,
+    /// The contact clusters of `x(t)`, left to right, as `[first, size]`
+    /// (indices from 0).
+    pub clusters: Vec<[usize; 2]>,
 }
 
-/// `[[first, size], …]`.
-pub fn cluster_array(clusters: &[Cluster]) -> String {
-    let items: Vec<String> = clusters
-        .iter()
-        .map(|c| format!("[{}, {}]", c.first, c.size))
-        .collect();
-    format!("[{}]", items.join(", "))
+/// `sticky events --json`: every cluster formed by a collision.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(test, schemars(rename = "Events"))]
+pub struct EventsJson<E = Vec<EventJson>> {
+    /// Sorted by `t`, then `first`.
+    pub events: E,
+}
+
+/// One cluster formed at a collision.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(test, schemars(rename = "Event"))]
+pub struct EventJson<T = Rational, P = Vec<usize>> {
+    /// The collision time.
+    pub t: T,
+    /// The cluster's first particle (from 0).
+    pub first: usize,
+    /// Its number of particles: `first … first + size − 1`.
+    pub size: usize,
+    /// The sizes of the clusters that met there, left to right (two or
+    /// more).
+    pub parts: P,
+}
+
+/// The `[first, size]` pairs of the contract.
+pub fn cluster_pairs(clusters: &[Cluster]) -> Vec<[usize; 2]> {
+    clusters.iter().map(|c| [c.first, c.size]).collect()
+}
+
+impl StateJson {
+    /// The contract object of `s` (radius `radius`).
+    pub fn of<S: Scalar>(s: &State<S>, radius: &S) -> StateJson {
+        let column = |v: &[S]| v.iter().map(Rational::of).collect();
+        StateJson {
+            n: s.positions.len(),
+            radius: Rational::of(radius),
+            t: Rational::of(&s.t),
+            positions: column(&s.positions),
+            velocities: column(&s.velocities),
+            multipliers: column(&s.multipliers),
+            clusters: cluster_pairs(&s.clusters),
+        }
+    }
+}
+
+impl EventsJson {
+    /// The contract object of a collision history.
+    pub fn of<S: Scalar>(impulses: &[Impulse<S>]) -> EventsJson {
+        let events = impulses
+            .iter()
+            .map(|i| EventJson {
+                t: Rational::of(&i.t),
+                first: i.cluster.first,
+                size: i.cluster.size,
+                parts: i.parts.iter().map(|p| p.size).collect(),
+            })
+            .collect();
+        EventsJson { events }
+    }
 }
 
 /// One state as the contract's JSON object (one line).
 pub fn state<S: Scalar>(s: &State<S>, radius: &S) -> String {
-    format!(
-        "{{\"n\": {}, \"radius\": {}, \"t\": {}, \"positions\": {}, \"velocities\": {}, \"multipliers\": {}, \"clusters\": {}}}",
-        s.positions.len(),
-        string(&radius.render()),
-        string(&s.t.render()),
-        number_array(&s.positions),
-        number_array(&s.velocities),
-        number_array(&s.multipliers),
-        cluster_array(&s.clusters),
-    )
+    crate::json::to_string(&StateJson::of(s, radius))
+}
+
+/// The collision history as `{"events": [...]}` (one line).
+pub fn events<S: Scalar>(impulses: &[Impulse<S>]) -> String {
+    crate::json::to_string(&EventsJson::of(impulses))
+}
+
+/// Which value of a [`LeanBlocks`] a [`LeanColumn`] walks.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Column {
+    Positions,
+    Velocities,
+    Multipliers,
+}
+
+/// One column of the streaming path's state, serialised value by value as
+/// the blocks give it (no string per value).
+#[derive(Debug, Clone, Copy)]
+pub struct LeanColumn<'a> {
+    blocks: &'a LeanBlocks<'a>,
+    column: Column,
+}
+
+impl Serialize for LeanColumn<'_> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let mut seq = s.serialize_seq(None)?;
+        let mut failure = None;
+        let mut each = |v: &Exact| {
+            seq.serialize_element(&Displayed(v)).map_err(|e| {
+                failure = Some(e);
+                io::Error::other("stopped by the serializer")
+            })
+        };
+        let walked = match self.column {
+            Column::Positions => self.blocks.positions(&mut each),
+            Column::Velocities => self.blocks.velocities(&mut each),
+            Column::Multipliers => self.blocks.multipliers(&mut each),
+        };
+        if let Some(e) = failure {
+            return Err(e);
+        }
+        walked.map_err(S::Error::custom)?;
+        seq.end()
+    }
 }
 
 /// [`state`] written straight from the streaming path's blocks
 /// ([`crate::fast::stream`]), value by value, with no string per value:
 /// the same bytes (the tests compare them), and a final newline.
 pub fn write_lean_state(
-    out: &mut impl std::io::Write,
-    b: &crate::fast::stream::LeanBlocks<'_>,
+    out: &mut impl io::Write,
+    b: &LeanBlocks<'_>,
     radius: &num_rational::BigRational,
-) -> std::io::Result<()> {
-    write!(
-        out,
-        "{{\"n\": {}, \"radius\": {}, \"t\": {}, \"positions\": [",
-        b.n(),
-        string(&radius.render()),
-        string(&b.t().render()),
-    )?;
-    fn item<W: std::io::Write>(
-        out: &mut W,
-        first: &mut bool,
-        v: &crate::fast::stream::Exact,
-    ) -> std::io::Result<()> {
-        out.write_all(if *first { b"\"" } else { b", \"" })?;
-        *first = false;
-        v.write(out)?;
-        out.write_all(b"\"")
+) -> io::Result<()> {
+    let column = |column| LeanColumn { blocks: b, column };
+    let state = StateJson {
+        n: b.n(),
+        radius: Rational::of(radius),
+        t: Rational::of(b.t()),
+        positions: column(Column::Positions),
+        velocities: column(Column::Velocities),
+        multipliers: column(Column::Multipliers),
+        clusters: cluster_pairs(&b.clusters()),
+    };
+    crate::json::to_writer(&mut *out, &state)?;
+    out.write_all(b"\n")
+}
+
+/// The events of a [`WordHistory`], serialised one by one as it gives them.
+#[derive(Debug, Clone, Copy)]
+pub struct WordEvents<'a>(pub &'a WordHistory);
+
+impl Serialize for WordEvents<'_> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let mut seq = s.serialize_seq(None)?;
+        let mut failure = None;
+        let walked = self.0.for_each_event(|t, first, size, parts| {
+            let event = EventJson {
+                t: Displayed(t),
+                first,
+                size,
+                parts,
+            };
+            seq.serialize_element(&event).map_err(|e| {
+                failure = Some(e);
+                io::Error::other("stopped by the serializer")
+            })
+        });
+        if let Some(e) = failure {
+            return Err(e);
+        }
+        walked.map_err(S::Error::custom)?;
+        seq.end()
     }
-    let mut first = true;
-    b.positions(|v| item(out, &mut first, v))?;
-    out.write_all(b"], \"velocities\": [")?;
-    first = true;
-    b.velocities(|v| item(out, &mut first, v))?;
-    out.write_all(b"], \"multipliers\": [")?;
-    first = true;
-    b.multipliers(|v| item(out, &mut first, v))?;
-    writeln!(out, "], \"clusters\": {}}}", cluster_array(&b.clusters()))
 }
 
 /// [`events`] written straight from the streaming path's history
 /// ([`crate::fast::merge::WordHistory`]), event by event: the same bytes,
 /// and a final newline.
-pub fn write_word_events(
-    out: &mut impl std::io::Write,
-    h: &crate::fast::merge::WordHistory,
-) -> std::io::Result<()> {
-    out.write_all(b"{\"events\": [")?;
-    let mut first_event = true;
-    h.for_each_event(|t, first, size, parts| {
-        out.write_all(if first_event {
-            b"{\"t\": \""
-        } else {
-            b", {\"t\": \""
-        })?;
-        first_event = false;
-        t.write(out)?;
-        write!(
-            out,
-            "\", \"first\": {first}, \"size\": {size}, \"parts\": ["
-        )?;
-        for (k, p) in parts.iter().enumerate() {
-            if k > 0 {
-                out.write_all(b", ")?;
-            }
-            write!(out, "{p}")?;
-        }
-        out.write_all(b"]}")
-    })?;
-    out.write_all(b"]}\n")
-}
-
-/// The collision history as `{"events": [...]}` (one line).
-pub fn events<S: Scalar>(impulses: &[Impulse<S>]) -> String {
-    let items: Vec<String> = impulses
-        .iter()
-        .map(|i| {
-            let parts: Vec<String> = i.parts.iter().map(|p| p.size.to_string()).collect();
-            format!(
-                "{{\"t\": {}, \"first\": {}, \"size\": {}, \"parts\": [{}]}}",
-                string(&i.t.render()),
-                i.cluster.first,
-                i.cluster.size,
-                parts.join(", ")
-            )
-        })
-        .collect();
-    format!("{{\"events\": [{}]}}", items.join(", "))
+pub fn write_word_events(out: &mut impl io::Write, h: &WordHistory) -> io::Result<()> {
+    crate::json::to_writer(
+        &mut *out,
+        &EventsJson {
+            events: WordEvents(h),
+        },
+    )?;
+    out.write_all(b"\n")
 }
 
 /// `sticky run --model continuum --json`: the continuum solution of a
-/// `[macro]` scene at one time (an extension of the contract, marked by its
-/// `"model"` key):
-/// `{"model": "continuum", "t": "...", "segments": [{"w0", "w1", "block",
-/// "plateau", "x": [c0, c1], "u": [c0, c1], "lambda": [c0, c1, c2]}, ...],
-/// "plateaus": [{"w0", "w1", "level", "velocity"}, ...]}` — `X(t, w) = c0 +
-/// c1 w` on `[w0, w1]` in the mass variable `w`, and so on. Every number is
-/// a string: a rational in lowest terms, or a quadratic surd `"a + b·√d"`
-/// where the plateau ends are irrational (see `limit::surd`).
-pub fn continuum_profile(p: &crate::limit::continuum::Profile<crate::limit::surd::Surd>) -> String {
-    let s = |v: &crate::limit::surd::Surd| string(&v.to_string());
-    let arr = |v: &[crate::limit::surd::Surd]| {
-        format!("[{}]", v.iter().map(s).collect::<Vec<_>>().join(", "))
-    };
-    let segments: Vec<String> = p
-        .segments
-        .iter()
-        .map(|g| {
-            format!(
-                "{{\"w0\": {}, \"w1\": {}, \"block\": {}, \"plateau\": {}, \"x\": {}, \"u\": {}, \"lambda\": {}}}",
-                s(&g.w0),
-                s(&g.w1),
-                g.block,
-                g.plateau.map_or("null".into(), |k| k.to_string()),
-                arr(&g.x),
-                arr(&g.u),
-                arr(&g.lambda)
-            )
-        })
-        .collect();
-    let plateaus: Vec<String> = p
-        .plateaus
-        .iter()
-        .map(|q| {
-            format!(
-                "{{\"w0\": {}, \"w1\": {}, \"level\": {}, \"velocity\": {}}}",
-                s(&q.w0),
-                s(&q.w1),
-                s(&q.level),
-                s(&q.velocity)
-            )
-        })
-        .collect();
-    format!(
-        "{{\"model\": \"continuum\", \"t\": {}, \"segments\": [{}], \"plateaus\": [{}]}}",
-        string(&crate::rational::render_exact(&p.t)),
-        segments.join(", "),
-        plateaus.join(", ")
-    )
+/// `[macro]` scene at one time (an extension of the contract, marked by
+/// its `"model"` key). Every number is a string: a rational in lowest
+/// terms, or a quadratic surd `"a + b·√d"` where the plateau ends are
+/// irrational (see `limit::surd`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(test, schemars(rename = "Continuum"))]
+pub struct ContinuumJson {
+    /// Always `"continuum"`: tells this object from a particle state.
+    pub model: ModelTag,
+    /// The time.
+    pub t: Rational,
+    /// The pieces of the solution in the mass variable `w`, left to right.
+    pub segments: Vec<SegmentJson>,
+    /// The congested zones (plateaus of the density).
+    pub plateaus: Vec<PlateauJson>,
+}
+
+/// The `"model"` key of [`ContinuumJson`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
+pub enum ModelTag {
+    /// The continuum model.
+    #[serde(rename = "continuum")]
+    Continuum,
+}
+
+/// On `[w0, w1]`: `X(t, w) = x[0] + x[1]·w`, `U` likewise, `Λ` a quadratic.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(test, schemars(rename = "Segment"))]
+pub struct SegmentJson {
+    /// Left end in `w` (a rational or a quadratic surd).
+    pub w0: String,
+    /// Right end in `w`.
+    pub w1: String,
+    /// The block of the initial data it comes from (from 0).
+    pub block: usize,
+    /// The plateau it lies in (from 0), `null` outside the congested zones.
+    pub plateau: Option<usize>,
+    /// `X`'s coefficients `[c0, c1]`.
+    pub x: [String; 2],
+    /// `U`'s coefficients `[c0, c1]`.
+    pub u: [String; 2],
+    /// `Λ`'s coefficients `[c0, c1, c2]`.
+    pub lambda: [String; 3],
+}
+
+/// A congested zone.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(test, schemars(rename = "Plateau"))]
+pub struct PlateauJson {
+    /// Left end in `w`.
+    pub w0: String,
+    /// Right end in `w`.
+    pub w1: String,
+    /// The density level.
+    pub level: String,
+    /// The common velocity.
+    pub velocity: String,
+}
+
+impl ContinuumJson {
+    /// The contract object of a continuum profile.
+    pub fn of(p: &Profile<Surd>) -> ContinuumJson {
+        let s = |v: &Surd| v.to_string();
+        ContinuumJson {
+            model: ModelTag::Continuum,
+            t: Rational(crate::rational::render_exact(&p.t)),
+            segments: p
+                .segments
+                .iter()
+                .map(|g| SegmentJson {
+                    w0: s(&g.w0),
+                    w1: s(&g.w1),
+                    block: g.block,
+                    plateau: g.plateau,
+                    x: g.x.each_ref().map(s),
+                    u: g.u.each_ref().map(s),
+                    lambda: g.lambda.each_ref().map(s),
+                })
+                .collect(),
+            plateaus: p
+                .plateaus
+                .iter()
+                .map(|q| PlateauJson {
+                    w0: s(&q.w0),
+                    w1: s(&q.w1),
+                    level: s(&q.level),
+                    velocity: s(&q.velocity),
+                })
+                .collect(),
+        }
+    }
+}
+
+/// [`ContinuumJson`] as one line.
+pub fn continuum_profile(p: &Profile<Surd>) -> String {
+    crate::json::to_string(&ContinuumJson::of(p))
 }
 
 #[cfg(test)]

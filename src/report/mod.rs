@@ -1,6 +1,6 @@
 //! The report layer: what turns the engines, the reference solvers, the
 //! claims and the hydrodynamic limit into files a person reads — the
-//! machine-readable JSON of the interop contract ([`json`]), the CSV files of
+//! machine-readable JSON of the interop contract (`json`, feature `json`), the CSV files of
 //! the convergence study ([`converge`](mod@converge)), the file helpers
 //! ([`io`]: whole writes, CSV fields), the exact reading of another solver's
 //! answer ([`solution`]) and the export of a scene as a peer reads it
@@ -23,6 +23,7 @@ pub mod export;
 #[cfg(feature = "report")]
 pub mod figures;
 pub mod io;
+#[cfg(feature = "json")]
 pub mod json;
 #[cfg(feature = "report")]
 pub mod peers;
@@ -30,4 +31,6 @@ pub mod peers;
 pub mod plot;
 #[cfg(feature = "report")]
 pub mod progress;
+#[cfg(all(test, feature = "json"))]
+mod schema;
 pub mod solution;

@@ -27,19 +27,45 @@ pub(super) fn macro_table(
             expected: "an array of tables { from, to, density, velocity }",
         });
     };
-    if items.len() > MAX_MACRO_BLOCKS {
-        return Err(Error::Unsupported {
-            message: format!(
-                "field `macro.blocks`: {} blocks is more than the limit of {MAX_MACRO_BLOCKS}",
-                items.len()
-            ),
-        });
-    }
+    check_block_count(items.len())?;
     let blocks = items
         .iter()
         .enumerate()
         .map(|(k, v)| block(v, &format!("macro.blocks[{k}]"), budget))
         .collect::<Result<Vec<_>, _>>()?;
+    macro_data(blocks, n)
+}
+
+/// Refuses more than [`MAX_MACRO_BLOCKS`] blocks.
+fn check_block_count(blocks: usize) -> Result<(), Error> {
+    if blocks > MAX_MACRO_BLOCKS {
+        return Err(Error::Unsupported {
+            message: format!(
+                "field `macro.blocks`: {blocks} blocks is more than the limit of {MAX_MACRO_BLOCKS}"
+            ),
+        });
+    }
+    Ok(())
+}
+
+/// A `[macro]` datum of `blocks` (left to right) sampled with `n`
+/// particles at the quantiles (`thm:main`): the checks and limits of the
+/// TOML table, for blocks a program built (Python's `Scene.from_macro`).
+pub fn macro_data(
+    blocks: Vec<Block>,
+    n: usize,
+) -> Result<(SceneKind, InitialData<BigRational>), Error> {
+    check_block_count(blocks.len())?;
+    if n == 0 {
+        return Err(Error::NoParticles);
+    }
+    if n > MAX_MACRO_PARTICLES {
+        return Err(Error::Unsupported {
+            message: format!(
+                "field `macro.particles`: {n} particles is more than the limit of {MAX_MACRO_PARTICLES}"
+            ),
+        });
+    }
     let datum = MacroDatum::new(blocks)?;
     check_sample_size(&datum, n)?;
     let data = datum.sample(n)?;

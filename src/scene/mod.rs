@@ -1,4 +1,4 @@
-//! Scene files (TOML), DESIGN.md §2.
+//! Scene files (TOML), docs/guide/scenes.md.
 //!
 //! A scene is one TOML document:
 //!
@@ -77,6 +77,7 @@ use toml::Table;
 use crate::error::Error;
 use crate::initial::InitialData;
 use crate::quantile::{render_short, MacroDatum};
+pub use macro_datum::macro_data;
 use macro_datum::macro_table;
 use particles::particles_table;
 use values::{check_keys, exact, optional_string, toml_error, Budget};
@@ -169,6 +170,17 @@ pub struct Scene {
 }
 
 impl Scene {
+    /// A `[particles]` scene with no name around validated `data`.
+    pub fn particles(data: InitialData<BigRational>) -> Scene {
+        Scene {
+            name: None,
+            description: None,
+            t_end: None,
+            kind: SceneKind::Particles,
+            data,
+        }
+    }
+
     /// Number of particles N.
     pub fn n(&self) -> usize {
         self.data.n()

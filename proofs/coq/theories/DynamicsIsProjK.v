@@ -11,24 +11,15 @@ From Sticky Require Import Prelude Kkt Pava Projection Dynamics DynamicsProjecti
 Import ListNotations.
 Open Scope Q_scope.
 
-Lemma qeq_list_length (a b : list Q) : qeq_list a b -> length a = length b.
-Proof. induction 1; simpl; congruence. Qed.
-
-Lemma psum_qeq (a b : list Q) : qeq_list a b -> forall k, psum k a == psum k b.
-Proof.
-  induction 1 as [|x y a b Hxy _ IH]; intro k; [reflexivity|].
-  destruct k as [|k]; [reflexivity|]. rewrite !psum_cons, Hxy, IH. reflexivity.
-Qed.
-
 (** The KKT conditions depend on [z] only entry by entry, up to [==]. *)
 Lemma kkt_qeq_z (z z' y : list Q) : qeq_list z z' -> Kkt z y -> Kkt z' y.
 Proof.
   intros Hz (L & M & P & T & C).
   pose proof (qeq_list_length _ _ Hz) as Lz.
   split; [congruence|split; [exact M|split; [|split]]].
-  - intros k Hk. rewrite <- (psum_qeq _ _ Hz k). apply P. lia.
-  - rewrite <- Lz, <- (psum_qeq _ _ Hz). exact T.
-  - intros k Hk Hl. rewrite <- (psum_qeq _ _ Hz). apply C; [lia|exact Hl].
+  - intros k Hk. rewrite <- (qeq_list_psum _ _ Hz k). apply P. lia.
+  - rewrite <- Lz, <- (qeq_list_psum _ _ Hz). exact T.
+  - intros k Hk Hl. rewrite <- (qeq_list_psum _ _ Hz). apply C; [lia|exact Hl].
 Qed.
 
 Lemma untranslate_qeq (r : Q) (a b : list Q) :

@@ -42,24 +42,10 @@ Proof.
     + apply IH. exact Hb.
 Qed.
 
-Lemma qeq_list_refl (a : list Q) : qeq_list a a.
-Proof. induction a; constructor; [reflexivity|assumption]. Qed.
-
-Lemma qeq_list_trans (a b c : list Q) : qeq_list a b -> qeq_list b c -> qeq_list a c.
-Proof.
-  intro H. revert c. induction H as [|x y a b Hxy _ IH]; intros c Hc; inversion Hc; subst;
-    constructor; [rewrite Hxy; assumption|apply IH; assumption].
-Qed.
-
 Lemma dot_qeq (a a' w : list Q) : qeq_list a a' -> dot a w == dot a' w.
 Proof.
   intro Ha. revert w. induction Ha as [|x x' a a' Hx _ IH]; intros [|y w]; simpl; try reflexivity.
   rewrite Hx, IH. reflexivity.
-Qed.
-
-Lemma vsub_length' (a b : list Q) : length a = length b -> length (vsub a b) = length a.
-Proof.
-  revert b. induction a as [|x a IH]; intros [|y b] L; simpl in *; try discriminate; auto.
 Qed.
 
 (** Ledger claim [lem:incl-HSN] (the second inclusion, with [− x(t)]; also
@@ -86,8 +72,8 @@ Proof.
   rewrite (dot_qeq _ _ w E).
   setoid_replace (dot (vsub z y) w) with (0 * 0 + dot (vsub z y) w) by ring.
   apply dot_by_parts.
-  - rewrite vsub_length'; lia.
-  - intros k Hk. rewrite vsub_length' in Hk by lia. rewrite psum_vsub by lia.
+  - rewrite vsub_length; lia.
+  - intros k Hk. rewrite vsub_length in Hk by lia. rewrite psum_vsub by lia.
     destruct k as [|k]; [left; unfold psum; simpl; lra|].
     destruct (Qlt_le_dec (nth k y 0) (nth (S k) y 0)) as [Hlt|Hge].
     + left. rewrite (C k ltac:(lia) Hlt). ring.
@@ -104,5 +90,5 @@ Proof.
         unfold translated_positions in y. fold (spread (center t) (clusters x0 u0 r t)) in y.
         change (spread (center t) (clusters x0 u0 r t)) with y in G.
         rewrite G, Hy. ring.
-  - rewrite <- psum_all, vsub_length', psum_vsub by lia. rewrite Lz, <- Lz, T. ring.
+  - rewrite <- psum_all, vsub_length, psum_vsub by lia. rewrite Lz, <- Lz, T. ring.
 Qed.

@@ -3,10 +3,7 @@
 
     Everything is over [Q]: positions, velocities, radius and times are
     exact rationals, as in the Rust crate. Vectors are lists indexed from 0:
-    the paper's [x_i] ([i = 1..N]) is [nth (i-1) x 0].
-
-    Definitions here are imported by the dynamics files (coqdyn's); they are
-    only ever added to, never renamed. *)
+    the paper's [x_i] ([i = 1..N]) is [nth (i-1) x 0]. *)
 
 From Coq Require Import QArith Qring Lqa Lia List.
 From Sticky Require Import Prelude.

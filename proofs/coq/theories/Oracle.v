@@ -85,31 +85,6 @@ Definition state_at (r t : Q) (x0 u0 : list Q) : state :=
           (multipliers_from 0 (inject_Z (Z.of_nat (length u0))) u0 u)
           (runs xt).
 
-(** ** Lists equal entrywise *)
-
-Lemma qeq_list_refl (a : list Q) : qeq_list a a.
-Proof. induction a; constructor; [reflexivity|assumption]. Qed.
-
-Lemma qeq_list_sym (a b : list Q) : qeq_list a b -> qeq_list b a.
-Proof. induction 1; constructor; [symmetry|]; assumption. Qed.
-
-Lemma qeq_list_trans (a : list Q) : forall b c, qeq_list a b -> qeq_list b c -> qeq_list a c.
-Proof.
-  induction a as [|x a IH]; intros b c H1 H2; inversion H1; subst; inversion H2; subst;
-    constructor.
-  - transitivity y; assumption.
-  - eapply IH; eassumption.
-Qed.
-
-Lemma qeq_list_length (a b : list Q) : qeq_list a b -> length a = length b.
-Proof. induction 1; simpl; congruence. Qed.
-
-Lemma qeq_list_psum (a b : list Q) : qeq_list a b -> forall k, psum k a == psum k b.
-Proof.
-  induction 1; intros [|k]; unfold psum; simpl; try reflexivity.
-  fold (psum k l). fold (psum k l'). rewrite H, IHForall2. reflexivity.
-Qed.
-
 (** The KKT conditions only see the entries' values. *)
 Lemma kkt_qeq (z z' y : list Q) : qeq_list z z' -> Kkt z y -> Kkt z' y.
 Proof.

@@ -143,3 +143,41 @@ Qed.
 
 (** Entrywise equality of two lists of rationals (up to [Qeq]). *)
 Definition qeq_list (a b : list Q) : Prop := Forall2 Qeq a b.
+
+(** ** Lists equal entrywise *)
+
+Lemma qeq_list_refl (a : list Q) : qeq_list a a.
+Proof. induction a; constructor; [reflexivity|assumption]. Qed.
+
+Lemma qeq_list_sym (a b : list Q) : qeq_list a b -> qeq_list b a.
+Proof. induction 1; constructor; [symmetry|]; assumption. Qed.
+
+Lemma qeq_list_trans (a b c : list Q) : qeq_list a b -> qeq_list b c -> qeq_list a c.
+Proof.
+  intro H. revert c. induction H as [|x y a b Hxy _ IH]; intros c Hc; inversion Hc; subst;
+    constructor; [rewrite Hxy; assumption|apply IH; assumption].
+Qed.
+
+Lemma qeq_list_length (a b : list Q) : qeq_list a b -> length a = length b.
+Proof. induction 1; simpl; congruence. Qed.
+
+Lemma qeq_list_psum (a b : list Q) : qeq_list a b -> forall k, psum k a == psum k b.
+Proof.
+  induction 1; intros [|k]; unfold psum; simpl; try reflexivity.
+  fold (psum k l). fold (psum k l'). rewrite H, IHForall2. reflexivity.
+Qed.
+
+Lemma qeq_list_nth (a b : list Q) : qeq_list a b -> forall i, nth i a 0 == nth i b 0.
+Proof.
+  induction 1 as [|x y a b Hxy Hab IH]; intros [|i]; simpl; try reflexivity.
+  - exact Hxy.
+  - apply IH.
+Qed.
+
+Lemma qeq_list_repeat (a b : Q) (n : nat) : a == b -> qeq_list (repeat a n) (repeat b n).
+Proof. intro E. induction n; simpl; constructor; assumption. Qed.
+
+Lemma vsub_length (a b : list Q) : length a = length b -> length (vsub a b) = length a.
+Proof.
+  revert b. induction a as [|x a IH]; intros [|y b] L; simpl in *; try discriminate; auto.
+Qed.

@@ -357,9 +357,6 @@ Lemma affine_repeat (h m v : Q) (n : nat) :
   affine h (repeat m n) (repeat v n) = repeat (m + h * v) n.
 Proof. induction n as [|n IH]; simpl; [reflexivity|f_equal; exact IH]. Qed.
 
-Lemma qeq_list_repeat (a b : Q) (n : nat) : a == b -> qeq_list (repeat a n) (repeat b n).
-Proof. intro E. induction n; simpl; constructor; assumption. Qed.
-
 Lemma mean_block_at (h : Q) (b : block) : mean (block_at h b) == mean b + h * mean_u b.
 Proof.
   unfold mean, mean_u, block_at. cbn [bsum bsum_u].
@@ -376,13 +373,6 @@ Proof.
   apply Forall2_app; [|exact IH].
   unfold expand, expand_u. rewrite affine_repeat. cbn [block_at bsize].
   apply qeq_list_repeat. apply mean_block_at.
-Qed.
-
-Lemma qeq_list_nth (a b : list Q) : qeq_list a b -> forall i, nth i a 0 == nth i b 0.
-Proof.
-  induction 1 as [|x y a b Hxy Hab IH]; intros [|i]; simpl; try reflexivity.
-  - exact Hxy.
-  - apply IH.
 Qed.
 
 (** The KKT conditions only see the values of the candidate, too. *)

@@ -125,11 +125,6 @@ Proof.
     simpl vsub. rewrite !psum_cons, IH by (simpl in L; lia). ring.
 Qed.
 
-Lemma vsub_length (a b : list Q) : length a = length b -> length (vsub a b) = length a.
-Proof.
-  revert b. induction a as [|x a IH]; intros [|y b] L; simpl in *; try discriminate; auto.
-Qed.
-
 (** Paper, [eq:proj-micro-u]: "u(t) = P_{H^N_{x(t)}}(u_0)". [H_{x(t)}] is a
     linear subspace, so the projection is the [u ∈ H] with [u⁰ − u ⊥ H]:
     this is what we prove, for every [N], [x⁰ ∈ K^N], any [u⁰], every

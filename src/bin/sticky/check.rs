@@ -7,12 +7,14 @@ use std::path::PathBuf;
 use num_rational::BigRational;
 
 use sticky::claims::micro::check_trajectory;
-use sticky::scene::{Scene, SceneKind};
+use sticky::progress::Silent;
+use sticky::scene::SceneKind;
+use sticky::solver::{Options, Solver, WorkCap};
 use sticky::trajectory::probe_times;
 use sticky::Scalar;
 
 use crate::table::{abbreviate, particle_range, write_events_table, INDICES_FROM_0};
-use crate::{io_err, load, Failure};
+use crate::{io_err, scene_err, Failure};
 
 /// Summary of a scene: collisions, final clusters, and the section-2
 /// checks (event-driven = projection, signs of λ and of the pressure).
@@ -24,11 +26,19 @@ pub struct Args {
 
 /// Runs `sticky check`.
 pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
-    let scene = load(&args.scene)?;
-    summary(out, &scene, &args.scene.display().to_string())
+    let solver = Solver::load(&args.scene)
+        .map_err(scene_err(&args.scene))?
+        .with_options(Options {
+            work: WorkCap::Watched,
+            ..Options::default()
+        });
+    summary(out, &solver, &args.scene.display().to_string())
 }
 
-pub fn summary(out: &mut impl Write, scene: &Scene, origin: &str) -> Result<(), Failure> {
+/// The summary of the scene `solver` answers for, read from `origin`.
+pub fn summary(out: &mut impl Write, solver: &Solver, origin: &str) -> Result<(), Failure> {
+    let at = |e: sticky::Error| Failure(format!("{origin}: {e}"));
+    let scene = solver.scene().map_err(at)?;
     let data = &scene.data;
     let name = scene.name.as_deref().unwrap_or("(unnamed)");
     let kind = match &scene.kind {
@@ -39,7 +49,8 @@ pub fn summary(out: &mut impl Write, scene: &Scene, origin: &str) -> Result<(), 
             if datum.blocks().len() == 1 { "" } else { "s" }
         ),
     };
-    let traj = sticky::fast::merge::trajectory(data);
+    // Only hopeless work is refused (the merge runs without a bar here).
+    let traj = solver.trajectory(&Silent).map_err(at)?;
     let w = |out: &mut dyn Write, s: String| writeln!(out, "{s}").map_err(io_err);
     w(out, format!("sticky — scene \"{name}\" ({origin})"))?;
     if let Some(d) = &scene.description {

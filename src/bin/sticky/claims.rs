@@ -2,9 +2,11 @@
 
 use std::io::Write;
 
-use sticky::claims::ledger::{self, Budget};
+use sticky::claims::campaign::{self, ClaimsSetup};
+use sticky::claims::ledger::{self, Budget, Entry};
 use sticky::report::progress::Bar;
 
+use crate::campaign::{setup_value, write_shard, Split};
 use crate::{io_err, Failure};
 
 /// The claims ledger: runs every checker of the paper's claims and prints
@@ -12,10 +14,10 @@ use crate::{io_err, Failure};
 #[derive(clap::Args)]
 pub struct Args {
     /// Print the ledger as JSON.
-    #[arg(long, conflicts_with = "markdown")]
+    #[arg(long, conflicts_with_all = ["markdown", "shard"])]
     json: bool,
     /// Print the ledger as a Markdown document (CLAIMS.md).
-    #[arg(long)]
+    #[arg(long, conflicts_with = "shard")]
     markdown: bool,
     /// Random cases per claim.
     #[arg(long, default_value_t = Budget::default().cases)]
@@ -26,36 +28,49 @@ pub struct Args {
     /// Largest N of the checks across N (a power of two).
     #[arg(long, default_value_t = Budget::default().scaling_max_n)]
     scaling_max_n: usize,
+    #[command(flatten)]
+    split: Split,
 }
 
 /// Runs `sticky claims`.
 pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
-    let budget = Budget {
-        cases: args.cases,
-        max_n: args.max_n.max(1),
-        scaling_max_n: args.scaling_max_n.max(8),
-        ..Budget::default()
+    let budget = Budget::asked(
+        Some(args.cases),
+        Some(args.max_n),
+        Some(args.scaling_max_n),
+        None,
+    );
+    // The claim being checked, the count and the time left, on a terminal
+    // only (the bar is hidden when stderr is piped or redirected).
+    let bar = Bar::for_command("claims");
+    let setup = ClaimsSetup::from(budget);
+    if let Some(shard) = args.split.shard {
+        let lines = campaign::run_shard(&setup, shard, args.split.jobs, &bar);
+        return write_shard("claims", setup_value(&setup)?, shard, &lines, out);
+    }
+    let entries = if args.split.jobs.get() > 1 {
+        campaign::run_jobs(budget, args.split.jobs, &bar).map_err(Failure)?
+    } else {
+        ledger::run(budget, &bar)
     };
-    claims(out, budget, args.json, args.markdown)
+    render(out, &entries, budget, args.json, args.markdown)
 }
 
-fn claims(
+/// Prints the ledger: a table, JSON or Markdown.
+pub fn render(
     out: &mut impl Write,
+    entries: &[Entry],
     budget: Budget,
     as_json: bool,
     as_markdown: bool,
 ) -> Result<(), Failure> {
-    // The claim being checked, the count and the time left, on a terminal
-    // only (the bar is hidden when stderr is piped or redirected).
-    let bar = Bar::for_command("claims");
-    let entries = ledger::run(budget, &bar);
     let text = if as_json {
-        ledger::json(&entries)
+        ledger::json(entries)
     } else if as_markdown {
         let proofs = sticky::prove::record::ledger_proofs().map_err(Failure)?;
-        ledger::markdown(&entries, budget, &proofs)
+        ledger::markdown(entries, budget, &proofs)
     } else {
-        ledger::table(&entries)
+        ledger::table(entries)
     };
     writeln!(out, "{}", text.trim_end()).map_err(io_err)
 }

@@ -1,6 +1,6 @@
 //! `sticky compare SCENE SOLUTION [--json] [--out DIR] [--contact-tol TOL |
 //! --contact-tol-rel K] [--overlap-tol TOL] [--fail-on VERDICT]`: another
-//! solver's answer against the exact one, exactly (DESIGN.md §3).
+//! solver's answer against the exact one, exactly (docs/guide/json.md).
 //!
 //! Argument parsing, file reading and printing only: the figures, the
 //! verdict and both reports are the library's
@@ -12,16 +12,16 @@ use std::path::{Path, PathBuf};
 use num_rational::BigRational;
 use num_traits::Signed;
 
-use sticky::fast::kernel::{self, IntegerData};
 use sticky::rational::parse_exact;
 use sticky::report::compare::text::figure;
 use sticky::report::compare::{
     compare_solution, CompareFailure, CompareOptions, ContactTolerance, Verdict,
 };
 use sticky::report::solution::{self, Frame};
+use sticky::solver::Solver;
 use sticky::Scalar;
 
-use crate::{io_err, load, print_paths, Failure};
+use crate::{io_err, print_paths, scene_err, Failure};
 
 /// The exit code of `--fail-on` when the verdict is at least that bad (1 is
 /// an error, 2 a usage error).
@@ -80,8 +80,8 @@ fn parse_verdict(s: &str) -> Result<Verdict, String> {
 /// Runs `sticky compare`. With `--fail-on` and a verdict that bad, flushes
 /// the output and exits with [`FAIL_ON_EXIT`].
 pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
-    let scene = load(&args.scene)?;
-    let data = &scene.data;
+    let solver = Solver::load(&args.scene).map_err(scene_err(&args.scene))?;
+    let data = solver.data().map_err(scene_err(&args.scene))?;
     let n = data.n();
     let text = std::fs::read(&args.solution)
         .map_err(|e| Failure(format!("{}: cannot read: {e}", args.solution.display())))?;
@@ -113,10 +113,14 @@ pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
             args.solution.display().to_string(),
         );
     if let Some(dir) = &args.out {
-        let ints = IntegerData::new(data);
         let exact_states = frames
             .iter()
-            .map(|f| kernel::state_at(&ints, &f.t).map_err(|e| sol_err(f.line, e.to_string())))
+            .map(|f| {
+                solver
+                    .state(&f.t)
+                    .map(|a| a.into_state())
+                    .map_err(|e| sol_err(f.line, e.to_string()))
+            })
             .collect::<Result<Vec<_>, _>>()?;
         let mut paths = vec![write_csv(dir, &frames, &exact_states)?];
         paths.extend(write_charts(dir, &frames, &exact_states)?);

@@ -18,6 +18,7 @@
 
 mod atlas;
 mod bench;
+mod campaign;
 mod check;
 mod claims;
 mod compare;
@@ -25,6 +26,7 @@ mod converge;
 mod events;
 mod export;
 mod generate;
+mod merge;
 mod plot;
 mod prove;
 mod run;
@@ -91,6 +93,10 @@ enum Command {
     /// at N = 1 … N (symbolic execution of the engine and the checkers, z3),
     /// or refutes it with an exact, replayed counterexample.
     Prove(prove::Args),
+    /// Combines the shards' files of one campaign (`claims` or `prove`
+    /// with `--shard I/N`) into exactly the report a single run
+    /// prints; refuses missing or duplicated shards and mixed campaigns.
+    Merge(merge::Args),
 }
 
 fn parse_time(s: &str) -> Result<BigRational, String> {
@@ -105,7 +111,12 @@ fn parse_time(s: &str) -> Result<BigRational, String> {
 struct Failure(String);
 
 fn load(path: &std::path::Path) -> Result<Scene, Failure> {
-    scene::load(path).map_err(|e| Failure(format!("{}: {e}", path.display())))
+    scene::load(path).map_err(scene_err(path))
+}
+
+/// A library error about the scene at `path`, as a failure that names it.
+fn scene_err(path: &std::path::Path) -> impl Fn(sticky::Error) -> Failure + '_ {
+    move |e| Failure(format!("{}: {e}", path.display()))
 }
 
 fn main() -> ExitCode {
@@ -141,7 +152,10 @@ fn main() -> ExitCode {
     let result = match cli.command {
         None => scene::default_scene()
             .map_err(|e| Failure(format!("embedded default scene: {e}")))
-            .and_then(|s| check::summary(&mut out, &s, "embedded default scene")),
+            .and_then(|s| {
+                let solver = sticky::solver::Solver::from_scene(s);
+                check::summary(&mut out, &solver, "embedded default scene")
+            }),
         Some(Command::Run(args)) => run::exec(args, &mut out),
         Some(Command::Events(args)) => events::exec(args, &mut out),
         Some(Command::Check(args)) => check::exec(args, &mut out),
@@ -154,6 +168,7 @@ fn main() -> ExitCode {
         Some(Command::Compare(args)) => compare::exec(args, &mut out),
         Some(Command::Export(args)) => export::exec(args, &mut out),
         Some(Command::Prove(args)) => prove::exec(args, &mut out),
+        Some(Command::Merge(args)) => merge::exec(args, &mut out),
     };
     let flushed = out.flush();
     // `sticky bench --e2e` runs this binary as a child and asks it for its
@@ -179,7 +194,6 @@ fn is_broken_pipe(r: &io::Result<()>) -> bool {
     matches!(r, Err(e) if e.kind() == io::ErrorKind::BrokenPipe)
 }
 
-/// Maps a write error to a failure; a closed pipe ends the output quietly.
 /// Maps a write error to a failure; a closed pipe ends the output quietly.
 fn io_err(e: io::Error) -> Failure {
     if e.kind() == io::ErrorKind::BrokenPipe {

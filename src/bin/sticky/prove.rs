@@ -3,12 +3,14 @@
 //! replayed counterexample (issue 11; the library's `sticky::prove`).
 
 use std::io::Write;
-use std::time::Duration;
 
+use sticky::campaign::jobs::run_units;
 use sticky::progress::Progress;
-use sticky::prove::{self, ProofLimits, Status};
+use sticky::prove::campaign::{self, ProveSetup, ProveUnit};
+use sticky::prove::{self};
 use sticky::report::progress::Bar;
 
+use crate::campaign::{setup_value, Split};
 use crate::{io_err, Failure};
 
 /// Proves the section-2 claims for all real initial data at N = 1 … N.
@@ -25,7 +27,7 @@ pub struct Args {
     #[arg(long)]
     claim: Option<String>,
     /// One JSON object per claim and N, one per line.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "shard")]
     json: bool,
     /// Wall-clock budget per claim and N, in seconds (then `unknown`).
     #[arg(long, default_value_t = 600)]
@@ -36,6 +38,8 @@ pub struct Args {
     /// Memory cap of the solver process, in megabytes (z3's `-memory:`).
     #[arg(long, default_value_t = 2048)]
     solver_mb: u64,
+    #[command(flatten)]
+    split: Split,
 }
 
 /// The bar of one claim at one N: every note of the explorer is shown after
@@ -64,74 +68,54 @@ pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
             "the SMT solver z3 is not installed (Debian/Ubuntu: `apt-get install z3`; or set STICKY_Z3 to its path)".into(),
         ));
     };
-    let targets: Vec<_> = prove::targets()
-        .into_iter()
-        .filter(|t| {
-            args.claim
-                .as_deref()
-                .is_none_or(|c| t.id == c || t.registry_id == c)
-        })
-        .collect();
-    if targets.is_empty() {
+    let setup = ProveSetup {
+        from: args.from.max(1),
+        n: args.n,
+        claim: args.claim,
+        seconds: args.seconds,
+        query_ms: args.query_ms,
+        solver_mb: args.solver_mb,
+        solver: version,
+    };
+    let Some(units) = campaign::units(&setup) else {
         return Err(Failure(format!(
             "no per-case claim {:?} (see `sticky claims`)",
-            args.claim.unwrap_or_default()
+            setup.claim.unwrap_or_default()
         )));
-    }
-    let limits = ProofLimits {
-        time: Duration::from_secs(args.seconds.max(1)),
-        query_ms: args.query_ms.max(100),
-        solver_memory_mb: args.solver_mb.max(64),
-        ..ProofLimits::default()
     };
     let bar = Bar::for_command("prove");
-    if !args.json {
-        writeln!(out, "solver: {version}").map_err(io_err)?;
-        writeln!(
-            out,
-            "hypotheses: all real x⁰ ∈ K^N, u⁰ ∈ C_x⁰, 2r = 1/N; all real t ≥ 0 (0 ≤ s ≤ t for two-time claims)"
-        )
-        .map_err(io_err)?;
-        writeln!(
-            out,
-            "{:<52} {:>2} {:>8} {:>7} {:>8} {:>8}  erratum",
-            "claim", "N", "status", "paths", "queries", "seconds"
-        )
-        .map_err(io_err)?;
-    }
-    for n in args.from.max(1)..=args.n {
-        for t in &targets {
-            let claim = format!("{}, N = {n}", t.id);
-            bar.stage(&claim, None);
-            let r = prove::prove_target_observed(t, n, limits, &ClaimBar { bar: &bar, claim });
-            let mut text = String::new();
-            if args.json {
-                text.push_str(&prove::json(&r, t.erratum));
-                text.push('\n');
-            } else {
-                text.push_str(&format!(
-                    "{:<52} {:>2} {:>8} {:>7} {:>8} {:>8.2}  {}\n",
-                    r.id,
-                    r.n,
-                    r.status.as_str(),
-                    r.paths,
-                    r.queries,
-                    r.seconds,
-                    if t.erratum { "yes" } else { "" }
-                ));
-                if r.status == Status::Unknown {
-                    if let Some(note) = &r.note {
-                        text.push_str(&format!("    unknown: {note}\n"));
-                    }
-                }
-            }
-            // The bar is lifted while the line is written, so that the two
-            // do not interleave on a terminal.
-            bar.indicatif()
-                .suspend(|| out.write_all(text.as_bytes()).and_then(|()| out.flush()))
-                .map_err(io_err)?;
+    let work = |u: &ProveUnit| {
+        let claim = format!("{}, N = {}", u.target.id, u.n);
+        bar.stage(&claim, None);
+        campaign::run_unit(u, &setup, &ClaimBar { bar: &bar, claim })
+    };
+    let result = match args.split.shard {
+        Some(shard) => {
+            let value = setup_value(&setup)?;
+            args.split
+                .run_shard(shard, "prove", value, &units, out, work)
         }
-    }
+        None if args.split.jobs.get() > 1 => {
+            let lines = run_units(&units, args.split.jobs, work);
+            let text = campaign::render(&setup, &lines, args.json);
+            out.write_all(text.as_bytes()).map_err(io_err)
+        }
+        None => {
+            if !args.json {
+                out.write_all(campaign::table_head(&setup.solver).as_bytes())
+                    .map_err(io_err)?;
+            }
+            for u in &units {
+                let text = campaign::report_line(&work(u), args.json);
+                // The bar is lifted while the line is written, so that the
+                // two do not interleave on a terminal.
+                bar.indicatif()
+                    .suspend(|| out.write_all(text.as_bytes()).and_then(|()| out.flush()))
+                    .map_err(io_err)?;
+            }
+            Ok(())
+        }
+    };
     bar.finish();
-    Ok(())
+    result
 }

@@ -4,19 +4,19 @@
 use std::io::{self, Write};
 use std::path::PathBuf;
 
-use clap::builder::{PossibleValue, PossibleValuesParser};
+use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::ValueEnum;
 use num_rational::BigRational;
 
-use sticky::fast::engine::{self, ENGINES};
-use sticky::progress::Progress;
+use sticky::progress::{Progress, Silent};
 use sticky::report::json;
 use sticky::report::progress::Bar;
 use sticky::scene::{Scene, SceneKind};
+use sticky::solver::{Answer, Engine, Options, Solver, WorkCap};
 use sticky::{Scalar, State};
 
 use crate::table::{particle_range, write_table, INDICES_FROM_0};
-use crate::{io_err, load, parse_time, Failure};
+use crate::{io_err, load, parse_time, scene_err, Failure};
 
 /// The state x(t), u(t), λ(t) and the contact clusters at each requested time.
 #[derive(clap::Args)]
@@ -46,8 +46,8 @@ pub struct Args {
     /// `auto` picks the cheapest for the data (the integer kernel's one-shot
     /// projection, O(N) per time); `projection` and `events` name the
     /// kernel and the integer event merge (O(N log N) once).
-    #[arg(long, default_value = "auto", value_parser = engine_names())]
-    engine: String,
+    #[arg(long, default_value = Engine::Auto.name(), value_parser = engine_names())]
+    engine: Engine,
     /// Which model answers: the N particles of the scene, or (for a
     /// `[macro]` scene) the continuum solution of its macroscopic datum,
     /// block by block, whose cost does not grow with N.
@@ -79,15 +79,15 @@ enum Model {
     Continuum,
 }
 
-/// `auto`, then every engine of [`ENGINES`] by name (aliases accepted),
-/// each with its one-line summary for `--help`.
-fn engine_names() -> PossibleValuesParser {
-    let auto = PossibleValue::new("auto").help("the cheapest exact engine for the data");
-    PossibleValuesParser::new(std::iter::once(auto).chain(ENGINES.iter().map(|e| {
-        PossibleValue::new(e.name())
-            .aliases(e.aliases().iter().copied())
-            .help(e.summary())
-    })))
+/// Every engine the Solver can be asked for ([`Engine::choices`]: `auto`
+/// first, aliases accepted), each with its one-line summary for `--help`.
+fn engine_names() -> impl TypedValueParser<Value = Engine> {
+    PossibleValuesParser::new(Engine::choices().map(|c| {
+        PossibleValue::new(c.name)
+            .aliases(c.aliases.iter().copied())
+            .help(c.summary)
+    }))
+    .try_map(|name| name.parse::<Engine>().map_err(|e| e.to_string()))
 }
 
 /// Runs `sticky run`.
@@ -118,92 +118,47 @@ pub fn exec(mut args: Args, out: &mut impl Write) -> Result<(), Failure> {
         }
         return columns(out, &args);
     }
-    if args.json && args.engine == "auto" && args.model == Model::Particles && !args.explain {
-        // The streaming path for a column file on machine words
-        // (`fast::stream`): the same bytes; anything it does not cover
-        // (another scene, a value off words, a time beyond its bound)
-        // goes the general way below.
-        if let Some(lean) = sticky::fast::stream::Lean::load(&args.scene) {
-            let mut general = None;
-            for t in &args.at {
-                match lean.blocks_at(t) {
-                    Some(b) => json::write_lean_state(out, &b, lean.radius()).map_err(io_err)?,
-                    None => {
-                        if general.is_none() {
-                            general = Some(load(&args.scene)?);
-                        }
-                        if let Some(scene) = &general {
-                            run(out, scene, std::slice::from_ref(t), true, "auto")?;
-                        }
-                    }
-                }
-            }
-            return Ok(());
+    match args.model {
+        Model::Particles => run(out, &args),
+        Model::Continuum => {
+            let scene = load(&args.scene)?;
+            run_continuum(out, &scene, &args.scene, &args.at, args.json)
         }
     }
-    let scene = load(&args.scene)?;
-    let chosen = if args.model == Model::Particles {
-        let e = choose(&scene, &args.engine, args.explain)?;
-        engine::check_work_for(&scene.data, e)
-            .map_err(|e| Failure(format!("{}: {e}", args.scene.display())))?;
-        e.name()
-    } else {
-        "auto"
-    };
-    match args.model {
-        Model::Particles => run(out, &scene, &args.at, args.json, chosen),
-        Model::Continuum => run_continuum(out, &scene, &args.scene, &args.at, args.json),
-    }
 }
 
-/// The engine named `name`, or for `auto` the one the cost model chooses
-/// ([`engine::Cost`]); with `explain`, the choice and why on stderr.
-fn choose(
-    scene: &Scene,
-    name: &str,
-    explain: bool,
-) -> Result<&'static dyn engine::ExactEngine, Failure> {
-    let cost = engine::Cost::of(&scene.data);
-    let e = match name {
-        "auto" => engine::auto_for(&cost),
-        name => engine::by_name(name).ok_or_else(|| Failure(format!("unknown engine {name:?}")))?,
-    };
-    if explain {
-        let how = if name == "auto" {
-            "chosen by the cost model"
-        } else {
-            "named by --engine"
-        };
-        eprintln!("{} ({how})", cost.explain(e));
+/// The Solver of the scene with the engine of `--engine`; with
+/// `--explain`, its choice and why on stderr.
+fn solver(args: &Args) -> Result<Solver, Failure> {
+    let solver = Solver::load(&args.scene)
+        .map_err(scene_err(&args.scene))?
+        .with_options(Options {
+            engine: args.engine,
+            work: WorkCap::Plain,
+        });
+    if args.explain {
+        eprintln!("{}", solver.explain().map_err(scene_err(&args.scene))?);
     }
-    Ok(e)
+    Ok(solver)
 }
 
-fn run(
-    out: &mut impl Write,
-    scene: &Scene,
-    times: &[BigRational],
-    as_json: bool,
-    engine: &str,
-) -> Result<(), Failure> {
-    let data = &scene.data;
-    let engine = match engine {
-        "auto" => engine::auto(data),
-        name => engine::by_name(name).ok_or_else(|| Failure(format!("unknown engine {name:?}")))?,
-    };
-    let prepared = engine.prepare(data);
+/// The state at each time, as a table or one JSON object per line.
+fn run(out: &mut impl Write, args: &Args) -> Result<(), Failure> {
+    let solver = solver(args)?;
     // A bar on stderr when it is a terminal (engines that take long on one
     // state tell it their steps; Ctrl-C ends the process).
     let bar = Bar::for_command("run");
-    for t in times {
-        let state = prepared
-            .state_at_with_progress(t, &bar)
-            .map_err(|e| Failure(e.to_string()))?;
-        if as_json {
-            writeln!(out, "{}", json::state(&state, data.radius())).map_err(io_err)?;
-        } else {
-            write_state_table(out, &state, data.radius()).map_err(io_err)?;
+    for t in &args.at {
+        let answer = solver
+            .state_with_progress(t, &bar)
+            .map_err(scene_err(&args.scene))?;
+        let radius = solver.radius().map_err(scene_err(&args.scene))?;
+        match answer {
+            Answer::Words(b) if args.json => json::write_lean_state(out, &b, radius),
+            answer if args.json => writeln!(out, "{}", json::state(&answer.into_state(), radius)),
+            answer => write_state_table(out, &answer.into_state(), radius),
         }
+        .map_err(io_err)?;
     }
     bar.finish();
     Ok(())
@@ -235,15 +190,11 @@ impl Cell for BigRational {
 }
 
 /// `--format csv|npy`: every particle at every time, row by row, from the
-/// streaming path when it applies, else from the general state.
+/// Solver's answer as its path left it (values written one by one on the
+/// streaming path).
 fn columns(out: &mut impl Write, args: &Args) -> Result<(), Failure> {
     let npy = args.format == Some(Format::Npy);
-    let lean = if args.engine == "auto" {
-        sticky::fast::stream::Lean::load(&args.scene)
-    } else {
-        None
-    };
-    let mut general: Option<(Scene, Box<dyn engine::Prepared>)> = None;
+    let solver = solver(args)?;
     let mut header = false;
     let t_count = args.at.len();
     for t in &args.at {
@@ -279,29 +230,24 @@ fn columns(out: &mut impl Write, args: &Args) -> Result<(), Failure> {
             }
             out.write_all(b"\n")
         };
-        if let Some(b) = lean.as_ref().and_then(|l| l.blocks_at(t)) {
-            let n = b.n();
-            b.rows(|i, x, u, l| row(out, n, i, x, u, l.map(|l| l as &dyn Cell)))
-                .map_err(io_err)?;
-            continue;
+        match solver
+            .state_with_progress(t, &Silent)
+            .map_err(scene_err(&args.scene))?
+        {
+            Answer::Words(b) => {
+                let n = b.n();
+                b.rows(|i, x, u, l| row(out, n, i, x, u, l.map(|l| l as &dyn Cell)))
+            }
+            answer => {
+                let state = answer.into_state();
+                let n = state.positions.len();
+                (0..n).try_for_each(|i| {
+                    let l = state.multipliers.get(i).map(|l| l as &dyn Cell);
+                    row(out, n, i, &state.positions[i], &state.velocities[i], l)
+                })
+            }
         }
-        if general.is_none() {
-            let scene = load(&args.scene)?;
-            let e = choose(&scene, &args.engine, args.explain)?;
-            engine::check_work_for(&scene.data, e)
-                .map_err(|e| Failure(format!("{}: {e}", args.scene.display())))?;
-            let prepared = e.prepare(&scene.data);
-            general = Some((scene, prepared));
-        }
-        let Some((_, prepared)) = &general else {
-            continue;
-        };
-        let state = prepared.state_at(t).map_err(|e| Failure(e.to_string()))?;
-        let n = state.positions.len();
-        for i in 0..n {
-            let l = state.multipliers.get(i).map(|l| l as &dyn Cell);
-            row(out, n, i, &state.positions[i], &state.velocities[i], l).map_err(io_err)?;
-        }
+        .map_err(io_err)?;
     }
     Ok(())
 }

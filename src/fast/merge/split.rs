@@ -100,13 +100,22 @@ where
 }
 
 /// A piece of the tree of cuts: particles `lo..hi`, either run whole or
-/// cut at `m` into the pieces `left` and `right` (planned before it).
+/// cut in two ([`Split`]).
 #[derive(Debug, Clone)]
 struct Piece {
     range: std::ops::Range<usize>,
-    cut: Option<(usize, usize, usize)>,
+    cut: Option<Split>,
     /// 0 for a piece run whole; one more than its higher half's otherwise.
     height: u32,
+}
+
+/// How a piece is cut: at particle `at` into the pieces numbered `left`
+/// (particles `lo..at`) and `right` (`at..hi`), both planned before it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Split {
+    at: usize,
+    left: usize,
+    right: usize,
 }
 
 /// Plans the pieces of `range`, cut at `m` (or, from `part_min` particles
@@ -133,7 +142,7 @@ fn plan<T: PartialEq>(
             let right = plan(x, u, m..hi, None, part_min, out);
             Piece {
                 range,
-                cut: Some((m, left, right)),
+                cut: Some(Split { at: m, left, right }),
                 height: 1 + out[left].height.max(out[right].height),
             }
         }
@@ -171,10 +180,10 @@ where
         let (x, u) = (&x[piece.range.clone()], &u[piece.range.clone()]);
         let joins = match piece.cut {
             None => run::<T, W>(x, u),
-            Some((m, left, right)) => {
-                let (left, right) = (take(left), take(right));
+            Some(split) => {
+                let (left, right) = (take(split.left), take(split.right));
                 let halves = Halves {
-                    m: m - piece.range.start,
+                    m: split.at - piece.range.start,
                     left: &left,
                     right: &right,
                 };
@@ -224,55 +233,115 @@ fn code_time(h: &Joins, code: u32) -> Option<Time> {
     }
 }
 
-/// Where a time `t` falls among each half's instants: `le[s]` of half
-/// `s`'s instants are at `t` or before, `lt[s]` before `t` (the instants
-/// are increasing, so a join code compares with `t` as an index).
+impl HalfCode {
+    /// Did the pair join at time zero or at one of the first `count`
+    /// instants of its half?
+    fn joined_before(self, count: u32) -> bool {
+        self.code == JOIN_ZERO || (self.code != JOIN_NEVER && self.code < count)
+    }
+}
+
+/// One of the two halves of a piece.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Half {
+    /// Particles `..m`.
+    Left,
+    /// Particles `m..`.
+    Right,
+}
+
+/// The join code of a pair in the half that holds it.
+#[derive(Debug, Clone, Copy)]
+struct HalfCode {
+    half: Half,
+    code: u32,
+}
+
+/// How many of each half's instants come before some time (the instants
+/// are increasing, so a join code compares with the time as an index).
+#[derive(Debug, Clone, Copy)]
+struct Counts {
+    left: u32,
+    right: u32,
+}
+
+impl Counts {
+    fn of(self, half: Half) -> u32 {
+        match half {
+            Half::Left => self.left,
+            Half::Right => self.right,
+        }
+    }
+}
+
+/// Which instants [`Halves::cut`] counts: those at `t` or before, or those
+/// strictly before.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Before {
+    AtOrBefore,
+    Strictly,
+}
+
+/// Where a time `t` falls among each half's instants: `le` counts those at
+/// `t` or before, `lt` those before `t`.
 #[derive(Debug, Clone, Copy)]
 struct Cut {
-    le: [u32; 2],
-    lt: [u32; 2],
+    le: Counts,
+    lt: Counts,
 }
 
 impl Halves<'_> {
     /// Where `t` falls among the halves' instants.
     fn cut(&self, t: &Time) -> Cut {
-        let at = |h: &Joins, strict: bool| {
+        let count = |h: &Joins, before: Before| {
             h.instants.partition_point(|&(gap, closing)| {
                 let c = Time::new(gap, closing).cmp(t);
-                c == Ordering::Less || (!strict && c == Ordering::Equal)
+                c == Ordering::Less || (before == Before::AtOrBefore && c == Ordering::Equal)
             }) as u32
         };
+        let counts = |before| Counts {
+            left: count(self.left, before),
+            right: count(self.right, before),
+        };
         Cut {
-            le: [at(self.left, false), at(self.right, false)],
-            lt: [at(self.left, true), at(self.right, true)],
+            le: counts(Before::AtOrBefore),
+            lt: counts(Before::Strictly),
         }
     }
     /// The half and join code of the pair `(j, j + 1)` (`None` for the pair
     /// across the cut, which no half joins).
-    fn code(&self, j: usize) -> Option<(usize, u32)> {
+    fn code(&self, j: usize) -> Option<HalfCode> {
         match j.cmp(&(self.m - 1)) {
-            Ordering::Less => Some((0, self.left.join[j])),
+            Ordering::Less => Some(HalfCode {
+                half: Half::Left,
+                code: self.left.join[j],
+            }),
             Ordering::Equal => None,
-            Ordering::Greater => Some((1, self.right.join[j - self.m])),
+            Ordering::Greater => Some(HalfCode {
+                half: Half::Right,
+                code: self.right.join[j - self.m],
+            }),
         }
     }
     /// The half's join time of the pair `(j, j + 1)`.
     fn join(&self, j: usize) -> Option<Time> {
-        let (side, code) = self.code(j)?;
-        code_time(if side == 0 { self.left } else { self.right }, code)
+        let c = self.code(j)?;
+        let half = match c.half {
+            Half::Left => self.left,
+            Half::Right => self.right,
+        };
+        code_time(half, c.code)
     }
     /// Did the pair `(j, j + 1)` join in its half at the time of `cut` or
     /// before?
     fn joined_by(&self, j: usize, cut: &Cut) -> bool {
-        self.code(j).is_some_and(|(side, code)| {
-            code == JOIN_ZERO || (code != JOIN_NEVER && code < cut.le[side])
-        })
+        self.code(j)
+            .is_some_and(|c| c.joined_before(cut.le.of(c.half)))
     }
     /// Did the pair `(j, j + 1)` join in its half before the time of `cut`?
     fn joined_before(&self, j: usize, cut: &Cut) -> bool {
-        self.code(j).is_some_and(|(side, code)| {
-            code == JOIN_ZERO || (code != JOIN_NEVER && code < cut.lt[side])
-        })
+        self.code(j)
+            .is_some_and(|c| c.joined_before(cut.lt.of(c.half)))
     }
 }
 
@@ -702,10 +771,14 @@ mod tests {
                     }
                     false => None,
                 };
-                assert_eq!(p.cut.map(|c| c.0), want, "piece {i} of {pieces:?}");
+                assert_eq!(p.cut.map(|c| c.at), want, "piece {i} of {pieces:?}");
                 match p.cut {
                     None => assert_eq!(p.height, 0),
-                    Some((c, l, r)) => {
+                    Some(Split {
+                        at: c,
+                        left: l,
+                        right: r,
+                    }) => {
                         assert!(l < i && r < i);
                         assert_eq!(
                             (pieces[l].range.clone(), pieces[r].range.clone()),

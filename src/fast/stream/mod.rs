@@ -89,12 +89,22 @@ impl Exact {
     /// Writes the value as the contract does: `p/q`, or `p` when `q = 1`
     /// ([`crate::rational::render_exact`]).
     pub fn write<W: Write + ?Sized>(&self, out: &mut W) -> io::Result<()> {
+        write!(out, "{self}")
+    }
+}
+
+impl std::fmt::Display for Exact {
+    /// `p/q`, or `p` when `q = 1`, as [`Exact::write`].
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            Exact::Small(n, 1) => write!(out, "{n}"),
-            Exact::Small(n, d) => write!(out, "{n}/{d}"),
-            Exact::Big(q) => write!(out, "{}", crate::rational::render_exact(q)),
+            Exact::Small(n, 1) => write!(f, "{n}"),
+            Exact::Small(n, d) => write!(f, "{n}/{d}"),
+            Exact::Big(q) => f.write_str(&crate::rational::render_exact(q)),
         }
     }
+}
+
+impl Exact {
     /// The nearest double (ties to even; `±∞` beyond the range): one
     /// correctly rounded division when both terms are exact doubles,
     /// `BigRational`'s conversion otherwise.

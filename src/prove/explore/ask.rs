@@ -33,9 +33,8 @@ impl PathState {
     /// ([`PathState::refuted_cheaply`]), whose `unsat` is the query's. The
     /// answer is the one the single long query would give, or `unsat` where
     /// it would have given `unknown`, in less time when a relaxation
-    /// settles it (on `lem:density` at N = 3, nlsat ran 20 s into its limit
-    /// on cell steps that the elimination or the linearisation refutes in
-    /// 0.1 s).
+    /// settles it (the figures that chose this ladder are in
+    /// `docs/journal.md`).
     pub(super) fn ask(
         &mut self,
         extra: &Atom,

@@ -138,3 +138,55 @@ fn union_of_outcomes_is_exact() {
         }
     }
 }
+
+/// The variable names are cleared on every exit of [`explore`]: here the
+/// early return on unsatisfiable hypotheses, which left them installed
+/// (for the next exploration on the thread to print stale names) before
+/// they were held by a guard.
+#[test]
+fn names_are_cleared_when_the_hypotheses_are_unsatisfiable() {
+    if super::super::smt::available().is_none() {
+        eprintln!("z3 not installed: skipped");
+        return;
+    }
+    let names = vec!["x".to_string()];
+    let x = Poly::var(0);
+    let hyps = [
+        Hypothesis::Sign(x.clone(), Rel::Gt),
+        Hypothesis::Sign(x, Rel::Lt),
+    ];
+    let program = || PathEnd::Holds;
+    let e = explore(&names, &hyps, Limits::default(), &program, &Silent).unwrap();
+    assert!(matches!(e.verdict, Verdict::Unknown(_)), "{:?}", e.verdict);
+    assert!(
+        super::names().is_empty(),
+        "stale names: {:?}",
+        super::names()
+    );
+}
+
+/// Two outcomes feasible: the first is taken and the other queued, so the
+/// program runs on both paths, and the decision replayed on the second is
+/// the alternative (a replay that took the recorded outcome again, or
+/// dropped the branch, would see one sign only).
+#[test]
+fn both_feasible_outcomes_are_explored() {
+    if super::super::smt::available().is_none() {
+        eprintln!("z3 not installed: skipped");
+        return;
+    }
+    let names = vec!["x".to_string()];
+    let x = Poly::var(0);
+    let seen = std::cell::RefCell::new(Vec::new());
+    let program = || {
+        let k = decide(&x, &[Rel::Gt, Rel::Le]);
+        seen.borrow_mut().push(k);
+        PathEnd::Holds
+    };
+    let e = explore(&names, &[], Limits::default(), &program, &Silent).unwrap();
+    assert!(matches!(e.verdict, Verdict::Proved), "{:?}", e.verdict);
+    assert_eq!(e.paths, 2);
+    let mut seen = seen.into_inner();
+    seen.sort_unstable();
+    assert_eq!(seen, vec![0, 1]);
+}

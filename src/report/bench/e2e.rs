@@ -30,6 +30,7 @@
 //! When Python, numpy or scipy is missing, the scipy rows say why and the
 //! `sticky` rows still run.
 
+use crate::json::Fixed;
 use std::fs::File;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
@@ -433,24 +434,45 @@ pub fn table(r: &E2eReport) -> String {
     out
 }
 
-/// `{"n": …, "e2e": [{"pipeline", "input", "wall_s", "vs_scipy",
-/// "peak_bytes_per_particle", "note"}, …]}`.
+/// `sticky bench --e2e --json`: one object.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct E2eJson {
+    /// N.
+    pub n: usize,
+    /// One row per pipeline and input.
+    pub e2e: Vec<E2eRowJson>,
+}
+
+/// One pipeline on one input.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct E2eRowJson {
+    /// The pipeline's name.
+    pub pipeline: &'static str,
+    /// The input's name.
+    pub input: &'static str,
+    /// Wall-clock seconds (`null`: not measured).
+    pub wall_s: Option<Fixed<4>>,
+    /// Its ratio to the SciPy pipeline.
+    pub vs_scipy: Option<Fixed<4>>,
+    /// Peak resident bytes per particle.
+    pub peak_bytes_per_particle: Option<Fixed<4>>,
+    /// A remark.
+    pub note: String,
+}
+
+/// [`E2eJson`] as one line.
 pub fn json(r: &E2eReport) -> String {
-    let num = |v: Option<f64>| v.map_or("null".into(), |x| format!("{x:.4}"));
-    let rows: Vec<String> = r
+    let e2e = r
         .rows
         .iter()
-        .map(|row| {
-            format!(
-                "{{\"pipeline\": \"{}\", \"input\": \"{}\", \"wall_s\": {}, \"vs_scipy\": {}, \"peak_bytes_per_particle\": {}, \"note\": {}}}",
-                row.tool.name(),
-                row.input.name(),
-                num(row.wall_s),
-                num(r.vs_scipy(row)),
-                num(r.bytes_per_particle(row)),
-                crate::text::string(&row.note)
-            )
+        .map(|row| E2eRowJson {
+            pipeline: row.tool.name(),
+            input: row.input.name(),
+            wall_s: row.wall_s.map(Fixed),
+            vs_scipy: r.vs_scipy(row).map(Fixed),
+            peak_bytes_per_particle: r.bytes_per_particle(row).map(Fixed),
+            note: row.note.clone(),
         })
         .collect();
-    format!("{{\"n\": {}, \"e2e\": [{}]}}", r.n, rows.join(", "))
+    crate::json::to_string(&E2eJson { n: r.n, e2e })
 }

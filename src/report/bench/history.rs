@@ -19,6 +19,7 @@
 //! * the history from the `BigRational` data, the scaling to common
 //!   denominators included ([`IntegerTrajectory::new`], the `events` row).
 
+use crate::json::Fixed;
 use num_rational::BigRational;
 
 use super::{free_f64, measured, median, scaled_columns, scene};
@@ -162,31 +163,53 @@ pub fn table(r: &HistoryReport) -> String {
     out
 }
 
-/// `{"n": …, "pairs": [{"f64": …, "history": …, "ratio": …, "from_data": …,
-/// "ratio_from_data": …}, …], "median_ratio": …, "median_ratio_from_data": …}`.
+/// `sticky bench --history --json`: one object.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct HistoryJson {
+    /// N.
+    pub n: usize,
+    /// One entry per measured pair of runs.
+    pub pairs: Vec<PairJson>,
+    /// The median of `ratio` (`null`: no pair).
+    pub median_ratio: Option<Fixed<4>>,
+    /// The median of `ratio_from_data`.
+    pub median_ratio_from_data: Option<Fixed<4>>,
+}
+
+/// One measured pair: ns per particle of each pipeline and their ratios.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct PairJson {
+    /// The `f64` PAVA.
+    pub f64: Fixed<3>,
+    /// The exact history.
+    pub history: Fixed<3>,
+    /// `history / f64`.
+    pub ratio: Fixed<4>,
+    /// The exact history from the data file.
+    pub from_data: Fixed<3>,
+    /// `from_data / f64`.
+    pub ratio_from_data: Fixed<4>,
+}
+
+/// [`HistoryJson`] as one line.
 pub fn json(r: &HistoryReport) -> String {
-    let pairs: Vec<String> = r
+    let pairs = r
         .pairs
         .iter()
-        .map(|p| {
-            format!(
-                "{{\"f64\": {:.3}, \"history\": {:.3}, \"ratio\": {:.4}, \"from_data\": {:.3}, \"ratio_from_data\": {:.4}}}",
-                p.f64_ns,
-                p.history_ns,
-                p.ratio(),
-                p.from_data_ns,
-                p.ratio_from_data()
-            )
+        .map(|p| PairJson {
+            f64: Fixed(p.f64_ns),
+            history: Fixed(p.history_ns),
+            ratio: Fixed(p.ratio()),
+            from_data: Fixed(p.from_data_ns),
+            ratio_from_data: Fixed(p.ratio_from_data()),
         })
         .collect();
-    let number = |m: Option<f64>| m.map_or("null".into(), |m| format!("{m:.4}"));
-    format!(
-        "{{\"n\": {}, \"pairs\": [{}], \"median_ratio\": {}, \"median_ratio_from_data\": {}}}",
-        r.n,
-        pairs.join(", "),
-        number(r.median_ratio()),
-        number(r.median_ratio_from_data())
-    )
+    crate::json::to_string(&HistoryJson {
+        n: r.n,
+        pairs,
+        median_ratio: r.median_ratio().map(Fixed),
+        median_ratio_from_data: r.median_ratio_from_data().map(Fixed),
+    })
 }
 
 #[cfg(test)]

@@ -576,24 +576,39 @@ fn run_peers(inputs: &[Vec<f64>], scripts: &Path) -> Vec<Measure> {
         .collect()
 }
 
-fn num(v: Option<f64>) -> String {
-    v.map_or("null".into(), |x| format!("{x:.2}"))
+/// Method name → median ns per particle (`null`: not measured), in the
+/// order measured.
+#[derive(Debug, Clone, Copy)]
+pub struct NsPerParticle<'a>(pub &'a [Measure]);
+
+impl serde::Serialize for NsPerParticle<'_> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_map(
+            self.0
+                .iter()
+                .map(|m| (m.method, m.ns_per_particle.map(crate::json::Fixed::<2>))),
+        )
+    }
 }
 
-/// `{"n": …, "ns_per_particle": {…}, "peers": {…}}`.
+/// `sticky bench --json`: one object.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct BenchJson<'a> {
+    /// N.
+    pub n: usize,
+    /// Ours.
+    pub ns_per_particle: NsPerParticle<'a>,
+    /// The peer solvers'.
+    pub peers: NsPerParticle<'a>,
+}
+
+/// [`BenchJson`] as one line.
 pub fn json(r: &BenchReport) -> String {
-    let items = |ms: &[Measure]| {
-        ms.iter()
-            .map(|m| format!("\"{}\": {}", m.method, num(m.ns_per_particle)))
-            .collect::<Vec<_>>()
-            .join(", ")
-    };
-    format!(
-        "{{\"n\": {}, \"ns_per_particle\": {{{}}}, \"peers\": {{{}}}}}",
-        r.n,
-        items(&r.ours),
-        items(&r.peers)
-    )
+    crate::json::to_string(&BenchJson {
+        n: r.n,
+        ns_per_particle: NsPerParticle(&r.ours),
+        peers: NsPerParticle(&r.peers),
+    })
 }
 
 /// A table with the ratio to our f64 PAVA.

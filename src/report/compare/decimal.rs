@@ -10,7 +10,7 @@
 use num_bigint::{BigInt, BigUint};
 use num_integer::Integer;
 use num_rational::BigRational;
-use num_traits::{One, Signed, Zero};
+use num_traits::{Signed, Zero};
 
 /// A value given exactly: a rational `q`, or `√q` for a rational `q ≥ 0`.
 #[derive(Debug, Clone, Copy)]
@@ -134,53 +134,13 @@ pub fn scientific(v: Value<'_>, digits: u32) -> String {
 }
 
 /// The `f64` nearest to the value (ties to even, subnormals included), or
-/// `None` when it is beyond the largest double (it would round to infinity).
+/// `None` when it is beyond the largest double (it would round to infinity):
+/// the one rounding step of [`crate::rational::nearest_double_of`].
 pub fn nearest_f64(v: Value<'_>) -> Option<f64> {
     if v.radicand().is_zero() {
         return Some(0.0);
     }
-    // 2^E ≤ |v| < 2^(E+1); keep 60 bits: m = ⌊|v|·2^k⌋, 2^59 ≤ m < 2^60.
-    let big_e = v.floor_log(2);
-    if big_e > 1023 {
-        return None;
-    }
-    let k = 59 - big_e;
-    let (m, inexact) = v.scaled_floor(2, k);
-    // The precision left at this exponent: 53 bits, fewer below 2^−1022.
-    let precision = if big_e >= -1022 {
-        53
-    } else {
-        53 - (-1022 - big_e)
-    };
-    // Drop `shift = 60 − precision ≥ 7` bits, rounding half to even; the
-    // value dropped is `rest + (inexact ? a positive fraction : 0)`.
-    let shift = (60 - precision) as u64;
-    let kept = &m >> shift;
-    let rest = &m - (&kept << shift);
-    let half = BigUint::one() << (shift - 1);
-    let up = rest > half || (rest == half && (inexact || kept.is_odd()));
-    let kept = if up { kept + 1u32 } else { kept };
-    // kept ≤ 2^53 is an exact double; the value is kept · 2^(shift − k).
-    let mantissa = u64::try_from(&kept).ok()? as f64;
-    let exponent = shift as i64 - k;
-    let x = scale(mantissa, exponent);
-    let x = if v.is_negative() { -x } else { x };
-    x.is_finite().then_some(x)
-}
-
-/// `x · 2^e`, exact when the result is a double (`x` an integer ≤ 2^53):
-/// in steps that each stay exact.
-fn scale(mut x: f64, mut e: i64) -> f64 {
-    let pow2 = |k: i64| f64::from_bits(((k + 1023) as u64) << 52);
-    while e > 1000 {
-        x *= pow2(1000);
-        e -= 1000;
-    }
-    while e < -1000 {
-        x *= pow2(-1000);
-        e += 1000;
-    }
-    x * pow2(e)
+    crate::rational::nearest_double_of(v.floor_log(2), v.is_negative(), |k| v.scaled_floor(2, k))
 }
 
 #[cfg(test)]

@@ -20,6 +20,8 @@ use crate::scalar::Scalar;
 
 /// The JSON object of a [`Report`].
 #[derive(Debug, Clone, Serialize)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(test, schemars(rename = "Compare"))]
 pub struct ReportJson {
     /// The scene's file, if named.
     pub scene: Option<String>,
@@ -49,6 +51,8 @@ pub struct ReportJson {
 
 /// An exact `max_i |a_i − b_i|` and where.
 #[derive(Debug, Clone, Serialize)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(test, schemars(rename = "Max"))]
 pub struct MaxJson {
     /// Exact.
     pub value: String,
@@ -60,6 +64,8 @@ pub struct MaxJson {
 
 /// An overlapping pair.
 #[derive(Debug, Clone, Serialize)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(test, schemars(rename = "Overlap"))]
 pub struct OverlapJson {
     /// The pair `(pair, pair + 1)`, from 0.
     pub pair: usize,
@@ -77,6 +83,8 @@ pub struct OverlapJson {
 
 /// A value attached to a pair.
 #[derive(Debug, Clone, Serialize)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(test, schemars(rename = "PairValue"))]
 pub struct PairJson {
     /// The pair `(pair, pair + 1)`, from 0.
     pub pair: usize,
@@ -88,6 +96,8 @@ pub struct PairJson {
 
 /// One time.
 #[derive(Debug, Clone, Serialize)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(test, schemars(rename = "Frame"))]
 pub struct FrameJson {
     /// The time, exact.
     pub t: String,

@@ -3,7 +3,7 @@
 //! (`Report::json`, feature `json`) — the one comparison behind `sticky
 //! compare` and the Python package's `sticky.compare`.
 //!
-//! The exact answer at each time is the integer kernel's
+//! The exact answer at each time is the [`Solver`](crate::solver::Solver)'s
 //! `x(t) = P_K(x⁰ + t u⁰)` (`prop:proj-micro`), `u(t)` and `λ(t)`
 //! (`eq:dyn-micro`); the figures are
 //! [`reference::measure::compare`](crate::reference::measure::compare)'s,
@@ -40,14 +40,13 @@ use std::fmt;
 use num_rational::BigRational;
 use num_traits::{Signed, Zero};
 
-use crate::fast::kernel::{self, IntegerData};
 use crate::initial::InitialData;
 use crate::progress::{Progress, Silent};
 use crate::reference::measure::{compare, CompareError, Comparison};
 use crate::report::solution::Frame;
 use crate::scalar::Scalar;
 
-pub use verdict::{Tolerances, Verdict};
+pub use verdict::{Representation, Tolerances, Verdict};
 
 /// When two neighbours of the solver's answer count as in contact, if the
 /// answer gives no `clusters` of its own: gap `x_{j+1} − x_j ≤ 2r + tol`.
@@ -231,7 +230,7 @@ pub fn compare_solution_with(
         .map(|u| u.abs())
         .max()
         .unwrap_or_else(<BigRational as Zero>::zero);
-    let ints = IntegerData::new(data);
+    let solver = crate::solver::Solver::from_data(data.clone());
     progress.stage("compare", Some(frames.len() as u64));
     let mut reports = Vec::with_capacity(frames.len());
     for f in frames {
@@ -243,11 +242,14 @@ pub fn compare_solution_with(
             t: f.t.clone(),
             error,
         };
-        let state = kernel::state_at(&ints, &f.t).map_err(|e| {
-            fail(CompareError::Exact {
-                message: e.to_string(),
-            })
-        })?;
+        let state = solver
+            .state(&f.t)
+            .map_err(|e| {
+                fail(CompareError::Exact {
+                    message: e.to_string(),
+                })
+            })?
+            .into_state();
         let comparison = compare(&f.candidate(), &state, &two_r, &contact_tol).map_err(fail)?;
         let x = &f.positions;
         let gaps: Vec<BigRational> = x.windows(2).map(|w| &w[1] - &w[0] - &two_r).collect();
@@ -262,7 +264,23 @@ pub fn compare_solution_with(
             velocity: tol * &speed,
             multiplier: tol * lambda_scale,
         };
-        let verdict = verdict::judge(&comparison, &gaps, f.multipliers.as_deref(), &tolerances);
+        let mut columns = vec![(x.as_slice(), state.positions.as_slice())];
+        if let Some(u) = &f.velocities {
+            columns.push((u.as_slice(), state.velocities.as_slice()));
+        }
+        if let Some(l) = &f.multipliers {
+            columns.push((l.as_slice(), state.multipliers.as_slice()));
+        }
+        let contacts_right = f.contacts.is_none()
+            || (comparison.missed_contacts == 0 && comparison.spurious_contacts == 0);
+        let representation = Representation::of(&columns, contacts_right);
+        let verdict = verdict::judge(
+            &comparison,
+            &gaps,
+            f.multipliers.as_deref(),
+            &tolerances,
+            representation,
+        );
         debug_assert_eq!(verdict == Verdict::Exact, comparison.is_exact());
         reports.push(FrameReport {
             line: f.line,

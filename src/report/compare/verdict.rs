@@ -7,9 +7,12 @@
 //! | `inexact`  | no constraint broken beyond its bound, but some error beyond it |
 //! | `invalid`  | a constraint of the model broken beyond its bound: an overlap (`df:KN`), `λ < 0` or complementarity (`eq:dyn-micro`), `prop:Oleinik` |
 //!
-//! With a rounding tolerance of `0` (the default) every bound is `0`, no
-//! answer is `rounding`, and the ladder is `exact` / `inexact` / `invalid`:
-//! any overlap, however small, is `invalid`.
+//! With a rounding tolerance of `0` (the default) every bound is `0`, and
+//! the ladder is `exact` / `inexact` / `invalid` — but for one answer: a
+//! correctly rounded one ([`Representation::NearestDoubles`]: every value
+//! given is the nearest double of the exact one, the contact clusters, when
+//! given, the exact ones) is `rounding` whatever the tolerances, since its
+//! overlaps, negative `λ` or missed contacts are the rounding's alone.
 
 use std::fmt;
 use std::str::FromStr;
@@ -17,7 +20,9 @@ use std::str::FromStr;
 use num_rational::BigRational;
 use num_traits::Signed;
 
+use crate::columns::f64_exact;
 use crate::reference::measure::Comparison;
+use crate::scalar::Scalar;
 
 /// The verdict, ordered from best to worst (`Exact < Rounding < Inexact <
 /// Invalid`): a report's verdict is its worst time's.
@@ -112,18 +117,53 @@ pub struct Tolerances {
     pub multiplier: BigRational,
 }
 
+/// What the candidate's values are, against the exact ones.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Representation {
+    /// Every value given is the nearest double (ties to even) of the exact
+    /// value, and the contact clusters, when given, are the exact ones.
+    NearestDoubles,
+    /// Anything else.
+    Other,
+}
+
+impl Representation {
+    /// `NearestDoubles` when every candidate column of `columns` (pairs
+    /// `(given, exact)`, of equal lengths) holds the nearest doubles of its
+    /// exact column and `contacts_right`; `Other` otherwise.
+    pub fn of(columns: &[(&[BigRational], &[BigRational])], contacts_right: bool) -> Self {
+        let nearest = |(given, exact): &(&[BigRational], &[BigRational])| {
+            debug_assert_eq!(given.len(), exact.len());
+            given
+                .iter()
+                .zip(exact.iter())
+                .all(|(g, e)| f64_exact(e.to_f64_lossy()).is_some_and(|d| &d == g))
+        };
+        if contacts_right && columns.iter().all(nearest) {
+            Representation::NearestDoubles
+        } else {
+            Representation::Other
+        }
+    }
+}
+
 /// One time's verdict. `gaps[j] = x_{j+1} − x_j − 2r` of the candidate and
 /// `multipliers` its `λ` (if given), for the complementarity bound: a pair
 /// with `λ_j (x_{j+1} − x_j − 2r) ≠ 0` is within it when its gap is within
 /// `tol.length` of contact or its `λ_j` within `tol.multiplier` of `0`.
+/// A correctly rounded answer (`representation`) is `rounding` at worst.
 pub fn judge(
     c: &Comparison,
     gaps: &[BigRational],
     multipliers: Option<&[BigRational]>,
     tol: &Tolerances,
+    representation: Representation,
 ) -> Verdict {
     if c.is_exact() {
         return Verdict::Exact;
+    }
+    if representation == Representation::NearestDoubles {
+        return Verdict::Rounding;
     }
     let deep_overlap = c.overlaps.iter().any(|o| o.depth > tol.length);
     let negative = c
@@ -205,28 +245,55 @@ mod tests {
     fn the_ladder() {
         let none = tol(q(0, 1));
         let some = tol(q(1, 100));
-        assert_eq!(judge(&clean(), &[], None, &none), Verdict::Exact);
+        assert_eq!(
+            judge(&clean(), &[], None, &none, Representation::Other),
+            Verdict::Exact
+        );
         // Within the bound: rounding; beyond it: invalid; no bound: invalid.
         assert_eq!(
-            judge(&overlapping(q(1, 1000)), &[], None, &some),
+            judge(
+                &overlapping(q(1, 1000)),
+                &[],
+                None,
+                &some,
+                Representation::Other
+            ),
             Verdict::Rounding
         );
         assert_eq!(
-            judge(&overlapping(q(1, 10)), &[], None, &some),
+            judge(
+                &overlapping(q(1, 10)),
+                &[],
+                None,
+                &some,
+                Representation::Other
+            ),
             Verdict::Invalid
         );
         assert_eq!(
-            judge(&overlapping(q(1, 1000)), &[], None, &none),
+            judge(
+                &overlapping(q(1, 1000)),
+                &[],
+                None,
+                &none,
+                Representation::Other
+            ),
             Verdict::Invalid
         );
         // A small overlap with a large error elsewhere: inexact.
         let mut c = overlapping(q(1, 1000));
         c.position_max.value = q(1, 2);
-        assert_eq!(judge(&c, &[], None, &some), Verdict::Inexact);
+        assert_eq!(
+            judge(&c, &[], None, &some, Representation::Other),
+            Verdict::Inexact
+        );
         // A wrong contact cluster is never rounding.
         let mut c = clean();
         c.missed_contacts = 1;
-        assert_eq!(judge(&c, &[], None, &some), Verdict::Inexact);
+        assert_eq!(
+            judge(&c, &[], None, &some, Representation::Other),
+            Verdict::Inexact
+        );
         assert!(Verdict::Exact < Verdict::Rounding);
         assert!(Verdict::Rounding < Verdict::Inexact);
         assert!(Verdict::Inexact < Verdict::Invalid);

@@ -1,6 +1,6 @@
 //! A small chart writer on [plotters]: every figure is written as SVG and
 //! PNG side by side, each file whole (a temporary name in the target folder,
-//! then a rename), as DESIGN.md §3 asks of every command that writes files.
+//! then a rename), as every command that writes files does (docs/guide/commands.md).
 //!
 //! Three kinds of figure:
 //!

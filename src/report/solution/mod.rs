@@ -1,5 +1,5 @@
 //! Reading another solver's answer exactly: the SOLUTION of `sticky compare`
-//! (DESIGN.md §3).
+//! (docs/guide/json.md).
 //!
 //! Two formats, told apart by the first character that is not white space:
 //!

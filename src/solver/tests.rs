@@ -1,0 +1,217 @@
+//! The Solver's choices: per cost, forced by name, its fast paths, and its
+//! fallback when the work check refuses the cost model's engine (these
+//! tests assume `$STICKY_MAX_WORK` unset: the default caps).
+
+use num_bigint::BigInt;
+
+use super::*;
+use crate::fast::engine::ENGINES;
+use crate::progress::Silent;
+use crate::rational::ratio as q;
+
+/// Two collisions at different instants, a cluster that stays apart, a
+/// contact at t = 0 that separates: every value on words.
+fn small() -> InitialData<BigRational> {
+    InitialData::new(
+        q(1, 4),
+        vec![q(0, 1), q(1, 1), q(3, 1), q(9, 2), q(6, 1), q(13, 2)],
+        vec![q(2, 1), q(0, 1), q(-1, 1), q(0, 1), q(1, 1), q(3, 1)],
+    )
+    .unwrap()
+}
+
+/// The hostile shape of issue 29: velocities `(-1)^i/(i+1)`, small
+/// denominators one by one, `lcm(1, …, N)` together.
+fn hostile(n: i64) -> InitialData<BigRational> {
+    InitialData::new(
+        q(1, 2),
+        (0..n).map(|i| q(3 * i, 1)).collect(),
+        (0..n)
+            .map(|i| q(if i % 2 == 0 { 1 } else { -1 }, i + 1))
+            .collect(),
+    )
+    .unwrap()
+}
+
+fn forced(name: &str) -> Options {
+    Options {
+        engine: name.parse().unwrap(),
+        ..Options::default()
+    }
+}
+
+fn times() -> Vec<BigRational> {
+    [
+        q(0, 1),
+        q(1, 3),
+        q(1, 2),
+        q(1, 1),
+        q(7, 4),
+        q(3, 1),
+        q(100, 1),
+    ]
+    .to_vec()
+}
+
+#[test]
+fn engines_are_named_and_auto_is_the_default() {
+    assert_eq!(Options::default().engine, Engine::Auto);
+    assert_eq!("auto".parse::<Engine>().unwrap(), Engine::Auto);
+    for e in ENGINES {
+        assert_ne!(e.name(), Engine::Auto.name());
+        assert_eq!(e.name().parse::<Engine>().unwrap().name(), e.name());
+    }
+    assert_eq!("projection".parse::<Engine>().unwrap().name(), "kernel");
+    assert_eq!("events".parse::<Engine>().unwrap().name(), "merge");
+    let e = "nope".parse::<Engine>().unwrap_err().to_string();
+    assert!(e.contains("unknown engine \"nope\""), "{e}");
+    let names: Vec<&str> = Engine::choices().map(|c| c.name).collect();
+    assert_eq!(names[0], "auto");
+    assert_eq!(names.len(), ENGINES.len() + 1);
+}
+
+/// The cost model's choice: the integer kernel on small common
+/// denominators, the blockwise projection past them (`lcm(1..400)`: 574
+/// bits), each explained.
+#[test]
+fn the_cost_model_chooses_per_cost() {
+    let s = Solver::from_data(hostile(8));
+    assert_eq!(s.engine().unwrap().name(), "kernel");
+    assert_eq!(s.choice().unwrap().reason, Reason::CostModel);
+    let s = Solver::from_data(hostile(400));
+    let c = s.choice().unwrap();
+    assert_eq!(
+        (c.engine.name(), &c.reason),
+        ("blockwise", &Reason::CostModel)
+    );
+    let line = s.explain().unwrap();
+    assert!(
+        line.starts_with("engine: blockwise (N = 400, common denominator 574 bits")
+            && line.ends_with(" (chosen by the cost model)"),
+        "{line}"
+    );
+    assert!(s
+        .explain_events()
+        .unwrap()
+        .starts_with("engine: merge (N = 400,"));
+}
+
+/// `Auto` answers on the fast paths where the data allow (words, dyadic
+/// doubles), a forced engine on itself alone; every answer is the oracle's.
+#[test]
+fn fast_paths_for_auto_and_the_named_engine_alone() {
+    let data = small();
+    let auto = Solver::from_data(data.clone());
+    for t in times() {
+        let oracle = crate::projection::state_at(&data, &t).unwrap();
+        let a = auto.state(&t).unwrap();
+        assert!(matches!(a, Answer::Words(_)), "t = {t}");
+        assert_eq!(a.into_state(), oracle);
+        for e in ENGINES {
+            let s = Solver::from_data(data.clone()).with_options(forced(e.name()));
+            let a = s.state(&t).unwrap();
+            assert!(matches!(a, Answer::Exact(_)), "{}", e.name());
+            assert_eq!(a.into_state(), oracle, "{} at {t}", e.name());
+            assert!(s.explain().unwrap().ends_with(" (named by --engine)"));
+        }
+    }
+    // Columns of doubles: the dyadic path, the same states.
+    let xs = [0.0, 1.0, 3.0, 4.5, 6.0, 6.5];
+    let us = [2.0, 0.0, -1.0, 0.0, 1.0, 3.0];
+    let s = Solver::from_doubles(Some(q(1, 4)), xs.to_vec(), us.to_vec()).unwrap();
+    assert_eq!(s.doubles().map(|(x, _)| x.len()), Some(6));
+    let mut seen = Vec::new();
+    s.states(&times(), &Silent, |a| -> Result<(), Error> {
+        assert!(matches!(a, Answer::Dyadic(_)));
+        seen.push(a.into_state());
+        Ok(())
+    })
+    .unwrap();
+    let oracle: Vec<_> = times()
+        .iter()
+        .map(|t| crate::projection::state_at(&data, t).unwrap())
+        .collect();
+    assert_eq!(seen, oracle);
+}
+
+/// The history: the word merge where the data allow, the trajectory
+/// otherwise (a forced engine), the same collisions; the projection.
+#[test]
+fn events_and_projection() {
+    let data = small();
+    let oracle = crate::trajectory::Trajectory::new(data.clone());
+    let words = Solver::from_data(data.clone()).events(&Silent).unwrap();
+    assert!(matches!(words, History::Words(_)));
+    let exact = Solver::from_data(data.clone())
+        .with_options(forced("generic-projection"))
+        .events(&Silent)
+        .unwrap();
+    assert!(matches!(exact, History::Exact(_)));
+    assert_eq!(words.collisions(), exact.collisions());
+    assert_eq!(words.collisions().len(), oracle.impulses().len());
+    assert!(!words.collisions().is_empty());
+    let z = vec![q(3, 1), q(0, 1), q(1, 2)];
+    let s = Solver::from_data(data);
+    assert_eq!(
+        s.project(&z).unwrap(),
+        crate::projection::project_k(&z, &q(1, 2))
+    );
+}
+
+/// A caller that asks to stop between two times gets
+/// [`Error::Interrupted`].
+#[test]
+fn states_stop_when_asked() {
+    struct Stop;
+    impl Progress for Stop {
+        fn cancelled(&self) -> bool {
+            true
+        }
+    }
+    let s = Solver::from_data(small());
+    let r = s.states(&times(), &Stop, |_| -> Result<(), Error> {
+        panic!("no state once stopped")
+    });
+    assert!(matches!(r, Err(Error::Interrupted { .. })));
+}
+
+/// 1024 particles whose velocities have four coprime denominators of
+/// ~12,800 bits (powers of 3, 5, 7, 11): the common denominator has
+/// ~51,200 bits (800 words), so the cost model prefers the kernel
+/// (`800² ≤ 32 · 200²`) but its work check refuses it
+/// (`1024 · 800² > 2^29`); the blockwise projection on local denominators
+/// passes (`1024 · 201² < 2^29`) and answers. Forced, the kernel is
+/// refused with the message of record.
+#[test]
+fn the_work_check_refusal_falls_back_to_blockwise() {
+    let big = |p: u32, e: u32| BigInt::from(p).pow(e);
+    let dens = [big(3, 8076), big(5, 5513), big(7, 4560), big(11, 3700)];
+    let n = 1024usize;
+    let data = InitialData::new(
+        q(1, 2),
+        (0..n).map(|i| q(3 * i as i64, 1)).collect(),
+        (0..n)
+            .map(|i| BigRational::new(1.into(), dens[i % 4].clone()))
+            .collect(),
+    )
+    .unwrap();
+    let s = Solver::from_data(data.clone());
+    let c = s.choice().unwrap();
+    assert_eq!(c.engine.name(), "blockwise");
+    assert_eq!(c.reason, Reason::Fallback("kernel"));
+    assert!(c.work.is_ok());
+    assert!(s.explain().unwrap().ends_with(
+        "(the cost model chose kernel, which the work check refuses: this one passes it)"
+    ));
+    let t = q(1, 1);
+    let state = s.state(&t).unwrap().into_state();
+    assert_eq!(state.positions[1], q(3, 1) + &data.velocities()[1]);
+    let kernel = Solver::from_data(data).with_options(forced("kernel"));
+    let e = kernel.state(&t).err().unwrap().to_string();
+    assert!(
+        e.starts_with("the exact answer by the engine kernel needs at least")
+            && e.contains("N = 1024"),
+        "{e}"
+    );
+    assert!(kernel.check_work().is_err());
+}

@@ -1,0 +1,141 @@
+//! No JSON is written by hand in `src/`: every output is a serde type
+//! printed by `src/json.rs`. This reads every library and command source
+//! file and fails on a formatting macro (`format!`, `write!`, `writeln!`,
+//! `print!`, `println!`, `push_str`, `write_all`) whose text holds a JSON
+//! key (`\"key\": `) or opens an object (`{{\"`). Test modules
+//! (`#[cfg(test)]` to the end of a file) and comments are skipped.
+
+use std::fs;
+use std::path::{Path, PathBuf};
+
+/// Files allowed to, and why: pending ones go when their output is typed;
+/// the readers build a search key (`"key": `), they write nothing.
+const PENDING: [(&str, &str); 4] = [
+    (
+        "prove/record.rs",
+        "reader: finds a key in the committed proof record",
+    ),
+    (
+        "report/atlas/peers.rs",
+        "reader: finds a key in a peer solver's output",
+    ),
+    (
+        "claims/ledger.rs",
+        "`sticky claims --json`, being made a serde type",
+    ),
+    (
+        "claims/coq.rs",
+        "`json_field`, spliced into the ledger's output until then",
+    ),
+];
+
+const WRITERS: [&str; 7] = [
+    "format!(",
+    "write!(",
+    "writeln!(",
+    "print!(",
+    "println!(",
+    "push_str(",
+    "write_all(",
+];
+
+fn visit(dir: &Path, files: &mut Vec<PathBuf>) {
+    for entry in fs::read_dir(dir).expect("src is readable") {
+        let path = entry.expect("directory entry").path();
+        if path.is_dir() {
+            visit(&path, files);
+        } else if path.extension().is_some_and(|e| e == "rs") {
+            files.push(path);
+        }
+    }
+}
+
+/// The first string literal of `code` (raw text, escapes kept).
+fn first_literal(code: &str) -> Option<&str> {
+    let start = code.find('"')? + 1;
+    let mut escaped = false;
+    for (i, c) in code[start..].char_indices() {
+        match c {
+            '\\' if !escaped => escaped = true,
+            '"' if !escaped => return Some(&code[start..start + i]),
+            _ => escaped = false,
+        }
+    }
+    None
+}
+
+/// Whether a literal writes JSON structure.
+fn writes_json(literal: &str) -> bool {
+    let key = literal.match_indices("\\\": ").any(|(i, _)| {
+        literal[..i].rsplit("\\\"").next().is_some_and(|k| {
+            k.chars()
+                .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '{' || c == '}')
+        })
+    });
+    key || literal.contains("{{\\\"")
+}
+
+/// The hand-written JSON writers in `code`: (line, literal).
+fn hand_json(code: &str) -> Vec<(usize, String)> {
+    let code = code.split("#[cfg(test)]").next().unwrap_or(code);
+    let mut out = Vec::new();
+    for writer in WRITERS {
+        for (at, _) in code.match_indices(writer) {
+            let line_start = code[..at].rfind('\n').map_or(0, |i| i + 1);
+            if code[line_start..at].trim_start().starts_with("//") {
+                continue;
+            }
+            let rest = &code[at + writer.len()..];
+            let end = (0..=rest.len().min(400))
+                .rev()
+                .find(|&i| rest.is_char_boundary(i))
+                .unwrap_or(0);
+            let window = &rest[..end];
+            if let Some(lit) = first_literal(window) {
+                if writes_json(lit) {
+                    let line = code[..at].lines().count() + 1;
+                    out.push((line, lit.to_string()));
+                }
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn no_json_is_written_by_hand() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    visit(&src, &mut files);
+    let mut found = Vec::new();
+    let mut checked = 0;
+    for path in files {
+        let rel = path.strip_prefix(&src).expect("under src");
+        let rel = rel.to_string_lossy().replace('\\', "/");
+        if PENDING.iter().any(|(f, _)| *f == rel) {
+            continue;
+        }
+        let code = fs::read_to_string(&path).expect("readable");
+        checked += 1;
+        for (line, lit) in hand_json(&code) {
+            found.push(format!("src/{rel}:{line}: {lit}"));
+        }
+    }
+    assert!(checked > 100, "{checked} files");
+    assert!(
+        found.is_empty(),
+        "JSON written by hand:\n{}",
+        found.join("\n")
+    );
+}
+
+#[test]
+fn the_check_sees_a_hand_written_object() {
+    let mutant = "fn f(x: u8) -> String {\n    format!(\n        \"{{\\\"n\\\": {}}}\",\n        x\n    )\n}\n";
+    assert_eq!(hand_json(mutant).len(), 1);
+    let key_only = "fn f() { out.write_all(b\"], \\\"velocities\\\": [\")?; }";
+    assert_eq!(hand_json(key_only).len(), 1);
+    let prose = "fn f() { format!(\"a {} b\", 1); }";
+    assert!(hand_json(prose).is_empty());
+    assert!(hand_json("#[cfg(test)]\nfn t() { format!(\"{{\\\"n\\\": 1}}\"); }").is_empty());
+}
