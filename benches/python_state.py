@@ -22,6 +22,14 @@ Two figures for sticky, never to be mixed up:
   figure against scipy (the velocities and multipliers of a State are
   computed on first access);
 * `state(t)`, all three arrays read: positions, velocities, multipliers.
+"Notebook doubles" (issue 38): x0 = np.cumsum of exponential gaps (scale 1)
+plus 4r each, so every gap exceeds 2r with room for the rounding of the
+cumsum, u0 uniform in [-1, 1], radius = 4e-7 and t = 0.01, both Python
+floats with full mantissas: t and r are doubles, the data stay dyadic and
+take the dyadic path on wider sums. There the build counts too: a fresh
+`Scene(x0, u0, 4e-7)` plus `state(0.01).positions`, timed as one call, as
+a notebook user runs it once.
+
 Each timing is the median of REPEATS runs, the tools alternating; wall time
 (`time.perf_counter`) and the process's CPU time (`time.process_time`, all
 threads: sticky uses two cores above 2^16 particles, scipy one).
@@ -53,14 +61,21 @@ def all_three(scene, t):
     return s.positions, s.velocities, s.multipliers
 
 
-def compare(label, x0, u0, radius, t, repeats):
+def fresh(x0, u0, radius, t):
+    """A fresh Scene and the positions of its state at t."""
+    return sticky.Scene(x0, u0, radius).state(t).positions
+
+
+def compare(label, x0, u0, radius, t, repeats, with_build=False):
     n = len(x0)
     start = time.perf_counter()
     scene = sticky.Scene(x0, u0, radius)
     build = time.perf_counter() - start
     y = x0 + t * u0 - 2 * radius * np.arange(n)
-    pos, full, theirs = [], [], []
+    pos, full, theirs, built = [], [], [], []
     for _ in range(repeats):
+        if with_build:
+            built.append(timed(lambda: fresh(x0, u0, radius, t)))
         pos.append(timed(lambda: scene.state(t).positions))
         full.append(timed(lambda: all_three(scene, t)))
         theirs.append(timed(lambda: isotonic_regression(y)))
@@ -71,9 +86,14 @@ def compare(label, x0, u0, radius, t, repeats):
     print(f"{label}: N = {n}, t = {t}")
     print(f"  Scene(...)               {build * 1e3:9.1f} ms (validation, once)")
     print("                              wall ms    CPU ms")
+    if with_build:
+        (c, c_cpu) = median(built)
+        print(f"  Scene + state(t).positions{c * 1e3:8.1f} {c_cpu * 1e3:9.1f} (fresh Scene each time)")
     print(f"  state(t).positions       {a * 1e3:9.1f} {a_cpu * 1e3:9.1f} (exact, rounded to float64)")
     print(f"  state(t), all 3 arrays   {f * 1e3:9.1f} {f_cpu * 1e3:9.1f} (x, u, lambda)")
     print(f"  scipy isotonic_regression{b * 1e3:9.1f} {b_cpu * 1e3:9.1f} (float64, x only)")
+    if with_build:
+        print(f"  ratio Scene + pos / scipy{c / b:9.2f} (wall)")
     print(f"  ratio positions / scipy  {a / b:9.2f} (wall; like for like)")
     print(f"  ratio all 3 / scipy      {f / b:9.2f} (wall)")
     print(f"  max |sticky - scipy|     {err:9.2e} (scipy's rounding)")
@@ -91,6 +111,11 @@ def main():
     xr = 4 * radius * np.arange(n) + radius * rng.random(n)
     ur = rng.random(n) * 2 - 1
     compare("random doubles", xr, ur, radius, 0.25, repeats)
+    radius = 4e-7
+    xn = np.cumsum(rng.exponential(1.0, size=n) + 4 * radius)
+    un = rng.uniform(-1.0, 1.0, size=n)
+    assert np.min(np.diff(xn)) >= 2 * radius
+    compare("notebook doubles", xn, un, radius, 0.01, repeats, with_build=True)
 
 
 if __name__ == "__main__":

@@ -48,6 +48,15 @@ impl<const L: usize> Int<L> {
         Int(limbs)
     }
 
+    /// From a `u128` (`L ≥ 3`, so that the value stays non-negative).
+    pub fn from_u128(v: u128) -> Self {
+        debug_assert!(L >= 3);
+        let mut limbs = [0u64; L];
+        limbs[0] = v as u64;
+        limbs[1] = (v >> 64) as u64;
+        Int(limbs)
+    }
+
     /// From an `i64` (sign-extended).
     pub fn from_i64(v: i64) -> Self {
         Self::from_i128(i128::from(v))
@@ -182,6 +191,130 @@ impl<const L: usize> Int<L> {
     }
 }
 
+/// The top bits of a non-negative [`Int`]: the value is
+/// `(top + ρ) 2^shift` with `0 ≤ ρ < 1`, `ρ > 0` exactly when `lost`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Top {
+    /// The value shifted right by `shift` bits: all of it when it fits
+    /// 128 bits (`shift = 0`), else its top 128 bits (bit 127 set).
+    pub top: u128,
+    /// The bits shifted out.
+    pub shift: u32,
+    /// Some bit shifted out is not zero.
+    pub lost: bool,
+}
+
+impl<const L: usize> Int<L> {
+    /// `v 2^j` (wrapping), `j < 64 L`.
+    #[inline]
+    pub fn wrapping_shl(self, j: u32) -> Self {
+        debug_assert!(u64::from(j) < Self::BITS);
+        let (limbs, bits) = ((j / 64) as usize, j % 64);
+        let mut out = [0u64; L];
+        for (i, o) in out.iter_mut().enumerate().skip(limbs) {
+            let lo = self.0[i - limbs];
+            let below = if bits == 0 || i == limbs {
+                0
+            } else {
+                self.0[i - limbs - 1] >> (64 - bits)
+            };
+            *o = (lo << bits) | below;
+        }
+        Int(out)
+    }
+
+    /// The value as an `i128` when it fits.
+    #[inline]
+    pub fn to_i128(self) -> Option<i128> {
+        let low = i128::from(self.0[0]) | (i128::from(self.0[1]) << 64);
+        let ext = if low < 0 { u64::MAX } else { 0 };
+        self.0[2..].iter().all(|&l| l == ext).then_some(low)
+    }
+
+    /// Bits of `|v|` (0 for 0; `v > −2^(64L−1)`).
+    pub fn magnitude_bits(self) -> u64 {
+        let m = if self.is_negative() {
+            self.wrapping_neg()
+        } else {
+            self
+        };
+        m.0.iter().rposition(|&l| l != 0).map_or(0, |i| {
+            64 * i as u64 + u64::from(64 - m.0[i].leading_zeros())
+        })
+    }
+
+    /// [`Top`] of `v ≥ 0`.
+    pub fn top(self) -> Top {
+        debug_assert!(!self.is_negative());
+        let bits = self.magnitude_bits();
+        if bits <= 128 {
+            let top = u128::from(self.0[0]) | (u128::from(self.0[1]) << 64);
+            return Top {
+                top,
+                shift: 0,
+                lost: false,
+            };
+        }
+        let shift = (bits - 128) as u32;
+        let (limbs, sh) = ((shift / 64) as usize, shift % 64);
+        let limb = |i: usize| self.0.get(i).copied().unwrap_or(0);
+        let word = |i: usize| -> u64 {
+            if sh == 0 {
+                limb(i)
+            } else {
+                (limb(i) >> sh) | (limb(i + 1) << (64 - sh))
+            }
+        };
+        let top = u128::from(word(limbs)) | (u128::from(word(limbs + 1)) << 64);
+        let low_limbs = self.0[..limbs].iter().any(|&l| l != 0);
+        let low_bits = sh != 0 && limb(limbs) & ((1u64 << sh) - 1) != 0;
+        Top {
+            top,
+            shift,
+            lost: low_limbs || low_bits,
+        }
+    }
+
+    /// `(⌊v/d⌋, v mod d)` for `d > 0`: the floor quotient and the
+    /// remainder in `[0, d)` (for `v > −2^(64L−1)`).
+    pub fn div_rem_floor(self, d: u64) -> (Self, u64) {
+        debug_assert!(d > 0);
+        let negative = self.is_negative();
+        let m = if negative { self.wrapping_neg() } else { self };
+        let mut q = [0u64; L];
+        let mut r = 0u128;
+        for i in (0..L).rev() {
+            let cur = (r << 64) | u128::from(m.0[i]);
+            q[i] = (cur / u128::from(d)) as u64;
+            r = cur % u128::from(d);
+        }
+        let (q, r) = (Int(q), r as u64);
+        if !negative {
+            return (q, r);
+        }
+        // −m = −q d − r = −(q + 1) d + (d − r).
+        if r == 0 {
+            (q.wrapping_neg(), 0)
+        } else {
+            (q.wrapping_add(Int::from_i64(1)).wrapping_neg(), d - r)
+        }
+    }
+}
+
+impl<const L: usize> From<i128> for Int<L> {
+    #[inline]
+    fn from(v: i128) -> Self {
+        Self::from_i128(v)
+    }
+}
+
+impl<const L: usize> From<i64> for Int<L> {
+    #[inline]
+    fn from(v: i64) -> Self {
+        Self::from_i64(v)
+    }
+}
+
 impl<const L: usize> Ord for Int<L> {
     #[inline]
     fn cmp(&self, o: &Self) -> Ordering {
@@ -289,6 +422,45 @@ mod tests {
             for u in [i128::MIN, i128::MAX, -1, 0, 1, 1 << 64] {
                 assert_eq!(Int::<L>::product(v, u).to_bigint(), BigInt::from(v) * u);
             }
+        }
+    }
+
+    /// The shift, the conversion, the top bits and the floor division
+    /// against `BigInt` on random values of every length.
+    #[test]
+    fn shifts_tops_and_floor_division_agree_with_bigint() {
+        let mut rng = SplitMix64::new(38);
+        for case in 0..20_000 {
+            let v = random_big(&mut rng, 250);
+            let w = I256::from_bigint(&v).unwrap();
+            let j = (rng.next_u64() % 256) as u32;
+            if v.bits() + u64::from(j) < 255 {
+                assert_eq!(
+                    w.wrapping_shl(j).to_bigint(),
+                    &v << j as usize,
+                    "{v} << {j}"
+                );
+            }
+            assert_eq!(w.to_i128(), num_traits::ToPrimitive::to_i128(&v));
+            assert_eq!(w.magnitude_bits(), v.bits());
+            let u = rng.next_u64() as u128 * rng.next_u64() as u128;
+            assert_eq!(I256::from_u128(u).to_bigint(), BigInt::from(u));
+            let d = match case % 3 {
+                0 => 1 + rng.next_u64() % 7,
+                1 => 1 + (rng.next_u64() >> (rng.next_u64() % 64)),
+                _ => u64::MAX - rng.next_u64() % 3,
+            };
+            let (q, r) = w.div_rem_floor(d);
+            let db = BigInt::from(d);
+            let want_q = num_integer::Integer::div_floor(&v, &db);
+            assert_eq!(q.to_bigint(), want_q, "{v} / {d}");
+            assert_eq!(BigInt::from(r), &v - &want_q * &db);
+            let a = v.abs();
+            let t = I256::from_bigint(&a).unwrap().top();
+            let back = BigInt::from(t.top) << t.shift as usize;
+            assert!(back <= a && &a - &back < (BigInt::from(1) << t.shift as usize));
+            assert_eq!(t.lost, back != a);
+            assert!(t.shift == 0 || t.top >> 127 == 1);
         }
     }
 

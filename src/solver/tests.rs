@@ -215,3 +215,35 @@ fn the_work_check_refusal_falls_back_to_blockwise() {
     );
     assert!(kernel.check_work().is_err());
 }
+
+/// A double `t` with a full mantissa (a Python float such as `0.01`) and a
+/// double radius on a Solver built from doubles, with positions spread
+/// over many binades: the dyadic path on its 256-bit sums answers, not the general engine, and its state is the
+/// oracle's (the projection on the exact data).
+#[test]
+fn a_full_mantissa_double_time_stays_on_the_dyadic_path() {
+    let exact = |v: f64| crate::columns::f64_exact(v).unwrap();
+    // Positions from 10⁻³ to 10⁶ (82 bits of scale) times a 53-bit `t`:
+    // the sums leave `i128`.
+    let xs = [0.0, 0.001, 0.0021, 0.0035, 1e6];
+    let us = [1.0, -1.0, 0.3, -0.7, 0.1];
+    let r = exact(4e-7);
+    let s = Solver::from_doubles(Some(r.clone()), xs.to_vec(), us.to_vec()).unwrap();
+    let data = InitialData::new(
+        r,
+        xs.iter().map(|&x| exact(x)).collect(),
+        us.iter().map(|&u| exact(u)).collect(),
+    )
+    .unwrap();
+    let t = exact(0.01);
+    let a = s.state(&t).unwrap();
+    match &a {
+        Answer::Dyadic(b) => assert_eq!(b.width(), crate::fast::kernel::Width::I256),
+        _ => panic!("a double t left the dyadic path"),
+    }
+    let oracle = crate::projection::state_at(&data, &t).unwrap();
+    // Particles 0 and 1 have met (the answer is not free flight).
+    let gap = &oracle.positions[1] - &oracle.positions[0];
+    assert_eq!(gap, q(2, 1) * data.radius());
+    assert_eq!(a.into_state(), oracle);
+}

@@ -25,7 +25,7 @@
 //! contiguous range of entries, so it covers the joined blocks too.
 
 use super::pava::{pava as pava_columns, widened, Sum};
-use crate::fast::kernel::{pools, Run};
+use crate::fast::kernel::{pools, Run, Word};
 
 /// Below this many entries one thread does everything (a thread costs
 /// tens of microseconds to start).
@@ -34,15 +34,59 @@ pub(crate) const PARALLEL_MIN: usize = 1 << 16;
 /// PAVA on the pairs `(y(x_i, u_i), u_i)`: the blocks of
 /// [`crate::fast::kernel::pava_words`], computed on the two halves by two
 /// threads when `n ≥ parallel_min`.
-pub(crate) fn pava<T: Copy + Into<W> + Sync, W: Sum + Send>(
+pub(crate) fn pava<T: Copy + Into<W> + Sync, W: Sum + Into<i128> + Send>(
     xs: &[T],
     us: &[T],
     parallel_min: usize,
     y: impl Fn(T, T) -> W + Sync,
 ) -> Vec<Run<i128>> {
+    match halves(xs, us, parallel_min, y) {
+        Halves::One(runs) => widened(runs),
+        Halves::Two(left, right) => {
+            // The join pools sums of blocks of both halves: on `i128`.
+            let mut left = widened(left);
+            join(&mut left, widened(right));
+            left
+        }
+    }
+}
+
+/// [`pava`] on sums of type `W` kept as they are (the 256-bit sums of a
+/// time beyond the `i128` bound).
+pub(crate) fn pava_in<T: Copy + Into<W> + Sync, W: Sum + Word + Send>(
+    xs: &[T],
+    us: &[T],
+    parallel_min: usize,
+    y: impl Fn(T, T) -> W + Sync,
+) -> Vec<Run<W>> {
+    match halves(xs, us, parallel_min, y) {
+        Halves::One(runs) => runs,
+        Halves::Two(mut left, right) => {
+            join(&mut left, right);
+            left
+        }
+    }
+}
+
+/// The blocks of all the entries, or of each half.
+enum Halves<W> {
+    /// One thread ran on all of them.
+    One(Vec<Run<W>>),
+    /// The left half's blocks and the right half's, still to be joined.
+    Two(Vec<Run<W>>, Vec<Run<W>>),
+}
+
+/// [`pava_columns`] on the two halves by two threads when
+/// `n ≥ parallel_min`, on all the entries by one otherwise.
+fn halves<T: Copy + Into<W> + Sync, W: Sum + Send>(
+    xs: &[T],
+    us: &[T],
+    parallel_min: usize,
+    y: impl Fn(T, T) -> W + Sync,
+) -> Halves<W> {
     let n = xs.len().min(us.len());
     if n < parallel_min.max(2) {
-        return widened(pava_columns(xs, us, &y));
+        return Halves::One(pava_columns(xs, us, &y));
     }
     let h = n / 2;
     let (y, (xl, xr), (ul, ur)) = (&y, xs.split_at(h), us.split_at(h));
@@ -59,16 +103,13 @@ pub(crate) fn pava<T: Copy + Into<W> + Sync, W: Sum + Send>(
         };
         (left, right)
     });
-    // The join pools sums of blocks of both halves: on `i128`.
-    let mut left = widened(left);
-    join(&mut left, widened(right));
-    left
+    Halves::Two(left, right)
 }
 
 /// Pushes the blocks of `right` (PAVA's blocks of the entries that follow
 /// `stack`'s) on `stack`, pooling while the top violates (module
 /// documentation).
-pub(crate) fn join(stack: &mut Vec<Run<i128>>, right: Vec<Run<i128>>) {
+pub(crate) fn join<W: Word>(stack: &mut Vec<Run<W>>, right: Vec<Run<W>>) {
     let mut rest = right.into_iter();
     while let Some(mut b) = rest.next() {
         let mut pooled = false;
@@ -80,8 +121,8 @@ pub(crate) fn join(stack: &mut Vec<Run<i128>>, right: Vec<Run<i128>>) {
             if let Some(top) = stack.pop() {
                 b = Run {
                     k: top.k + b.k,
-                    sy: top.sy.wrapping_add(b.sy),
-                    su: top.su.wrapping_add(b.su),
+                    sy: top.sy.add(&b.sy),
+                    su: top.su.add(&b.su),
                 };
             }
         }
@@ -99,7 +140,7 @@ pub(crate) fn join(stack: &mut Vec<Run<i128>>, right: Vec<Run<i128>>) {
 /// The index of the first block of the second half (the block holding
 /// entry `n / 2` starts it) and the entry it starts at; `(runs.len(), n)`
 /// when there is one block or none.
-fn midpoint(runs: &[Run<i128>], n: usize) -> (usize, usize) {
+fn midpoint<W, V>(runs: &[Run<W, V>], n: usize) -> (usize, usize) {
     let mut first = 0usize;
     for (j, r) in runs.iter().enumerate() {
         if first >= n / 2 && j > 0 {
@@ -114,12 +155,12 @@ fn midpoint(runs: &[Run<i128>], n: usize) -> (usize, usize) {
 /// `fill(blocks, first, out)` — `blocks` the blocks from entry `first` on,
 /// `out` the values from index `first` on — by two threads on two ranges of
 /// whole blocks when `n ≥ parallel_min`. `None` when a fill answers `None`.
-pub(crate) fn fill_by_halves(
-    runs: &[Run<i128>],
+pub(crate) fn fill_by_halves<W: Sync, V: Sync>(
+    runs: &[Run<W, V>],
     n: usize,
     len: usize,
     parallel_min: usize,
-    fill: impl Fn(&[Run<i128>], usize, &mut [f64]) -> Option<()> + Sync,
+    fill: impl Fn(&[Run<W, V>], usize, &mut [f64]) -> Option<()> + Sync,
 ) -> Option<Vec<f64>> {
     let mut out = vec![0.0; len];
     let (j, first) = if n < parallel_min {

@@ -46,6 +46,7 @@ mod halves;
 mod pava;
 pub mod quotient;
 pub mod round;
+mod wide;
 
 use std::sync::Arc;
 
@@ -54,12 +55,14 @@ use num_rational::BigRational;
 use num_traits::{Signed, ToPrimitive, Zero};
 
 use crate::cluster::Cluster;
-use crate::fast::kernel::{i128_clusters, size_bits, Run};
+use crate::fast::kernel::{size_bits, word_clusters, Run, Width};
 use crate::fast::stream::Nearest;
+use crate::fast::wide::I256;
 use crate::state::State;
 use pava::Sum;
 use quotient::Denominator;
 use round::{Divisor, Split};
+use wide::{Factor, Wide};
 
 /// Bits of `|v|` (0 for 0).
 fn bits(v: u128) -> u64 {
@@ -96,13 +99,22 @@ fn decompose(d: f64) -> Option<(i64, i64)> {
     Some((if d < 0.0 { -m } else { m }, e + tz))
 }
 
-/// A positive rational `a / (o 2^s)` (`o` odd) as `(a, o, s)`, `a` and `o`
-/// on 64 bits; `None` when it is negative or a term does not fit.
-fn split_odd(q: &BigRational) -> Option<(u64, u64, u64)> {
-    let a = q.numer().to_u64()?;
-    let s = q.denom().trailing_zeros()?;
-    let o = (q.denom() >> s).to_u64()?;
-    Some((a, o, s))
+/// A non-negative rational as `(a, o, s)` with value `a / (o 2^s)`: `a`
+/// odd (or `0`), `o` odd, both on 64 bits, `s` of either sign (the powers
+/// of two of the numerator and the denominator together); `None` when it
+/// is negative or a term does not fit.
+fn split_odd(q: &BigRational) -> Option<(u64, u64, i64)> {
+    if q.is_negative() {
+        return None;
+    }
+    if q.is_zero() {
+        return Some((0, 1, 0));
+    }
+    let za = q.numer().trailing_zeros()?;
+    let a = (q.numer() >> za).to_u64()?;
+    let zd = q.denom().trailing_zeros()?;
+    let o = (q.denom() >> zd).to_u64()?;
+    Some((a, o, i64::try_from(zd).ok()? - i64::try_from(za).ok()?))
 }
 
 /// Bits of `|v|` up to which the columns are stored as `i64`: `|v| < 2^63`.
@@ -208,7 +220,6 @@ impl Dyadic {
             .map(|&d| decompose(d))
             .collect::<Option<Vec<_>>>()?;
         let least = |p: &[(i64, i64)]| p.iter().filter(|v| v.0 != 0).map(|v| v.1).min();
-        let b_s = i64::try_from(b_s).ok()?;
         let ex = least(&px).map_or(-b_s, |e| e.min(-b_s));
         let eu = least(&pu).unwrap_or(0);
         // R = a 2^{−b_s − ex}, X̃_i = b_o m_i 2^{e_i − ex} − R i.
@@ -292,30 +303,61 @@ impl Dyadic {
     /// [`Self::blocks_at`], on two threads from `parallel_min` entries on
     /// (the PAVA now, the outputs later).
     fn blocks_with(&self, t: &BigRational, parallel_min: usize) -> Option<DyadicBlocks> {
-        if t.is_negative() {
-            return None;
-        }
         let (p, q_odd, q_s) = split_odd(t)?;
-        let q_s = i64::try_from(q_s).ok()?;
         let ey = self.ex.min(self.eu - q_s);
-        let a = shl_exact(i128::from(q_odd), (self.ex - ey) as u64)?;
-        let b = shl_exact(
-            i128::from(self.b_odd).checked_mul(i128::from(p))?,
-            (self.eu - q_s - ey) as u64,
-        )?;
+        // A = q_o 2^{ex − ey}, B = b_o p 2^{eu − q_s − ey}.
+        let fa = Factor {
+            odd: u128::from(q_odd),
+            shift: u64::try_from(self.ex - ey).ok()?,
+        };
+        let fb = Factor {
+            odd: u128::from(self.b_odd) * u128::from(p),
+            shift: u64::try_from(self.eu - q_s - ey).ok()?,
+        };
         // The kernel's bound (`crate::fast::kernel`): |Y_i| < 2^b_Y, every
         // block sum and cross product below 2^(b_Y + b_K) ≤ 2^127, the same
-        // for the U sums.
+        // for the U sums; beyond it, the same on 256 bits (`wide`).
         let b_k = size_bits(self.n());
-        let b_y =
-            (bits(a.unsigned_abs()) + self.x_bits).max(bits(b.unsigned_abs()) + self.u_bits) + 1;
-        if b_y + b_k > 127 || self.u_bits + b_k > 127 {
-            return None;
-        }
+        let b_y = (fa.bits() + self.x_bits).max(fb.bits() + self.u_bits) + 1;
+        let narrow = if b_y + b_k > 127 || self.u_bits + b_k > 127 {
+            None
+        } else {
+            self.narrow_sums(&fa, &fb, b_y + b_k, parallel_min)
+        };
+        let sums = match narrow {
+            Some(s) => s,
+            None => BlockSums::Wide(match &self.columns {
+                Columns::Narrow { x, u } => self.wide_sums(x, u, &fa, &fb, parallel_min)?,
+                Columns::Wide { x, u } => self.wide_sums(x, u, &fa, &fb, parallel_min)?,
+            }),
+        };
+        Some(DyadicBlocks {
+            d: self.clone(),
+            parallel_min,
+            sums,
+            t: t.clone(),
+            ey,
+            q_odd,
+        })
+    }
+
+    /// The PAVA on `i128` sums (or `i64` ones, under the bound on 63 bits),
+    /// `sum_bits = b_Y + b_K ≤ 127`; `None` when `C` leaves `i128`.
+    fn narrow_sums(
+        &self,
+        fa: &Factor,
+        fb: &Factor,
+        sum_bits: u64,
+        parallel_min: usize,
+    ) -> Option<BlockSums> {
+        // Both factors are below 2^{b_Y − 1} ≤ 2^126.
+        let a = shl_exact(i128::try_from(fa.odd).ok()?, fa.shift)?;
+        let b = shl_exact(i128::try_from(fb.odd).ok()?, fb.shift)?;
         let c = a.checked_mul(self.two_r)?;
         // The same bound on 63 bits: the PAVA on `i64` sums (`A`, `B`
         // then fit `i64` too, each term of `Y_i` being below `2^{b_Y − 1}`).
-        let narrow_sums = b_y + b_k <= NARROW_BITS && self.u_bits + b_k <= NARROW_BITS;
+        let b_k = size_bits(self.n());
+        let narrow_sums = sum_bits <= NARROW_BITS && self.u_bits + b_k <= NARROW_BITS;
         let ab64 = i64::try_from(a).ok().zip(i64::try_from(b).ok());
         let runs = match (&self.columns, ab64) {
             (Columns::Narrow { x, u }, Some((a, b))) if narrow_sums => {
@@ -324,22 +366,27 @@ impl Dyadic {
             (Columns::Narrow { x, u }, _) => pava_ab(x, u, a, b, parallel_min),
             (Columns::Wide { x, u }, _) => pava_ab(x, u, a, b, parallel_min),
         };
-        Some(DyadicBlocks {
-            d: self.clone(),
-            parallel_min,
-            runs,
-            t: t.clone(),
-            ey,
-            q_odd,
-            c,
-        })
+        Some(BlockSums::Narrow { runs, c })
+    }
+
+    /// The PAVA on 256-bit sums ([`wide`]).
+    fn wide_sums<T: Copy + Into<I256> + Sync>(
+        &self,
+        x: &[T],
+        u: &[T],
+        fa: &Factor,
+        fb: &Factor,
+        parallel_min: usize,
+    ) -> Option<Wide> {
+        let widths = (self.x_bits, self.u_bits);
+        Wide::new(x, u, fa, fb, self.two_r, widths, parallel_min)
     }
 }
 
 /// The PAVA on `(Y_i, U_i)`, `Y_i = A X̃_i + B U_i`, on either width of
 /// columns ([`Columns`]) and of sums ([`Sum`]: `W` must hold the sums and
 /// their products by block sizes, and `A`, `B`).
-fn pava_ab<T: Copy + Into<W> + Sync, W: Sum + Send + Sync>(
+fn pava_ab<T: Copy + Into<W> + Sync, W: Sum + Into<i128> + Send + Sync>(
     xs: &[T],
     us: &[T],
     a: W,
@@ -369,12 +416,37 @@ pub struct DyadicBlocks {
     d: Dyadic,
     /// Outputs are filled by two threads from this many particles on.
     parallel_min: usize,
-    runs: Vec<Run<i128>>,
+    sums: BlockSums,
     t: BigRational,
     ey: i64,
     q_odd: u64,
-    /// `C = A R`: `x_i = (S + k C i) 2^{ey} / (k b_o q_o)`.
-    c: i128,
+}
+
+/// The PAVA's blocks on the words the bound allowed, with
+/// `C = A R`: `x_i = (S + k C i) 2^{ey} / (k b_o q_o)`.
+#[derive(Debug, Clone, PartialEq)]
+enum BlockSums {
+    /// `i128` sums (`b_Y + b_K ≤ 127`).
+    Narrow { runs: Vec<Run<i128>>, c: i128 },
+    /// 256-bit `ΣY` ([`wide`]: `b_Y + b_K ≤ 254`), `ΣU` on `i128`.
+    Wide(Wide),
+}
+
+/// A block's `ΣY` as a big integer (for the exact state).
+trait SumY: Copy + Sync {
+    fn big(self) -> BigInt;
+}
+
+impl SumY for i128 {
+    fn big(self) -> BigInt {
+        BigInt::from(self)
+    }
+}
+
+impl SumY for I256 {
+    fn big(self) -> BigInt {
+        self.to_bigint()
+    }
 }
 
 /// The multipliers of one block of `k = us.len() ≥ 2` entries with
@@ -419,6 +491,19 @@ fn block_multipliers_checked<T: Copy + Into<i128>>(
     Some(())
 }
 
+/// The velocities of the particles of `runs` into `out`:
+/// `u_i = S_U 2^{eu} / k` (`eq:proj-u-micro`), one value per block.
+fn fill_velocities<W>(runs: &[Run<W, i128>], eu: i64, out: &mut [f64]) -> Option<()> {
+    let mut o = 0usize;
+    for r in runs {
+        let u = round::nearest(r.su, r.k, eu);
+        let k = r.k as usize;
+        out.get_mut(o..o + k)?.fill(u);
+        o += k;
+    }
+    Some(())
+}
+
 /// `num 2^exp / den` in lowest terms.
 fn exact(num: BigInt, den: BigInt, exp: i64) -> BigRational {
     let shift = exp.unsigned_abs() as usize;
@@ -455,40 +540,51 @@ impl DyadicBlocks {
     /// `x(t)` rounded to the nearest doubles ([`Self::nearest`]'s).
     pub fn positions(&self) -> Option<Vec<f64>> {
         let den_y = self.d.b_odd.checked_mul(self.q_odd)?;
-        let n = self.n();
-        halves::fill_by_halves(&self.runs, n, n, self.parallel_min, |runs, first, out| {
-            self.fill_positions(runs, first, den_y, out)
-        })
+        let (n, pm, ey) = (self.n(), self.parallel_min, self.ey);
+        match &self.sums {
+            BlockSums::Narrow { runs, c } => {
+                halves::fill_by_halves(runs, n, n, pm, |runs, first, out| {
+                    self.fill_positions(runs, first, *c, den_y, out)
+                })
+            }
+            BlockSums::Wide(w) => halves::fill_by_halves(&w.runs, n, n, pm, |runs, first, out| {
+                wide::fill_positions(runs, first, w.c, den_y, ey, out)
+            }),
+        }
     }
 
     /// `u(t)` rounded to the nearest doubles ([`Self::nearest`]'s).
     pub fn velocities(&self) -> Option<Vec<f64>> {
         let n = self.n();
         let eu = self.d.eu;
-        halves::fill_by_halves(&self.runs, n, n, self.parallel_min, |runs, _, out| {
-            let mut o = 0usize;
-            for r in runs {
-                // u_i = S_U 2^{eu} / k (eq:proj-u-micro), one value per block.
-                let u = round::nearest(r.su, r.k, eu);
-                let k = r.k as usize;
-                out.get_mut(o..o + k)?.fill(u);
-                o += k;
+        let pm = self.parallel_min;
+        match &self.sums {
+            BlockSums::Narrow { runs, .. } => {
+                halves::fill_by_halves(runs, n, n, pm, |r, _, out| fill_velocities(r, eu, out))
             }
-            Some(())
-        })
+            BlockSums::Wide(w) => {
+                halves::fill_by_halves(&w.runs, n, n, pm, |r, _, out| fill_velocities(r, eu, out))
+            }
+        }
     }
 
     /// `λ(t)` rounded to the nearest doubles ([`Self::nearest`]'s).
     pub fn multipliers(&self) -> Option<Vec<f64>> {
         let n = self.n();
         let big_n = u64::try_from(n).ok()?;
-        halves::fill_by_halves(
-            &self.runs,
-            n,
-            n.saturating_sub(1),
-            self.parallel_min,
-            |runs, first, out| self.fill_multipliers(runs, first, big_n, out),
-        )
+        let (len, pm) = (n.saturating_sub(1), self.parallel_min);
+        match &self.sums {
+            BlockSums::Narrow { runs, .. } => {
+                halves::fill_by_halves(runs, n, len, pm, |runs, first, out| {
+                    self.fill_multipliers(runs, first, big_n, out)
+                })
+            }
+            BlockSums::Wide(w) => {
+                halves::fill_by_halves(&w.runs, n, len, pm, |runs, first, out| {
+                    self.fill_multipliers(runs, first, big_n, out)
+                })
+            }
+        }
     }
 
     /// The positions of the particles of `runs` (the first one is particle
@@ -497,6 +593,7 @@ impl DyadicBlocks {
         &self,
         runs: &[Run<i128>],
         first: usize,
+        c: i128,
         den_y: u64,
         out: &mut [f64],
     ) -> Option<()> {
@@ -509,7 +606,7 @@ impl DyadicBlocks {
             let block = out.get_mut(o..o + k as usize)?;
             // x_i = (S + k C i) 2^{ey} / (k b_o q_o), i = first, first + 1, …
             let den = k.checked_mul(den_y)?;
-            let step = ki.checked_mul(self.c)?;
+            let step = ki.checked_mul(c)?;
             let first_i = i128::try_from(first).ok()?;
             let num_at = |m: u64| r.sy.checked_add(step.checked_mul(first_i + i128::from(m))?);
             if den_y == 1 {
@@ -518,10 +615,10 @@ impl DyadicBlocks {
                 // Runs of values in one binade at once
                 // (`round::nearest_plus_run`), the others one by one.
                 let split = Split::new(r.sy, k);
-                let mut w = split.floor.checked_add(self.c.checked_mul(first_i)?)?;
+                let mut w = split.floor.checked_add(c.checked_mul(first_i)?)?;
                 let mut m = 0usize;
                 while m < block.len() {
-                    let mut done = round::nearest_plus_run(w, self.c, &split, ey, &mut block[m..]);
+                    let mut done = round::nearest_plus_run(w, c, &split, ey, &mut block[m..]);
                     if done == 0 {
                         block[m] = match round::nearest_plus(w, &split, ey) {
                             Some(x) => x,
@@ -531,7 +628,7 @@ impl DyadicBlocks {
                     }
                     m += done;
                     if m < block.len() {
-                        let moved = self.c.checked_mul(i128::try_from(done).ok()?)?;
+                        let moved = c.checked_mul(i128::try_from(done).ok()?)?;
                         w = w.checked_add(moved)?;
                     }
                 }
@@ -549,9 +646,9 @@ impl DyadicBlocks {
 
     /// The multipliers of the pairs from `first` on, block by block over
     /// `runs`, into `out` (the last pair of a block, a gap, is `0`).
-    fn fill_multipliers(
+    fn fill_multipliers<W>(
         &self,
-        runs: &[Run<i128>],
+        runs: &[Run<W, i128>],
         first: usize,
         big_n: u64,
         out: &mut [f64],
@@ -597,6 +694,14 @@ impl DyadicBlocks {
     /// The exact state (`prop:proj-micro`): every value in lowest terms,
     /// from the same block sums.
     pub fn exact_state(&self) -> State<BigRational> {
+        match &self.sums {
+            BlockSums::Narrow { runs, c } => self.exact_state_of(runs, BigInt::from(*c)),
+            BlockSums::Wide(w) => self.exact_state_of(&w.runs, w.c.to_bigint()),
+        }
+    }
+
+    /// [`Self::exact_state`] from the blocks `runs` and `C`.
+    fn exact_state_of<W: SumY>(&self, runs: &[Run<W, i128>], c: BigInt) -> State<BigRational> {
         let n = self.n();
         let (ey, eu) = (self.ey, self.d.eu);
         let den_y = BigInt::from(self.d.b_odd) * BigInt::from(self.q_odd);
@@ -604,13 +709,12 @@ impl DyadicBlocks {
         let mut velocities = Vec::with_capacity(n);
         let mut multipliers = Vec::with_capacity(n.saturating_sub(1));
         let mut first = 0usize;
-        let c = BigInt::from(self.c);
-        for r in &self.runs {
+        for r in runs {
             let k = r.k;
             let kb = BigInt::from(k);
             let den = &kb * &den_y;
             for m in 0..k as usize {
-                let num = BigInt::from(r.sy) + &kb * &c * BigInt::from(first + m);
+                let num = r.sy.big() + &kb * &c * BigInt::from(first + m);
                 positions.push(exact(num, den.clone(), ey));
             }
             let u = exact(BigInt::from(r.su), kb.clone(), eu);
@@ -641,7 +745,19 @@ impl DyadicBlocks {
     /// The contact clusters of `x(t)` (`df:Omega-micro`): runs of blocks
     /// with equal `x̃` (cross-multiplied sums, exact by the kernel's bound).
     pub fn clusters(&self) -> Vec<Cluster> {
-        i128_clusters(&self.runs)
+        match &self.sums {
+            BlockSums::Narrow { runs, .. } => word_clusters(runs),
+            BlockSums::Wide(w) => word_clusters(&w.runs),
+        }
+    }
+
+    /// The words the PAVA ran on: [`Width::I128`] (or narrower), or
+    /// [`Width::I256`] beyond the `i128` bound.
+    pub fn width(&self) -> Width {
+        match &self.sums {
+            BlockSums::Narrow { .. } => Width::I128,
+            BlockSums::Wide(_) => Width::I256,
+        }
     }
 }
 

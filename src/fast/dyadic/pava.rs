@@ -9,16 +9,23 @@
 //! The sums are `i64` ([`Sum`]) when the caller proved that every sum and
 //! every product of a sum and a block size fits 63 bits (grid data: one
 //! machine multiplication per comparison, half the registers), `i128`
-//! otherwise.
+//! otherwise, [`Int`] (256 bits) when the `i128` bound fails (a double
+//! time with a full mantissa).
 
-use crate::fast::kernel::Run;
+use crate::fast::kernel::{Run, Word};
+use crate::fast::wide::Int;
 use crate::projection;
 
 /// The integer type of the PAVA's sums: wrapping arithmetic, exact under
 /// the caller's width bound.
-pub(crate) trait Sum: Copy + Ord + Into<i128> {
+pub(crate) trait Sum: Copy + Ord {
     /// `k` (a block size).
     fn size(k: u64) -> Self;
+    /// `self · k` for a block size `k` (wrapping).
+    #[inline]
+    fn times_size(self, k: u64) -> Self {
+        self.times(Self::size(k))
+    }
     /// `self + o` (wrapping).
     fn plus(self, o: Self) -> Self;
     /// `self · o` (wrapping).
@@ -65,18 +72,40 @@ impl Sum for i128 {
     }
 }
 
+impl<const L: usize> Sum for Int<L> {
+    #[inline]
+    fn size(k: u64) -> Self {
+        Int::from_i128(i128::from(k))
+    }
+    #[inline]
+    fn times_size(self, k: u64) -> Self {
+        self.mul_k(k)
+    }
+    #[inline]
+    fn plus(self, o: Self) -> Self {
+        self.wrapping_add(o)
+    }
+    #[inline]
+    fn times(self, o: Self) -> Self {
+        self.wrapping_mul(o)
+    }
+    #[inline]
+    fn shifted(self, j: u32) -> Self {
+        self.wrapping_shl(j)
+    }
+}
+
 /// [`crate::fast::kernel::pools`] on sums of type `W`: is `a`'s mean `≥`
 /// `b`'s in the lexicographic order on `(Y, U)`?
 #[inline]
 fn pools<W: Sum>(a: &Run<W>, b: &Run<W>) -> bool {
-    let (ka, kb) = (W::size(a.k), W::size(b.k));
-    projection::pools(a.sy.times(kb).cmp(&b.sy.times(ka)), || {
-        a.su.times(kb).cmp(&b.su.times(ka))
+    projection::pools(a.sy.times_size(b.k).cmp(&b.sy.times_size(a.k)), || {
+        a.su.times_size(b.k).cmp(&b.su.times_size(a.k))
     })
 }
 
 /// The blocks on `i128` sums (exact: a sum of `W` fits `i128`).
-pub(crate) fn widened<W: Sum>(runs: Vec<Run<W>>) -> Vec<Run<i128>> {
+pub(crate) fn widened<W: Sum + Into<i128>>(runs: Vec<Run<W>>) -> Vec<Run<i128>> {
     runs.into_iter()
         .map(|r| Run {
             k: r.k,
@@ -106,8 +135,10 @@ pub(crate) fn pava<T: Copy + Into<W>, W: Sum>(
     let mut cur = Run { k: 1, sy, su };
     for (y, u) in entries {
         // [`pools`] of `cur` and the one-entry block `(y, u)`.
-        let k = W::size(cur.k);
-        let pool = projection::pools(cur.sy.cmp(&y.times(k)), || cur.su.cmp(&u.times(k)));
+        let k = cur.k;
+        let pool = projection::pools(cur.sy.cmp(&y.times_size(k)), || {
+            cur.su.cmp(&u.times_size(k))
+        });
         if !pool {
             stack.push(std::mem::replace(&mut cur, Run { k: 1, sy: y, su: u }));
             continue;

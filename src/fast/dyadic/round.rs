@@ -55,26 +55,34 @@ pub fn nearest(num: i128, den: u64, exp: i64) -> f64 {
     if num == 0 {
         return 0.0;
     }
-    let negative = num < 0;
-    let a = num.unsigned_abs();
-    let magnitude = if den.is_power_of_two() {
+    let magnitude = magnitude(num.unsigned_abs(), false, den, exp);
+    if num < 0 {
+        -magnitude
+    } else {
+        magnitude
+    }
+}
+
+/// The nearest double of `(a + ρ) 2^exp / den` for `a > 0`, `0 ≤ ρ < 1`,
+/// `ρ > 0` exactly when `lost`; `lost` only with bit 127 of `a` set (the
+/// top bits of a wider integer).
+pub(crate) fn magnitude(a: u128, lost: bool, den: u64, exp: i64) -> f64 {
+    debug_assert!(a > 0 && (!lost || a >> 127 == 1));
+    if den.is_power_of_two() {
         // Division by a power of two is a shift of the exponent.
         let s = a.leading_zeros();
         round_scaled(
             a << s,
-            false,
+            lost,
             exp - i64::from(s) - i64::from(den.trailing_zeros()),
         )
     } else {
+        // `a` has 128 bits when `lost`: `normalise` shifts it right, and
+        // `⌊⌊(a + ρ) 2^s⌋ / d⌋ = ⌊a 2^s / d⌋` for `s < 0`.
         let d = u128::from(den);
-        let Normalised { a2, lost, s } = normalise(a, den);
-        let q = a2 / d;
-        round_scaled(q, lost || a2 != q.wrapping_mul(d), exp - s)
-    };
-    if negative {
-        -magnitude
-    } else {
-        magnitude
+        let n = normalise(a, den);
+        let q = n.a2 / d;
+        round_scaled(q, lost || n.lost || n.a2 != q.wrapping_mul(d), exp - n.s)
     }
 }
 

@@ -74,7 +74,7 @@ fn check(radius: Option<BigRational>, xs: &[f64], us: &[f64], t: &BigRational) -
     let near = blocks.nearest().expect("on words");
     // Two threads from two particles on: the same blocks, the same doubles.
     let halves = lean.blocks_with(t, 2).expect("the same bound");
-    assert_eq!(halves.runs, blocks.runs, "two-thread PAVA at t = {t}");
+    assert_eq!(halves.sums, blocks.sums, "two-thread PAVA at t = {t}");
     let near2 = halves.nearest().expect("on words");
     assert_eq!(bits_of(&near2.positions), bits_of(&near.positions));
     assert_eq!(bits_of(&near2.velocities), bits_of(&near.velocities));
@@ -84,7 +84,7 @@ fn check(radius: Option<BigRational>, xs: &[f64], us: &[f64], t: &BigRational) -
     let wide = lean.widened();
     assert!(!wide.is_narrow());
     let wide = wide.blocks_at(t).expect("the same bound");
-    assert_eq!(wide.runs, blocks.runs, "i128 columns at t = {t}");
+    assert_eq!(wide.sums, blocks.sums, "i128 columns at t = {t}");
     assert_eq!(wide.exact_state(), got, "i128 columns at t = {t}");
     let near3 = wide.nearest().expect("on words");
     assert_eq!(bits_of(&near3.positions), bits_of(&near.positions));
@@ -283,4 +283,158 @@ fn invalid_and_non_finite_data_are_declined() {
     assert!(Dyadic::from_doubles(Some(q(1, 4)), &[], &[]).is_none());
     let d = Dyadic::from_doubles(Some(q(1, 4)), &[0.0, 1.0], &[0.0, 0.0]).unwrap();
     assert!(d.blocks_at(&q(-1, 2)).is_none());
+}
+
+/// A scene as a notebook makes it: positions the running sums of random
+/// gaps above `2r` (53-bit mantissas at every scale), velocities uniform in
+/// `[−v, v]`, a double radius.
+fn notebook_scene(rng: &mut SplitMix64, n: usize, r: f64, v: f64) -> (Vec<f64>, Vec<f64>) {
+    let unit = |rng: &mut SplitMix64| (rng.next_u64() >> 11) as f64 * 2f64.powi(-53);
+    let mut x = 0.0f64;
+    let mut xs = Vec::with_capacity(n);
+    let mut us = Vec::with_capacity(n);
+    for _ in 0..n {
+        // −ln(1 − v): an exponential gap of mean 1/n beyond 2r (the rounding
+        // of the sum keeps the gaps above 2r by a margin).
+        let gap = -(1.0 - unit(rng)).ln() / n as f64;
+        x += 2.0 * r + r * 1e-3 + gap;
+        xs.push(x);
+        us.push((2.0 * unit(rng) - 1.0) * v);
+    }
+    (xs, us)
+}
+
+/// Full-mantissa double times (0.01 and its like) and double radii: the
+/// `i128` bound fails, the 256-bit sums answer, and the answer is the
+/// generic projection's, field by field, every double the nearest.
+#[test]
+fn double_times_take_the_wide_sums_and_agree() {
+    let mut rng = SplitMix64::new(38);
+    let mut wide = 0;
+    for case in 0..40 {
+        let n = 2 + (rng.next_u64() % 60) as usize;
+        let r = if case % 2 == 0 { 4e-7 } else { 0.1 / n as f64 };
+        // Velocities in [−2^-30, 2^-30] on half the cases: at small N the
+        // bound fails then as it does at N = 10^6 with velocities in [−1, 1].
+        let v = if case % 4 < 2 { 1.0 } else { 2f64.powi(-30) };
+        let (xs, us) = notebook_scene(&mut rng, n, r, v);
+        let radius = Some(exact_f64(r));
+        let lean = Dyadic::from_doubles(radius.clone(), &xs, &us).expect("valid doubles");
+        for t in [
+            0.01,
+            0.3,
+            1e-3,
+            2f64.powi(-7),
+            0.0,
+            -0.0,
+            123.456,
+            1e6,
+            7e-9,
+        ] {
+            let t = exact_f64(t);
+            assert_eq!(
+                check(radius.clone(), &xs, &us, &t),
+                Outcome::Agreed,
+                "case {case} at t = {t}"
+            );
+            if lean.blocks_at(&t).map(|b| b.width()) == Some(Width::I256) {
+                wide += 1;
+            }
+        }
+    }
+    // t = 0.01, 0.3, 1e-3, 123.456 and 7e-9 have full mantissas: beyond
+    // the `i128` bound with the small velocities.
+    assert!(wide >= 20 * 5, "{wide}");
+}
+
+/// Time and radius whose numerators carry powers of two beyond 64 bits
+/// (`t = 2^70`, `2r = 3·2^66`) and tiny ones: the same answers.
+#[test]
+fn times_and_radii_with_large_powers_of_two() {
+    let r = 3.0 * 2f64.powi(65);
+    let xs = [0.0, 4.0 * r, 9.0 * r, 12.0 * r + 2f64.powi(60)];
+    let us = [1.0, -0.75, 2f64.powi(-30), -1.0];
+    for t in [
+        2f64.powi(70),
+        2f64.powi(64) * 3.0,
+        1.0,
+        2f64.powi(-40),
+        0.01,
+    ] {
+        assert_eq!(
+            check(Some(exact_f64(r)), &xs, &us, &exact_f64(t)),
+            Outcome::Agreed,
+            "t = {t}"
+        );
+    }
+}
+
+mod random_doubles {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// Any finite double of the chosen exponent range: subnormals, both
+    /// zeros, full mantissas.
+    fn double(lo: i32, hi: i32) -> impl Strategy<Value = f64> {
+        let subnormals = if lo < -1022 { 1 } else { 0 };
+        prop_oneof![
+            1 => Just(0.0),
+            1 => Just(-0.0),
+            subnormals => (1u64..1 << 20).prop_map(f64::from_bits),
+            6 => (any::<bool>(), 0u64..1 << 52, lo..=hi).prop_map(|(neg, m, e)| {
+                let v = f64::from_bits((1023u64 << 52) | m) * 2f64.powi(e);
+                if neg { -v } else { v }
+            }),
+        ]
+    }
+
+    /// A scene: positions by gaps `2r + |g|`, velocities and the time any
+    /// doubles of the range.
+    fn scene(lo: i32, hi: i32) -> impl Strategy<Value = (f64, Vec<f64>, Vec<f64>, f64)> {
+        (1usize..8).prop_flat_map(move |n| {
+            (
+                double(lo, hi),
+                double(lo, hi),
+                prop::collection::vec(double(lo, hi), n),
+                prop::collection::vec(double(lo, hi), n),
+                double(lo, hi),
+            )
+                .prop_map(move |(r, x0, gaps, us, t)| {
+                    let r = r.abs().max(2f64.powi(lo));
+                    let mut x = x0;
+                    let xs = gaps
+                        .iter()
+                        .map(|g| {
+                            let here = x;
+                            x = x + 2.0 * r + g.abs();
+                            here
+                        })
+                        .collect();
+                    (r, xs, us, t.abs())
+                })
+        })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(400))]
+
+        /// Doubles of every scale (subnormals to 2^1000, both zeros): the
+        /// dyadic path agrees with the generic projection or declines
+        /// (exponents too far apart for 256 bits); never a different answer.
+        #[test]
+        fn prop_any_doubles_agree_or_decline((r, xs, us, t) in scene(-1074, 1000)) {
+            prop_assume!(xs.iter().all(|x| x.is_finite()));
+            check(Some(exact_f64(r)), &xs, &us, &exact_f64(t));
+        }
+
+        /// Doubles within 2^±40 of each other: always answered, on 128 or
+        /// 256 bits, and agreeing.
+        #[test]
+        fn prop_doubles_of_one_scale_are_answered((r, xs, us, t) in scene(-40, 0)) {
+            prop_assert_ne!(
+                check(Some(exact_f64(r)), &xs, &us, &exact_f64(t)),
+                Outcome::Declined
+            );
+        }
+    }
 }

@@ -209,9 +209,15 @@ pub(crate) struct Run<W, V = W> {
 /// cross-multiplication. Exact under the bound the callers proved before
 /// their PAVA (`|ΣY|·k` fits `i128`), so the wrapping products never wrap.
 pub(crate) fn i128_clusters(blocks: &[Run<i128>]) -> Vec<Cluster> {
+    word_clusters(blocks)
+}
+
+/// [`i128_clusters`] on sums of any fixed width ([`Word`]), under the same
+/// kind of bound (`|ΣY|·k` in range).
+pub(crate) fn word_clusters<W: Word, V>(blocks: &[Run<W, V>]) -> Vec<Cluster> {
     let equal = runs(blocks.len(), |j| {
         let (a, b) = (&blocks[j], &blocks[j + 1]);
-        a.sy.wrapping_mul(i128::from(b.k)) == b.sy.wrapping_mul(i128::from(a.k))
+        a.sy.mul_k(b.k) == b.sy.mul_k(a.k)
     });
     let mut first = 0usize;
     equal
