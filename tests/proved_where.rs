@@ -111,7 +111,10 @@ fn constants() -> String {
         };
         out.push_str(&format!(
             "| `{}` | {statement} | `{}` | {} | {} | {by} |\n",
-            p.claim, p.theorem, p.quantity, p.constant
+            p.claim,
+            p.theorem,
+            p.quantity.replace('|', "\\|"),
+            p.constant.replace('|', "\\|")
         ));
     }
     out
