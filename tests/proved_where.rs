@@ -83,6 +83,40 @@ fn table(proofs: &Proofs) -> String {
         }
     }
     out.push_str(&missing());
+    out.push_str(&constants());
+    out
+}
+
+/// The constants proved in Coq (`claims::proved::PROVED`): what the
+/// scaling checkers compare every measurement with.
+fn constants() -> String {
+    let mut out = String::from(
+        "\n### Constants proved in Coq, and the ledger's comparison\n\n\
+         `M = max_i |u⁰_i|`, `S = x⁰_N − x⁰_0` with `x⁰_0 = x⁰_1 − 1/N − δ`, `δ = 1` (`df:x0`), \
+         `T` the horizon, `‖·‖² = (1/N) Σ`. A claim with a scaling checker fails when a \
+         measurement (any datum, any N = 4 … 4096) exceeds the constant; its tightness \
+         `max measured / constant` is in its `CLAIMS.md` note and in `sticky claims --json` \
+         (`proved.tightness`, per shipped scene and for the tightest random datum).\n\n\
+         | claim | statement | Coq theorem | quantity | constant | compared by |\n|---|---|---|---|---|---|\n",
+    );
+    for p in sticky::claims::proved::PROVED {
+        let statement = match p.statement {
+            Statement::Printed => "printed",
+            Statement::Corrected => "corrected",
+        };
+        let by = if p.measure.is_some() {
+            "the scaling checker"
+        } else {
+            "— (checked case by case, not yet against the constant)"
+        };
+        out.push_str(&format!(
+            "| `{}` | {statement} | `{}` | {} | {} | {by} |\n",
+            p.claim,
+            p.theorem,
+            p.quantity.replace('|', "\\|"),
+            p.constant.replace('|', "\\|")
+        ));
+    }
     out
 }
 

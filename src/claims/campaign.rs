@@ -207,6 +207,7 @@ impl OutcomeLine {
             cases: self.cases,
             witness: self.witness.clone(),
             witness_data: self.witness_data.clone(),
+            tightness: Vec::new(),
             note: self.note.clone(),
         })
     }
@@ -341,6 +342,7 @@ fn statement_outcome<'a>(results: impl Iterator<Item = &'a UnitResult>) -> Resul
         cases: applied,
         witness: None,
         witness_data: None,
+        tightness: Vec::new(),
         note: None,
     })
 }

@@ -5,9 +5,11 @@
 
 use serde::Serialize;
 
-use super::coq::{rows, CoqRow};
+use super::coq::{rows, CoqRow, Statement};
 use super::ledger::{Entry, Outcome, Status};
+use super::proved::{decimal, proved, Tightness};
 use super::witness::WitnessData;
+use crate::scalar::Scalar;
 
 /// The outcome of one statement (as printed, or its correction).
 #[derive(Debug, Clone, Serialize)]
@@ -41,6 +43,75 @@ impl OutcomeJson {
     }
 }
 
+/// The measured tightness against a proved constant on one datum.
+#[derive(Debug, Clone, Serialize)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
+pub struct TightnessJson {
+    /// The datum (a shipped scene, or the tightest random datum).
+    pub scene: String,
+    /// The N where measured / constant is largest.
+    pub n: usize,
+    /// The constant's value on the datum at that N (exact).
+    pub value: String,
+    /// The measured value there (exact).
+    pub measured: String,
+    /// `measured / value`, exact.
+    pub tightness: String,
+    /// The same, truncated to four decimals.
+    pub tightness_decimal: String,
+}
+
+impl TightnessJson {
+    fn of(t: &Tightness) -> Self {
+        TightnessJson {
+            scene: t.scene.clone(),
+            n: t.n,
+            value: t.constant.render(),
+            measured: t.measured.render(),
+            tightness: t.ratio().render(),
+            tightness_decimal: decimal(&t.ratio()),
+        }
+    }
+}
+
+/// The constant proved in Coq for every N (`claims::proved`), and how
+/// tight the ledger's measurements are against it.
+#[derive(Debug, Clone, Serialize)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
+pub struct ProvedJson {
+    /// The Coq theorem, `Module.name` in `proofs/coq/theories/`.
+    pub theorem: &'static str,
+    /// The quantity bounded.
+    pub quantity: &'static str,
+    /// The constant, as a formula in the datum's data.
+    pub constant: &'static str,
+    /// Per datum measured (empty for a claim checked case by case).
+    pub scenes: Vec<TightnessJson>,
+    /// The largest tightness over `scenes`, exact (`null` when empty).
+    pub tightness: Option<String>,
+    /// The same, truncated to four decimals.
+    pub tightness_decimal: Option<String>,
+}
+
+impl ProvedJson {
+    fn of(id: &str, statement: Statement, o: &Outcome) -> Option<Self> {
+        let p = proved(id, statement)?;
+        let max = o
+            .tightness
+            .iter()
+            .map(Tightness::ratio)
+            .max_by(|a, b| a.cmp(b));
+        Some(ProvedJson {
+            theorem: p.theorem,
+            quantity: p.quantity,
+            constant: p.constant,
+            scenes: o.tightness.iter().map(TightnessJson::of).collect(),
+            tightness: max.as_ref().map(|q| q.render()),
+            tightness_decimal: max.as_ref().map(decimal),
+        })
+    }
+}
+
 /// A corrected statement and its outcome.
 #[derive(Debug, Clone, Serialize)]
 #[cfg_attr(test, derive(schemars::JsonSchema))]
@@ -52,6 +123,8 @@ pub struct CorrectionJson {
     pub outcome: OutcomeJson,
     /// Whether the enclosing result's conclusion survives.
     pub conclusion: &'static str,
+    /// The constant proved in Coq for the corrected statement.
+    pub proved: Option<ProvedJson>,
 }
 
 /// One claim of `sticky claims --json`.
@@ -74,6 +147,8 @@ pub struct ClaimJson {
     pub correction: Option<CorrectionJson>,
     /// The Coq theorems about it.
     pub coq: Vec<CoqRow>,
+    /// The constant proved in Coq for the printed statement.
+    pub proved: Option<ProvedJson>,
 }
 
 impl ClaimJson {
@@ -89,8 +164,10 @@ impl ClaimJson {
                 statement: st,
                 outcome: OutcomeJson::of(o),
                 conclusion: concl,
+                proved: ProvedJson::of(e.id, Statement::Corrected, o),
             }),
             coq: rows(e.id),
+            proved: ProvedJson::of(e.id, Statement::Printed, &e.outcome),
         }
     }
 }

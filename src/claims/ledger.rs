@@ -110,6 +110,9 @@ pub struct Outcome {
     pub note: Option<String>,
     /// The counterexample in machine-readable form.
     pub witness_data: Option<WitnessData>,
+    /// The tightness against a constant proved in Coq, per datum (scaling
+    /// checks of [`super::proved::PROVED`] quantities; empty otherwise).
+    pub tightness: Vec<super::proved::Tightness>,
 }
 
 /// One row of the ledger.
@@ -363,6 +366,7 @@ fn random_counterexample(
         witness: Some(text),
         note: None,
         witness_data: Some(wd),
+        tightness: Vec::new(),
     }
 }
 
@@ -383,6 +387,7 @@ fn shipped_counterexample(cases: usize, name: &str, found: &Found, domain: &Doma
         witness: Some(text),
         note: None,
         witness_data: Some(wd),
+        tightness: Vec::new(),
     }
 }
 
@@ -423,6 +428,7 @@ fn run_case_check(
         witness: None,
         note: None,
         witness_data: None,
+        tightness: Vec::new(),
     }
 }
 
@@ -475,6 +481,7 @@ pub(crate) fn run_kind(
                     cases: reports.iter().map(|r| r.cases).sum(),
                     witness: None,
                     witness_data: None,
+                    tightness: reports.iter().filter_map(|r| r.tightness.clone()).collect(),
                     note: Some(
                         reports
                             .iter()
@@ -488,6 +495,7 @@ pub(crate) fn run_kind(
                     // The values of the scene that failed, one per N.
                     cases: scaling::ns(sb).len(),
                     witness_data: Some(timeless(&v, domain)),
+                    tightness: Vec::new(),
                     witness: Some(v.witness),
                     note: None,
                 },
@@ -502,11 +510,13 @@ pub(crate) fn run_kind(
                     witness: None,
                     note: None,
                     witness_data: None,
+                    tightness: Vec::new(),
                 },
                 Err(v) => Outcome {
                     status: Status::Counterexample,
                     cases: 1,
                     witness_data: Some(timeless(&v, domain)),
+                    tightness: Vec::new(),
                     witness: Some(v.witness),
                     note: None,
                 },
@@ -520,6 +530,7 @@ pub(crate) fn run_kind(
                 witness: None,
                 note: None,
                 witness_data: None,
+                tightness: Vec::new(),
             },
             engines(kind),
         ),

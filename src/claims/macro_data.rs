@@ -24,6 +24,7 @@ use super::macro_measures::{
     abs, l2_sq, lambda_gap_moment, lambda_moment, lambda_n_moment, lambda_node_gap, max, pressure,
     seven_norms, uniform_x0, Sum,
 };
+use super::proved::SceneData;
 use super::Violation;
 use crate::generate::{macro_datum, SplitMix64};
 use crate::initial::InitialData;
@@ -127,6 +128,11 @@ pub struct Row {
     /// ([`interpolated_mass_residuals`]), plus the bound on its dyadic
     /// accumulation error; `None` above [`MASS_INTERPOLATED_MAX_N`].
     pub mass_interpolated: Option<Q>,
+    /// `sup_t (‖X_N(t)‖² + ‖∂_t X_N(t)‖²)` in `L²(0,1)`: `(1/N) Σ_i (x_i² +
+    /// u_i²)`, the two norms of `prop:L2-micro` with a constant proved in Coq.
+    pub l2_xu: Q,
+    /// The datum's data at this N, for the proved constants.
+    pub data: SceneData,
 }
 
 /// One datum measured across N.
@@ -245,6 +251,7 @@ fn row_of(c: &MacroCase, traj: &Trajectory<Q>, id: &'static str) -> Result<Row, 
     let mut cvg_lambda: Option<Q> = None;
     let mut lambda_nodes: Option<Q> = None;
     let mut pn_gap = Q::zero();
+    let mut l2_xu = Q::zero();
     // t = kT/4, k = 0 … 4: the comparison times and 0.
     let probes = std::iter::once((Q::zero(), None))
         .chain(c.profiles.iter().map(|(t, p)| (t.clone(), p.as_ref())));
@@ -264,6 +271,11 @@ fn row_of(c: &MacroCase, traj: &Trajectory<Q>, id: &'static str) -> Result<Row, 
             u_sup = max(u_sup, abs(v.clone()) * Q::from_i64(2));
         }
         l2 = max(l2, seven_norms(&s.positions, &s.velocities, &l));
+        let mut xu = Sum::default();
+        for v in s.positions.iter().chain(&s.velocities) {
+            xu.add_square(v);
+        }
+        l2_xu = max(l2_xu, xu.total() / &nn);
         pn_gap = max(pn_gap, abs(lambda_gap_moment(&l)) * &nn);
         if t >= alpha {
             let mut tv = Sum::default();
@@ -284,10 +296,9 @@ fn row_of(c: &MacroCase, traj: &Trajectory<Q>, id: &'static str) -> Result<Row, 
         }
     }
     let (pressure_abs, pressure_signed) = pressure(traj, &c.t_end);
-    // cond:Linfty: x⁰_N − x⁰_0 = x⁰_N − x⁰_1 + 1/N + δ (δ = 1).
-    let x0 = data.positions();
-    let spread0 = x0[n - 1].clone() - &x0[0] + nn.recip() + Q::one();
-    let c0_prime = spread0 + u0.iter().fold(Q::zero(), |m, v| max(m, abs(v.clone())));
+    // cond:Linfty: C'_0 = S + M, S = x⁰_N − x⁰_0 = x⁰_N − x⁰_1 + 1/N + δ (δ = 1).
+    let scene_data = SceneData::of(data.positions(), &u0, &c.t_end);
+    let c0_prime = scene_data.s.clone() + &scene_data.m;
     let residuals =
         particle_momentum_residuals(traj, &c.tests, &c.t_end).map_err(|e| fail(e.to_string()))?;
     let rounding = Q::from_float(residuals.rounding_bound)
@@ -329,6 +340,8 @@ fn row_of(c: &MacroCase, traj: &Trajectory<Q>, id: &'static str) -> Result<Row, 
         c0_prime,
         momentum,
         mass_interpolated,
+        l2_xu,
+        data: scene_data,
     })
 }
 

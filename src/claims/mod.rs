@@ -44,6 +44,7 @@ mod macro_measures;
 pub mod micro;
 pub mod momentum;
 pub mod paper_domains;
+pub mod proved;
 pub mod registry;
 pub mod sampling;
 pub mod scaling;

@@ -25,6 +25,7 @@
 use num_rational::BigRational;
 
 use super::macro_data::{self, Row, Series};
+use super::proved::{self, Tightness};
 use super::Violation;
 use crate::rate::log_log_slope;
 use crate::scalar::Scalar;
@@ -86,6 +87,9 @@ pub struct ScalingReport {
     pub slope: f64,
     /// The (datum, N) pairs measured.
     pub cases: usize,
+    /// The largest ratio measured / constant proved in Coq
+    /// ([`proved::PROVED`]), for a quantity with a proved constant.
+    pub tightness: Option<Tightness>,
 }
 
 impl ScalingReport {
@@ -104,8 +108,13 @@ impl ScalingReport {
                 .map(|(n, q)| format!("N={n}: {}", short(q)))
                 .collect(),
         };
+        let proved = self
+            .tightness
+            .as_ref()
+            .map(|t| format!(", {}", t.summary()))
+            .unwrap_or_default();
         format!(
-            "{}: {} (log-log slope {:.3})",
+            "{}: {} (log-log slope {:.3}{proved})",
             self.scene,
             vals.join(" … "),
             self.slope
@@ -243,16 +252,30 @@ pub fn judge_all(
             .filter_map(|r| pick(r).map(|q| (r.n, q)))
             .collect();
         judge(id, &s.name, &values, verdict)?;
+        let tightness = match proved::for_checker(id) {
+            Some(
+                p @ proved::Proved {
+                    measure: Some((_, measure)),
+                    ..
+                },
+            ) => proved::check(p, *measure, s)?,
+            _ => None,
+        };
         cases += values.len();
         if values.len() >= 2 && values.iter().any(|(_, q)| !q.is_zero()) {
             nontrivial += 1;
         }
+        let scene = if k < 2 {
+            s.name.clone()
+        } else {
+            format!("random #{}", k - 1)
+        };
         let report = ScalingReport {
-            scene: if k < 2 {
-                s.name.clone()
-            } else {
-                format!("random #{}", k - 1)
-            },
+            tightness: tightness.map(|t| Tightness {
+                scene: scene.clone(),
+                ..t
+            }),
+            scene,
             slope: slope(&values),
             cases: values.len(),
             values,
@@ -273,6 +296,11 @@ pub fn judge_all(
         ));
     }
     let measured = random.iter().filter(|r| r.cases > 0).count();
+    // The random data's tightest ratio (whichever datum it is on).
+    let tightest = random
+        .iter()
+        .filter_map(|r| r.tightness.clone())
+        .max_by(|a, b| a.ratio().cmp(&b.ratio()));
     if let Some(steep) = random
         .into_iter()
         .filter(|r| r.values.iter().any(|(_, q)| !q.is_zero()))
@@ -280,6 +308,7 @@ pub fn judge_all(
     {
         reports.push(ScalingReport {
             scene: format!("{measured} random data measured, steepest {}", steep.scene),
+            tightness: tightest,
             ..steep
         });
     }
@@ -548,7 +577,9 @@ mod tests {
             pn_gap: v.clone(),
             c0_prime: v.clone(),
             momentum: v.clone(),
-            mass_interpolated: Some(v),
+            mass_interpolated: Some(v.clone()),
+            l2_xu: v.clone(),
+            data: super::super::proved::SceneData::of(&[v.clone()], &[v], &Q::one()),
         }
     }
 
