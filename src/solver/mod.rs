@@ -123,9 +123,11 @@ impl Solver {
     /// The scene file at `path`: read on the streaming path when it is a
     /// `[particles]` scene on machine words (the general data then read
     /// only if a question needs them), else read and validated now (the
-    /// error of record when it is not a valid scene).
+    /// error of record when it is not a valid scene). A column scene whose
+    /// projected memory on the streaming path exceeds its limit is refused
+    /// before anything is read ([`Error::Memory`], [`Lean::open`]).
     pub fn load(path: &Path) -> Result<Solver, Error> {
-        match Lean::load(path) {
+        match Lean::open(path)? {
             Some(words) => Ok(Solver::with_paths(
                 None,
                 Some(words),
