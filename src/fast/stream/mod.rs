@@ -336,6 +336,21 @@ impl Lean {
         self.x.len()
     }
 
+    /// What `--explain` says of this path: `N`, the widths of the scaled
+    /// columns and of their common denominators.
+    pub fn explain(&self) -> String {
+        format!(
+            "engine: streaming (N = {}, positions of {} bits over a denominator of {} bits, \
+             velocities of {} bits over one of {} bits): i64 columns and the i128 PAVA; \
+             a time beyond its bound goes to the general path",
+            self.n(),
+            self.x_bits,
+            bits_u(self.dx.unsigned_abs()),
+            self.u_bits,
+            bits_u(self.du.unsigned_abs()),
+        )
+    }
+
     /// The whole collision history on the integer event merge
     /// ([`crate::fast::merge`]); `None` when its bound does not hold.
     pub fn history(&self) -> Option<crate::fast::merge::WordHistory> {
