@@ -510,9 +510,7 @@ fn chunked_files_read_as_whole_files() {
         );
         let n = data.n();
         let doubles = |v: &[BigRational]| -> Vec<f64> {
-            v.iter()
-                .map(|q| crate::scalar::Scalar::to_f64_lossy(q))
-                .collect()
+            v.iter().map(crate::scalar::Scalar::to_f64_lossy).collect()
         };
         let (xs, us) = (doubles(data.positions()), doubles(data.velocities()));
         let rows: Vec<(f64, f64)> = xs.iter().copied().zip(us.iter().copied()).collect();
