@@ -170,6 +170,16 @@ fn header_value<'a>(header: &'a str, key: &str) -> Option<&'a str> {
 /// The layout of a `.npy` particle file: `(N, Fortran order?, offset of the data)`,
 /// the header checked (see the module documentation).
 fn npy_layout(bytes: &[u8]) -> Result<(usize, bool, usize), ColumnsError> {
+    npy_layout_of(bytes, bytes.len() as u64)
+}
+
+/// [`npy_layout`] from the first bytes of a `.npy` file (`head`, at least
+/// through the end of its header) and the file's length: what a reader in
+/// chunks needs before it reads the data.
+pub(crate) fn npy_layout_of(
+    bytes: &[u8],
+    file_len: u64,
+) -> Result<(usize, bool, usize), ColumnsError> {
     const MAGIC: &[u8] = b"\x93NUMPY";
     if bytes.len() < 10 || &bytes[..6] != MAGIC {
         return Err(npy_err(
@@ -230,17 +240,14 @@ fn npy_layout(bytes: &[u8]) -> Result<(usize, bool, usize), ColumnsError> {
             ))
         }
     };
-    let body = &bytes[end..];
+    let body = file_len.saturating_sub(end as u64);
     let need = n
         .checked_mul(16)
         .ok_or_else(|| npy_err(start, format!("shape {shape} is too large")))?;
-    if body.len() != need {
+    if body != need as u64 {
         return Err(npy_err(
             end,
-            format!(
-                "{} bytes of data for shape ({n}, 2), expected {need}",
-                body.len()
-            ),
+            format!("{body} bytes of data for shape ({n}, 2), expected {need}"),
         ));
     }
     Ok((n, fortran, end))
@@ -412,7 +419,7 @@ pub fn parse_small(text: &[u8]) -> Option<Small> {
 }
 
 /// `char::is_whitespace` on ASCII bytes (what `str::trim` removes).
-fn trim_ascii(mut s: &[u8]) -> &[u8] {
+pub(crate) fn trim_ascii(mut s: &[u8]) -> &[u8] {
     let ws = |b: &u8| matches!(b, b' ' | b'\t' | b'\n' | b'\x0b' | b'\x0c' | b'\r');
     while s.first().is_some_and(ws) {
         s = &s[1..];
@@ -421,6 +428,43 @@ fn trim_ascii(mut s: &[u8]) -> &[u8] {
         s = &s[..s.len() - 1];
     }
     s
+}
+
+/// One line of a CSV particle file, on machine words (see [`csv_line_small`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum CsvLine {
+    /// A line of white space only (allowed anywhere).
+    Blank,
+    /// The two values of one particle.
+    Row(Small, Small),
+}
+
+/// `true` for the header line `position,velocity` (white space around the
+/// names allowed).
+pub(crate) fn csv_header_small(line: &[u8]) -> bool {
+    let mut names = line.split(|&b| b == b',').map(trim_ascii);
+    names.next() == Some(b"position") && names.next() == Some(b"velocity") && names.next().is_none()
+}
+
+/// One line of a CSV particle file after its header (its `'\n'` and one
+/// `'\r'` before it removed), when it is blank or two [`Small`] values;
+/// `None` when it is anything else (then [`read_csv`] names the error).
+pub(crate) fn csv_line_small(line: &[u8]) -> Option<CsvLine> {
+    if !line.is_ascii() {
+        return None;
+    }
+    if trim_ascii(line).is_empty() {
+        return Some(CsvLine::Blank);
+    }
+    let comma = line.iter().position(|&b| b == b',')?;
+    let (x, u) = (&line[..comma], &line[comma + 1..]);
+    if u.contains(&b',') {
+        return None;
+    }
+    Some(CsvLine::Row(
+        parse_small(trim_ascii(x))?,
+        parse_small(trim_ascii(u))?,
+    ))
 }
 
 /// [`read_csv`] on machine words: the same columns as [`Small`] pairs, or
@@ -435,24 +479,17 @@ pub fn read_csv_small(bytes: &[u8]) -> Option<SmallColumns> {
         .split(|&b| b == b'\n')
         .map(|l| l.strip_suffix(b"\r").unwrap_or(l));
     let header = lines.by_ref().find(|l| !trim_ascii(l).is_empty())?;
-    let mut names = header.split(|&b| b == b',').map(trim_ascii);
-    if names.next()? != b"position" || names.next()? != b"velocity" || names.next().is_some() {
+    if !csv_header_small(header) {
         return None;
     }
     let rows = bytes.len() / 4;
     let mut positions = Vec::with_capacity(rows.min(1 << 24));
     let mut velocities = Vec::with_capacity(rows.min(1 << 24));
     for line in lines {
-        if trim_ascii(line).is_empty() {
-            continue;
+        if let CsvLine::Row(x, u) = csv_line_small(line)? {
+            positions.push(x);
+            velocities.push(u);
         }
-        let comma = line.iter().position(|&b| b == b',')?;
-        let (x, u) = (&line[..comma], &line[comma + 1..]);
-        if u.contains(&b',') {
-            return None;
-        }
-        positions.push(parse_small(trim_ascii(x))?);
-        velocities.push(parse_small(trim_ascii(u))?);
     }
     positions.shrink_to_fit();
     velocities.shrink_to_fit();

@@ -146,6 +146,17 @@ pub enum Error {
         /// The whole explanation (engine, N, denominators, how to go on).
         message: String,
     },
+    /// The run would need more memory than its limit (the environment
+    /// variable `STICKY_MAX_MEMORY`, in MiB, sets it; by default three
+    /// quarters of the machine's memory).
+    Memory {
+        /// The projected peak, in bytes.
+        need: u64,
+        /// The limit, in bytes.
+        limit: u64,
+        /// The whole explanation (the projection, how to go on).
+        message: String,
+    },
     /// Long work stopped early because its watcher asked it to (Ctrl-C:
     /// [`crate::progress::Progress::cancelled`]); there is no answer.
     Interrupted {
@@ -205,7 +216,9 @@ impl fmt::Display for Error {
                 write!(f, "particle data file {file}: {message}")
             }
             Error::NegativeTime { t } => write!(f, "time {t} is negative"),
-            Error::Unsupported { message } | Error::WorkLimit { message, .. } => {
+            Error::Unsupported { message }
+            | Error::WorkLimit { message, .. }
+            | Error::Memory { message, .. } => {
                 write!(f, "{message}")
             }
             Error::Interrupted { during } => write!(f, "interrupted during {during}"),

@@ -589,3 +589,45 @@ fn inline_toml_off_words_or_invalid_declines() {
     }
     std::fs::remove_dir_all(&d).unwrap();
 }
+
+/// `run --explain` on a column scene the streaming path reads says so and
+/// projects the peak memory from the NPY header (16 B/particle of columns,
+/// the worst-case PAVA stack); over `STICKY_MAX_MEMORY` the run is refused
+/// up front with that projection, and just at it the run answers.
+#[test]
+fn explain_projects_memory_and_the_limit_refuses() {
+    let d = dir("memory");
+    let rows = [(0.0, 1.0), (0.5, -0.25), (3.0, 0.0)];
+    std::fs::write(d.join("m.npy"), write_npy(&rows)).unwrap();
+    let path = d.join("m.toml");
+    std::fs::write(&path, "[particles]\nradius = \"1/8\"\ndata = \"m.npy\"\n").unwrap();
+    let p = path.to_str().unwrap();
+    let run = |limit: &str| {
+        std::process::Command::new(STICKY)
+            .args(["run", p, "--at", "1", "--json", "--explain"])
+            .env("STICKY_MAX_MEMORY", limit)
+            .output()
+            .unwrap()
+    };
+    // 3 particles: 48 B of columns, 4 MiB of buffer, 3 blocks at most.
+    let o = run("5");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(err.starts_with("engine: streaming (N = 3,"), "{err}");
+    assert!(
+        err.contains("memory: at most 4.0 MiB (N = 3, file 0.0 MiB)"),
+        "{err}"
+    );
+    assert_eq!(o.stdout, general(&path, &q(1, 1)).into_bytes());
+    let o = run("4");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("would need at most 4.0 MiB (N = 3")
+            && err.contains("over the memory limit of 4.0 MiB")
+            && err.contains("STICKY_MAX_MEMORY"),
+        "{err}"
+    );
+    assert!(o.stdout.is_empty());
+    std::fs::remove_dir_all(&d).unwrap();
+}

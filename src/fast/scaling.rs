@@ -53,17 +53,17 @@ impl Range {
         }
         r.or_zero()
     }
-    const EMPTY: Range = Range {
+    pub(crate) const EMPTY: Range = Range {
         lo: i128::MAX,
         hi: i128::MIN,
     };
     #[inline]
-    fn take(&mut self, a: i128) {
+    pub(crate) fn take(&mut self, a: i128) {
         self.lo = self.lo.min(a);
         self.hi = self.hi.max(a);
     }
     /// `0, 0` for a range that took no value.
-    fn or_zero(self) -> Range {
+    pub(crate) fn or_zero(self) -> Range {
         if self.lo > self.hi {
             Range { lo: 0, hi: 0 }
         } else {
@@ -95,7 +95,7 @@ pub(crate) fn small_word(q: &BigRational) -> Option<(i64, u64)> {
 
 /// `a / b` and `a % b`, on 64-bit words when both fit (`b > 0`).
 #[inline]
-fn div_rem(a: u128, b: u128) -> (u128, u128) {
+pub(crate) fn div_rem(a: u128, b: u128) -> (u128, u128) {
     match (u64::try_from(a), u64::try_from(b)) {
         (Ok(a), Ok(b)) => (u128::from(a / b), u128::from(a % b)),
         _ => (a / b, a % b),
@@ -106,13 +106,13 @@ fn div_rem(a: u128, b: u128) -> (u128, u128) {
 /// denominators seen, with a small direct-mapped memo of `lcm / d` (random
 /// data have few distinct denominators, and a division per particle would
 /// cost more than the rest of the scaling).
-struct Denominators {
-    lcm: u128,
+pub(crate) struct Denominators {
+    pub(crate) lcm: u128,
     memo: [(u128, u128); 64],
 }
 
 impl Denominators {
-    fn new() -> Self {
+    pub(crate) fn new() -> Self {
         Denominators {
             lcm: 1,
             memo: [(0, 0); 64],
@@ -122,7 +122,7 @@ impl Denominators {
         ((d ^ (d >> 6) ^ (d >> 12)) & 63) as usize
     }
     /// Takes `d > 0` into the lcm; `None` on overflow.
-    fn add(&mut self, d: u128) -> Option<()> {
+    pub(crate) fn add(&mut self, d: u128) -> Option<()> {
         let h = Self::slot(d);
         if self.memo[h].0 == d {
             return Some(());
@@ -136,11 +136,11 @@ impl Denominators {
         Some(())
     }
     /// Freezes the lcm: forgets the memo (its quotients are recomputed).
-    fn finish(&mut self) {
+    pub(crate) fn finish(&mut self) {
         self.memo = [(0, 0); 64];
     }
     /// `lcm / d` for a denominator taken in.
-    fn factor(&mut self, d: u128) -> u128 {
+    pub(crate) fn factor(&mut self, d: u128) -> u128 {
         let h = Self::slot(d);
         if self.memo[h].0 != d {
             self.memo[h] = (d, div_rem(self.lcm, d).0);
@@ -377,7 +377,7 @@ fn divided(mut v: Vec<i128>, g: u128) -> Vec<i128> {
 
 /// The range of a column divided by `g > 0`, a common divisor of its
 /// values: the ends divided (exactly; dividing by `g > 0` keeps the order).
-fn divided_range(r: Range, g: u128) -> Range {
+pub(crate) fn divided_range(r: Range, g: u128) -> Range {
     let r = r.or_zero();
     if g > 1 {
         let div = ExactDiv::new(g);

@@ -123,9 +123,11 @@ impl Solver {
     /// The scene file at `path`: read on the streaming path when it is a
     /// `[particles]` scene on machine words (the general data then read
     /// only if a question needs them), else read and validated now (the
-    /// error of record when it is not a valid scene).
+    /// error of record when it is not a valid scene). A column scene whose
+    /// projected memory on the streaming path exceeds its limit is refused
+    /// before anything is read ([`Error::Memory`], [`Lean::open`]).
     pub fn load(path: &Path) -> Result<Solver, Error> {
-        match Lean::load(path) {
+        match Lean::open(path)? {
             Some(words) => Ok(Solver::with_paths(
                 None,
                 Some(words),
@@ -230,8 +232,20 @@ impl Solver {
 
     /// What `sticky run --explain` prints (and Python's `Scene.explain()`):
     /// the engine of the one-shot states, `N`, the common denominator, each
-    /// candidate's estimated cost, and why.
+    /// candidate's estimated cost, and why. A scene file the streaming path
+    /// read ([`Engine::Auto`]) is explained without reading its general
+    /// data: the streaming path's widths ([`Lean::explain`]) and, for a
+    /// column file, the projected peak memory ([`Lean::footprint`]).
     pub fn explain(&self) -> Result<String, Error> {
+        if self.options.engine == Engine::Auto {
+            if let (Some(words), Some(path)) = (&self.words, self.source.path()) {
+                let mut text = words.explain();
+                if let Some(f) = Lean::footprint(path) {
+                    text.push_str(&format!("\nmemory: {f}"));
+                }
+                return Ok(text);
+            }
+        }
         Ok(self.choice()?.explain())
     }
 

@@ -57,6 +57,14 @@ impl Source {
         }
     }
 
+    /// The scene file, when it is the source.
+    pub(crate) fn path(&self) -> Option<&std::path::Path> {
+        match self {
+            Source::File(path) => Some(path),
+            _ => None,
+        }
+    }
+
     /// The columns of doubles, when they are the source.
     pub(crate) fn doubles(&self) -> Option<(&[f64], &[f64])> {
         match self {

@@ -33,11 +33,20 @@ use num_rational::BigRational;
 use num_traits::{Signed, ToPrimitive, Zero};
 
 use crate::cluster::Cluster;
-use crate::columns::{f64_small, read_csv_small, read_npy_small, Small};
+use crate::columns::{f64_small, Small};
+use crate::error::Error;
 use crate::fast::int::gcd;
 use crate::fast::kernel::{i128_clusters, pava_words, size_bits, Run};
-use crate::fast::scaling::{scale_pairs, small_word};
-use crate::scene::{column_scene, inline_scene, MAX_NUMBER_BITS, MAX_SCENE_BYTES};
+use crate::fast::scaling::{scale_pairs, small_word, Range};
+use crate::scene::{column_scene, inline_scene, ColumnScene, MAX_NUMBER_BITS, MAX_SCENE_BYTES};
+
+pub mod memory;
+mod read;
+mod scale;
+
+use memory::Footprint;
+use read::ColumnFile;
+use scale::ScaledColumn;
 
 /// Bits of `|v|` (0 for 0).
 fn bits_u(v: u128) -> u64 {
@@ -131,28 +140,104 @@ impl Lean {
     /// not a `[particles]` scene with its columns inline
     /// ([`crate::scene::inline_scene`]) or in a column file, whose values fit
     /// words and whose data are valid (the module documentation: the
-    /// general path then reads it).
+    /// general path then reads it), or when [`Lean::open`] refuses it.
     pub fn load(path: &Path) -> Option<Lean> {
-        let meta = std::fs::metadata(path).ok()?;
+        Lean::open(path).ok().flatten()
+    }
+
+    /// [`Lean::load`], with the refusal of a column file whose projected
+    /// memory ([`Lean::footprint`]) exceeds the limit ([`memory::limit`])
+    /// as [`Error::Memory`], before anything is read. A column file is
+    /// read in chunks, twice (the denominators, then the values): the peak
+    /// is the `i64` columns and one read buffer, and the general path's
+    /// budget on the size of the numbers ([`MAX_NUMBER_BITS`], meant for
+    /// `BigRational` data) does not apply to it.
+    pub fn open(path: &Path) -> Result<Option<Lean>, Error> {
+        let Ok(meta) = std::fs::metadata(path) else {
+            return Ok(None);
+        };
         if !meta.is_file() || meta.len() > MAX_SCENE_BYTES {
-            return None;
+            return Ok(None);
         }
-        let text = std::fs::read(path).ok()?;
+        let Ok(text) = std::fs::read(path) else {
+            return Ok(None);
+        };
         if let Some(s) = inline_scene(&text) {
             drop(text);
-            return Lean::new(s.radius, s.charged_bits, s.positions, s.velocities);
+            return Ok(Lean::new(
+                s.radius,
+                s.charged_bits,
+                s.positions,
+                s.velocities,
+            ));
         }
         drop(text);
-        let scene = column_scene(path)?;
-        let (xs, us) = {
-            let bytes = std::fs::read(&scene.data).ok()?;
-            match scene.data.extension().and_then(|e| e.to_str()) {
-                Some("csv") => read_csv_small(&bytes)?,
-                Some("npy") => read_npy_small(&bytes)?,
-                _ => return None,
-            }
+        let Some((scene, file)) = Lean::column_file(path) else {
+            return Ok(None);
         };
-        Lean::new(scene.radius, scene.charged_bits, xs, us)
+        let need = Lean::footprint_of(&file);
+        let limit = memory::limit();
+        if need.peak() > limit {
+            return Err(Error::Memory {
+                need: need.peak(),
+                limit,
+                message: format!(
+                    "the streaming path would need {need}, over the memory limit of {} \
+                     (set {}, in MiB, to change it)",
+                    memory::mib(limit),
+                    memory::LIMIT_VAR
+                ),
+            });
+        }
+        Ok(Lean::from_file(scene.radius, &file))
+    }
+
+    /// The column scene at `path` and its column file, when it is one.
+    fn column_file(path: &Path) -> Option<(ColumnScene, ColumnFile)> {
+        let scene = column_scene(path)?;
+        let file = ColumnFile::open(&scene.data)?;
+        Some((scene, file))
+    }
+
+    fn footprint_of(file: &ColumnFile) -> Footprint {
+        Footprint::new(file.rows_at_most(), file.exact_count(), file.len())
+    }
+
+    /// The projected peak memory of the streaming path on the scene at
+    /// `path`, from its column file's size and NPY header alone; `None`
+    /// when it is not a column scene.
+    pub fn footprint(path: &Path) -> Option<Footprint> {
+        Lean::column_file(path).map(|(_, file)| Lean::footprint_of(&file))
+    }
+
+    /// The scene of radius `radius` (`None`: `1/(2N)`) whose columns are in
+    /// `file`, read in two passes ([`scale`]).
+    fn from_file(radius: Option<BigRational>, file: &ColumnFile) -> Option<Lean> {
+        let (mut lx, mut lu) = (scale::Lcm::new(), scale::Lcm::new());
+        let n = file.rows(|(_, dx), (_, du)| {
+            lx.add(dx)?;
+            lu.add(du)
+        })?;
+        if n == 0 {
+            return None;
+        }
+        let radius = radius.unwrap_or_else(|| BigRational::new(1.into(), BigInt::from(2 * n)));
+        if !radius.is_positive() {
+            return None;
+        }
+        let two_r = &radius + &radius;
+        let two_r = (two_r.numer().to_i128()?, two_r.denom().to_i128()?);
+        let mut sx = lx.scaler(Some((two_r.0, u128::try_from(two_r.1).ok()?)), n)?;
+        let mut su = lu.scaler(None, n)?;
+        let again = file.rows(|(px, dx), (pu, du)| {
+            sx.push(px, dx)?;
+            su.push(pu, du)
+        })?;
+        if again != n {
+            return None;
+        }
+        let (x, u) = (sx.finish()?, su.finish()?);
+        Lean::valid(radius, two_r, x, u)
     }
 
     /// The streaming path for columns of doubles, each taken as the exact
@@ -207,29 +292,63 @@ impl Lean {
         let two_r = (two_r.numer().to_i128()?, two_r.denom().to_i128()?);
         let s = scale_pairs((two_r.0, u128::try_from(two_r.1).ok()?), &xs, &us)?;
         drop((xs, us));
-        // `df:KN` and `def:velcone` on the scaled data, the checks of
-        // `InitialData::new` (the general path names the first failure).
-        for i in 1..n {
-            if s.x[i] < s.x[i - 1] || (s.x[i] == s.x[i - 1] && s.u[i] < s.u[i - 1]) {
+        let column = |values: &[i128], den: BigInt, range: Range| {
+            Some(ScaledColumn {
+                values: range.narrow(values)?,
+                den: den.to_u128()?,
+                range,
+            })
+        };
+        let x = column(&s.x, s.dx, s.x_range)?;
+        let u = column(&s.u, s.du, s.u_range)?;
+        Lean::valid(radius, two_r, x, u)
+    }
+
+    /// The scene on its scaled columns, when the data are valid: `df:KN`
+    /// and `def:velcone` on the scaled data, the checks of
+    /// `InitialData::new` (the general path names the first failure).
+    fn valid(
+        radius: BigRational,
+        two_r: (i128, i128),
+        x: ScaledColumn,
+        u: ScaledColumn,
+    ) -> Option<Lean> {
+        let (xs, us) = (&x.values, &u.values);
+        for i in 1..xs.len() {
+            if xs[i] < xs[i - 1] || (xs[i] == xs[i - 1] && us[i] < us[i - 1]) {
                 return None;
             }
         }
-        let (x, u) = (s.x_range.narrow(&s.x)?, s.u_range.narrow(&s.u)?);
         Some(Lean {
             radius,
             two_r,
-            x_bits: bits_u(s.x_range.max_abs()),
-            u_bits: bits_u(s.u_range.max_abs()),
-            x,
-            u,
-            dx: s.dx.to_i128()?,
-            du: s.du.to_i128()?,
+            x_bits: bits_u(x.range.max_abs()),
+            u_bits: bits_u(u.range.max_abs()),
+            dx: i128::try_from(x.den).ok()?,
+            du: i128::try_from(u.den).ok()?,
+            x: x.values,
+            u: u.values,
         })
     }
 
     /// N.
     pub fn n(&self) -> usize {
         self.x.len()
+    }
+
+    /// What `--explain` says of this path: `N`, the widths of the scaled
+    /// columns and of their common denominators.
+    pub fn explain(&self) -> String {
+        format!(
+            "engine: streaming (N = {}, positions of {} bits over a denominator of {} bits, \
+             velocities of {} bits over one of {} bits): i64 columns and the i128 PAVA; \
+             a time beyond its bound goes to the general path",
+            self.n(),
+            self.x_bits,
+            bits_u(self.dx.unsigned_abs()),
+            self.u_bits,
+            bits_u(self.du.unsigned_abs()),
+        )
     }
 
     /// The whole collision history on the integer event merge

@@ -474,3 +474,130 @@ fn nearest_is_the_rounded_exact_state() {
         }
     }
 }
+
+/// A file of `bytes` in a fresh temporary folder.
+fn temp_file(tag: &str, name: &str, bytes: &[u8]) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("sticky-lean-{tag}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(name);
+    std::fs::write(&path, bytes).unwrap();
+    path
+}
+
+/// The columns of a [`Lean`], for comparing two of them.
+fn fields(l: &Lean) -> (Vec<i64>, Vec<i64>, i128, i128, u64, u64, BigRational) {
+    let (x, u) = (l.x.clone(), l.u.clone());
+    (x, u, l.dx, l.du, l.x_bits, l.u_bits, l.radius.clone())
+}
+
+/// A column file read in chunks (NPY in C and Fortran order, CSV with
+/// blank lines and `\r\n`), at chunk sizes that cut rows and values
+/// across reads, gives the scene [`Lean::new`] gives on the whole file's
+/// values.
+#[test]
+fn chunked_files_read_as_whole_files() {
+    let mut rng = SplitMix64::new(7);
+    let mut npy_cases = 0;
+    for k in 0..40 {
+        // Denominators 1 and 2: every value is a double.
+        let data = initial_data(
+            &rng.bytes(300),
+            Limits {
+                max_n: 2 + k % 30,
+                max_den: 1 + (k % 2) as u32,
+                max_speed: 1 + (k % 7) as u32,
+            },
+        );
+        let n = data.n();
+        let doubles = |v: &[BigRational]| -> Vec<f64> {
+            v.iter().map(crate::scalar::Scalar::to_f64_lossy).collect()
+        };
+        let (xs, us) = (doubles(data.positions()), doubles(data.velocities()));
+        let rows: Vec<(f64, f64)> = xs.iter().copied().zip(us.iter().copied()).collect();
+        let c_order = crate::columns::write_npy(&rows);
+        let mut fortran = crate::columns::npy_header(&[n, 2]);
+        let at = fortran.windows(5).position(|w| w == b"False").unwrap();
+        fortran[at..at + 5].copy_from_slice(b"True ");
+        for v in xs.iter().chain(&us) {
+            fortran.extend_from_slice(&v.to_le_bytes());
+        }
+        let mut csv = String::from("\n position , velocity\r\n");
+        for (i, (x, u)) in data.positions().iter().zip(data.velocities()).enumerate() {
+            csv.push_str(&format!("{x}, {u}\n"));
+            if i % 3 == 1 {
+                csv.push_str("  \r\n");
+            }
+        }
+        let radius = data.radius().clone();
+        let whole_npy = crate::columns::read_npy_small(&c_order).unwrap();
+        let whole_csv = crate::columns::read_csv_small(csv.as_bytes()).unwrap();
+        let cases = [
+            ("c.npy", c_order.clone(), whole_npy.clone()),
+            ("f.npy", fortran, whole_npy),
+            ("rows.csv", csv.into_bytes(), whole_csv),
+        ];
+        let all_doubles = data
+            .positions()
+            .iter()
+            .chain(data.velocities())
+            .all(crate::columns::is_f64);
+        for (name, bytes, (wx, wu)) in cases {
+            if name.ends_with("npy") && !all_doubles {
+                continue;
+            }
+            npy_cases += usize::from(name.ends_with("npy"));
+            let want = Lean::new(Some(radius.clone()), 0, wx, wu).map(|l| fields(&l));
+            assert!(want.is_some(), "case {k} {name}");
+            let path = temp_file("chunks", name, &bytes);
+            for chunk in [16, 48, 4096] {
+                let file = ColumnFile::open(&path).unwrap().with_chunk(chunk);
+                let got = Lean::from_file(Some(radius.clone()), &file).map(|l| fields(&l));
+                assert_eq!(got, want, "case {k}, {name}, chunk {chunk}");
+            }
+        }
+    }
+    assert!(npy_cases >= 20, "{npy_cases} NPY cases");
+}
+
+/// The scaling of values one at a time is [`scale_pairs`]'s, also when the
+/// common divisor `g` shrinks midway (the values stored before are then
+/// multiplied up) and when a value does not fit `i64`.
+#[test]
+fn the_column_scaler_is_scale_pairs() {
+    let mut rng = SplitMix64::new(11);
+    for k in 0..300 {
+        let n = 1 + (rng.next_u64() % 12) as usize;
+        let big = k % 10 == 0;
+        let pair = |rng: &mut SplitMix64| -> Small {
+            let d = [1u64, 2, 4, 8, 3, 12, 1 << 40][(rng.next_u64() % 7) as usize];
+            let p = (rng.next_u64() % 64) as i64 - 32;
+            if big {
+                (p << 40, d)
+            } else {
+                (p, d)
+            }
+        };
+        let xs: Vec<Small> = (0..n).map(|_| pair(&mut rng)).collect();
+        let us: Vec<Small> = (0..n).map(|_| pair(&mut rng)).collect();
+        let two_r = (1i128, [1u128, 4, 6][k % 3]);
+        let want = scale_pairs(two_r, &xs, &us).and_then(|s| {
+            let x = (s.x_range.narrow(&s.x)?, s.dx.to_u128()?);
+            let u = (s.u_range.narrow(&s.u)?, s.du.to_u128()?);
+            Some((x, u))
+        });
+        let scaled = |col: &[Small], two_r: Option<(i128, u128)>| {
+            let mut lcm = scale::Lcm::new();
+            for &(_, d) in col {
+                lcm.add(d)?;
+            }
+            let mut s = lcm.scaler(two_r, col.len())?;
+            for &(p, d) in col {
+                s.push(p, d)?;
+            }
+            let c = s.finish()?;
+            Some((c.values, c.den))
+        };
+        let got = scaled(&xs, Some(two_r)).zip(scaled(&us, None));
+        assert_eq!(got, want, "case {k}: {xs:?} {us:?}");
+    }
+}
