@@ -71,10 +71,19 @@ pub struct Proved {
     pub constant: &'static str,
     /// The constant on one datum.
     pub value: fn(&SceneData) -> Q,
-    /// The id the scaling checker reports under, and the measured quantity
-    /// of a [`Row`]; `None` for a claim checked case by case (no scaling
+    /// The scaling checker that compares its measurement with the
+    /// constant; `None` for a claim checked case by case (no scaling
     /// measurement to compare yet).
-    pub measure: Option<(&'static str, fn(&Row) -> Q)>,
+    pub measure: Option<Measure>,
+}
+
+/// A scaling checker's measurement of a proved quantity.
+#[derive(Debug, Clone, Copy)]
+pub struct Measure {
+    /// The id the scaling checker reports under.
+    pub checker: &'static str,
+    /// The measured quantity of a [`Row`].
+    pub of: fn(&Row) -> Q,
 }
 
 fn two_m(d: &SceneData) -> Q {
@@ -103,9 +112,10 @@ pub const PROVED: [Proved; 9] = [
         quantity: "sup_{t ≤ T} max_i |λ_i(t)|",
         constant: "2M, M = max_i |u⁰_i|",
         value: two_m,
-        measure: Some(("eq:sup-micro-u-L#N-lambda (corrected)", |r| {
-            r.lambda_sup.clone()
-        })),
+        measure: Some(Measure {
+            checker: "eq:sup-micro-u-L#N-lambda (corrected)",
+            of: |r| r.lambda_sup.clone(),
+        }),
     },
     Proved {
         claim: "eq:diffLambda_N",
@@ -141,7 +151,10 @@ pub const PROVED: [Proved; 9] = [
         quantity: "Σ_{t_k ≤ T} (1/N) Σ_i [λ_i]_{t_k} (φ = 1)",
         constant: "2M, M = max_i |u⁰_i|",
         value: two_m,
-        measure: Some(("prop:pressure-bound", |r| r.pressure_abs.clone())),
+        measure: Some(Measure {
+            checker: "prop:pressure-bound",
+            of: |r| r.pressure_abs.clone(),
+        }),
     },
     Proved {
         claim: "prop:L2-micro",
@@ -153,7 +166,10 @@ pub const PROVED: [Proved; 9] = [
             let c = d.x0_sq.clone().max(d.u0_sq.clone());
             (Q::from_i64(3) + d.t.clone() * &d.t * Q::from_i64(2)) * c
         },
-        measure: Some(("prop:L2-micro", |r| r.l2_xu.clone())),
+        measure: Some(Measure {
+            checker: "prop:L2-micro",
+            of: |r| r.l2_xu.clone(),
+        }),
     },
     Proved {
         claim: "prop:2ndorder-LagrPDE#PN-minus-tPN",
@@ -162,7 +178,10 @@ pub const PROVED: [Proved; 9] = [
         quantity: "N · sup_t |∫_0^1 (Λ_N − Λ̃_N) w dw|",
         constant: "M = max_i |u⁰_i| (diffLambda_N's N·|Λ̃_N − Λ_N| ≤ 2M, times ∫_0^1 w dw = 1/2)",
         value: |d| d.m.clone(),
-        measure: Some(("prop:2ndorder-LagrPDE#PN-minus-tPN", |r| r.pn_gap.clone())),
+        measure: Some(Measure {
+            checker: "prop:2ndorder-LagrPDE#PN-minus-tPN",
+            of: |r| r.pn_gap.clone(),
+        }),
     },
     Proved {
         claim: "eq:bound-UN-Linf",
@@ -171,7 +190,10 @@ pub const PROVED: [Proved; 9] = [
         quantity: "‖U_N‖_∞ + ‖Ũ_N‖_∞ = 2 sup_t max_i |u_i(t)|",
         constant: "2M, M = max_i |u⁰_i|",
         value: two_m,
-        measure: Some(("eq:bound-UN-Linf", |r| r.u_sup.clone())),
+        measure: Some(Measure {
+            checker: "eq:bound-UN-Linf",
+            of: |r| r.u_sup.clone(),
+        }),
     },
 ];
 
@@ -187,7 +209,7 @@ pub fn proved(claim: &str, statement: Statement) -> Option<&'static Proved> {
 pub fn for_checker(id: &str) -> Option<&'static Proved> {
     PROVED
         .iter()
-        .find(|p| p.measure.is_some_and(|(c, _)| c == id))
+        .find(|p| p.measure.is_some_and(|m| m.checker == id))
 }
 
 /// The largest ratio measured / constant on one datum.
@@ -321,7 +343,7 @@ mod tests {
     fn each_comparison_holds_and_can_fail() {
         let table = crate::claims::macro_data::table(64, "test").unwrap();
         for p in PROVED {
-            let Some((_, measure)) = p.measure else {
+            let Some(Measure { of: measure, .. }) = p.measure else {
                 continue;
             };
             let mut worst = Q::zero();

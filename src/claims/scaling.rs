@@ -255,7 +255,7 @@ pub fn judge_all(
         let tightness = match proved::for_checker(id) {
             Some(
                 p @ proved::Proved {
-                    measure: Some((_, measure)),
+                    measure: Some(proved::Measure { of: measure, .. }),
                     ..
                 },
             ) => proved::check(p, *measure, s)?,
@@ -579,7 +579,11 @@ mod tests {
             momentum: v.clone(),
             mass_interpolated: Some(v.clone()),
             l2_xu: v.clone(),
-            data: super::super::proved::SceneData::of(&[v.clone()], &[v], &Q::one()),
+            data: super::super::proved::SceneData::of(
+                std::slice::from_ref(&v),
+                std::slice::from_ref(&v),
+                &Q::one(),
+            ),
         }
     }
 
