@@ -546,6 +546,15 @@ impl DyadicBlocks {
                 halves::fill_by_halves(runs, n, n, pm, |runs, first, out| {
                     self.fill_positions(runs, first, *c, den_y, out)
                 })
+                .or_else(|| {
+                    // `S + k C i` beyond 127 bits (the PAVA's sums fit, the
+                    // positions' numerators need not): the same blocks on
+                    // 256-bit numerators.
+                    let w = wide::Wide::widen(runs, *c);
+                    halves::fill_by_halves(&w.runs, n, n, pm, |runs, first, out| {
+                        wide::fill_positions(runs, first, w.c, den_y, ey, out)
+                    })
+                })
             }
             BlockSums::Wide(w) => halves::fill_by_halves(&w.runs, n, n, pm, |runs, first, out| {
                 wide::fill_positions(runs, first, w.c, den_y, ey, out)

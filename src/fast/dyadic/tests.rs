@@ -438,3 +438,15 @@ mod random_doubles {
         }
     }
 }
+
+/// Sums on 127 bits whose positions' numerators `S + k C i` are not (a
+/// case found by `prop_doubles_of_one_scale_are_answered`): the positions
+/// are rounded from 256-bit numerators, and agree with the exact state.
+#[test]
+fn positions_beyond_the_narrow_sums_are_answered() {
+    let xs = [-2.9920242743265063e-6, 0.9884043073309617];
+    let us = [-1.0115314377655297e-5, -1.4448883012625];
+    let (r, t) = (0.49420362119883054, 0.0030022068866822254);
+    let outcome = check(Some(exact_f64(r)), &xs, &us, &exact_f64(t));
+    assert_ne!(outcome, Outcome::Declined);
+}

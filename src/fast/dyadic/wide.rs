@@ -139,6 +139,22 @@ impl Wide {
             .collect::<Option<Vec<_>>>()?;
         Some(Wide { runs, c })
     }
+
+    /// Blocks on `i128` sums, on 256-bit ones (exact: every `i128` is an
+    /// [`I256`]).
+    pub(crate) fn widen(runs: &[Run<i128>], c: i128) -> Wide {
+        Wide {
+            runs: runs
+                .iter()
+                .map(|r| Run {
+                    k: r.k,
+                    sy: I256::from_i128(r.sy),
+                    su: r.su,
+                })
+                .collect(),
+            c: I256::from_i128(c),
+        }
+    }
 }
 
 /// `|v|` (`v > −2^255`).
