@@ -234,6 +234,49 @@ fn coq_rows_validate() {
     check_all("coq", &lines);
 }
 
+/// `sticky claims --json` on a few claims of every shape: a per-case
+/// erratum (with its in-domain `witness_data` and a correction), a claim
+/// that holds, one checked across N, and one not checkable.
+#[test]
+fn claims_validate() {
+    use sticky::claims::ledger::{self, Budget, Status};
+    if !validator_available() {
+        return;
+    }
+    let budget = Budget {
+        cases: 40,
+        max_n: 4,
+        scaling_max_n: 8,
+        seed: 0x5EED,
+    };
+    let wanted = [
+        "app:KKT",
+        "prop:Oleinik",
+        "eq:sup-micro-u-L#N-lambda",
+        "prop:2ndorder-LagrPDE#exclusion-pairing",
+    ];
+    let entries: Vec<ledger::Entry> = sticky::claims::registry()
+        .iter()
+        .filter(|c| wanted.contains(&c.id))
+        .map(|c| ledger::run_claim(c, budget))
+        .collect();
+    assert_eq!(
+        entries.len(),
+        wanted.len(),
+        "every wanted claim is registered"
+    );
+    assert!(entries
+        .iter()
+        .any(|e| e.outcome.status == Status::Counterexample && e.outcome.witness_data.is_some()));
+    let text = ledger::json(&entries);
+    let value: Value = serde_json::from_str(&text).expect("the ledger is JSON");
+    assert!(
+        errors("claims", &value).is_empty(),
+        "{:?}",
+        errors("claims", &value)
+    );
+}
+
 #[test]
 fn the_schemas_reject_a_renamed_key_and_an_inexact_number() {
     if !validator_available() {

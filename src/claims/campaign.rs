@@ -18,8 +18,10 @@ use std::ops::Range;
 use num_rational::BigRational;
 use serde::{Deserialize, Serialize};
 
+use super::domain::Domain;
 use super::ledger::{engines, run_case_range, run_kind, shipped_cases};
 use super::ledger::{Budget, Entry, Outcome, Status};
+use super::witness::WitnessData;
 use super::{registry, Case, Claim, Kind};
 use crate::campaign::file::{ShardLines, UnitLine};
 use crate::campaign::jobs::run_units;
@@ -100,6 +102,15 @@ fn kind_of(claim: &Claim<BigRational>, version: Version) -> Option<&Kind<BigRati
     }
 }
 
+/// The domain a statement's witnesses must lie in: the claim's own for
+/// the printed statement; a correction must hold at every probe time.
+fn domain_of(claim: &Claim<BigRational>, version: Version) -> &Domain {
+    match version {
+        Version::Printed => &claim.domain,
+        Version::Corrected => &Domain::EVERY_T,
+    }
+}
+
 /// The blocks of a case statement: the random cases cut into at most
 /// [`CASE_BLOCKS`] equal blocks, then one per shipped scene.
 fn blocks(cases: usize, shipped: usize) -> Vec<Range<usize>> {
@@ -157,6 +168,8 @@ pub struct OutcomeLine {
     pub cases: usize,
     /// The violation and its witness scene.
     pub witness: Option<String>,
+    /// The witness, machine-readable.
+    pub witness_data: Option<WitnessData>,
     /// Measurements.
     pub note: Option<String>,
 }
@@ -172,6 +185,7 @@ impl From<&Outcome> for OutcomeLine {
             reason,
             cases: o.cases,
             witness: o.witness.clone(),
+            witness_data: o.witness_data.clone(),
             note: o.note.clone(),
         }
     }
@@ -192,6 +206,7 @@ impl OutcomeLine {
             status,
             cases: self.cases,
             witness: self.witness.clone(),
+            witness_data: self.witness_data.clone(),
             note: self.note.clone(),
         })
     }
@@ -226,17 +241,24 @@ fn run_unit(
     let Some(kind) = kind_of(claim, unit.statement.version) else {
         return UnitResult::Skipped;
     };
+    let domain = domain_of(claim, unit.statement.version);
     match (kind, &unit.cases) {
         (Kind::Case(check), Some(range)) => {
-            let (applied, failure) =
-                run_case_range(*check, claim.applies, budget, shipped, range.clone());
+            let (applied, failure) = run_case_range(
+                *check,
+                claim.applies,
+                domain,
+                budget,
+                shipped,
+                range.clone(),
+            );
             UnitResult::Cases {
                 applied,
                 counterexample: failure.as_ref().map(OutcomeLine::from),
             }
         }
         _ => UnitResult::Whole(OutcomeLine::from(
-            &run_kind(kind, claim.applies, budget, shipped).0,
+            &run_kind(kind, claim.applies, domain, budget, shipped).0,
         )),
     }
 }
@@ -318,6 +340,7 @@ fn statement_outcome<'a>(results: impl Iterator<Item = &'a UnitResult>) -> Resul
         status: Status::Holds,
         cases: applied,
         witness: None,
+        witness_data: None,
         note: None,
     })
 }
@@ -464,7 +487,8 @@ mod shard_tests {
                 let Some(kind @ Kind::Case(_)) = kind_of(c, version) else {
                     continue;
                 };
-                let single = run_kind(kind, c.applies, budget, &shipped).0;
+                let domain = domain_of(c, version);
+                let single = run_kind(kind, c.applies, domain, budget, &shipped).0;
                 seen.0 |= single.status == Status::Holds;
                 seen.1 |= single.status == Status::Counterexample;
                 for count in [1, 3, 4] {

@@ -200,32 +200,6 @@ pub fn rows(claim_id: &str) -> Vec<CoqRow> {
         .collect()
 }
 
-/// The `"coq"` field of `sticky claims --json`:
-/// `"coq": [{"file", "theorem", "kind", "statement", "note"}, …]` — the
-/// claims ledger's writer splices it in until the ledger is a serde type
-/// too (then it holds a `Vec<CoqRow>` from `rows` and this goes); a test
-/// ties it to the serialised `CoqRow`s, byte for byte.
-pub fn json_field(claim_id: &str) -> String {
-    let s = crate::text::string;
-    let items: Vec<String> = coq_theorems(claim_id)
-        .iter()
-        .map(|t| {
-            format!(
-                "{{\"file\": {}, \"theorem\": {}, \"kind\": {}, \"statement\": {}, \"note\": {}}}",
-                s(&format!("proofs/coq/theories/{}", t.file)),
-                s(&t.qualified()),
-                s(t.kind.label()),
-                s(match t.statement {
-                    Statement::Printed => "printed",
-                    Statement::Corrected => "corrected",
-                }),
-                s(t.note)
-            )
-        })
-        .collect();
-    format!("\"coq\": [{}]", items.join(", "))
-}
-
 /// The line under a claim in `sticky claims --markdown` (empty when no Coq
 /// theorem is about it).
 pub fn markdown_line(claim_id: &str) -> String {
@@ -351,31 +325,16 @@ mod tests {
         assert_eq!(parse(split).map_err(|e| e.line), Err(3));
     }
 
-    #[cfg(feature = "json")]
-    #[test]
-    fn the_ledger_field_is_the_serialised_rows() {
-        let mut claims: Vec<&str> = all().iter().map(|r| r.claim).collect();
-        claims.dedup();
-        claims.push("no-such-claim");
-        for id in claims {
-            let typed = crate::json::to_string(&rows(id));
-            assert_eq!(json_field(id), ["\"coq\": ", &typed].concat(), "{id}");
-        }
-    }
-
     #[test]
     fn lookup_returns_the_rows_of_one_claim() {
         let rows = coq_theorems("eq:dyn-micro");
         assert_eq!(rows.len(), 4);
         assert!(rows.iter().all(|r| r.claim == "eq:dyn-micro"));
         assert!(coq_theorems("no-such-claim").is_empty());
-        assert!(json_field("no-such-claim") == "\"coq\": []");
-        let j = json_field("prop:Oleinik");
-        let v: serde_json::Value =
-            serde_json::from_str(&format!("{{{j}}}")).expect("the coq field is JSON");
-        assert_eq!(v["coq"][0]["theorem"], "Sticky.Oleinik.oleinik");
-        assert_eq!(v["coq"][0]["kind"], "proves");
-        assert_eq!(v["coq"][0]["file"], "proofs/coq/theories/Oleinik.v");
+        let oleinik = coq_theorems("prop:Oleinik");
+        assert_eq!(oleinik[0].qualified(), "Sticky.Oleinik.oleinik");
+        assert_eq!(oleinik[0].kind.label(), "proves");
+        assert_eq!(oleinik[0].file, "Oleinik.v");
         assert!(markdown_line("no-such-claim").is_empty());
         assert!(markdown_line("prop:Oleinik")
             .starts_with("Coq (every N, over Q): proves `Sticky.Oleinik.oleinik` (t > 0"));

@@ -13,10 +13,13 @@
 
 use num_rational::BigRational;
 
+use super::domain::{open_intervals, Domain, InTime};
+use super::witness::{self, Failure, WitnessData, WitnessScene};
 use super::{scaling, Case, Claim, Kind, Violation};
 use crate::fast::kernel;
 use crate::generate::{initial_data, Limits, SplitMix64};
 use crate::progress::Progress;
+use crate::scalar::Scalar;
 use crate::scene::{self, particles_toml};
 
 /// The engines that call every [`Kind::Case`] checker of the registry
@@ -105,6 +108,8 @@ pub struct Outcome {
     pub witness: Option<String>,
     /// Measurements (scaling checks).
     pub note: Option<String>,
+    /// The counterexample in machine-readable form.
+    pub witness_data: Option<WitnessData>,
 }
 
 /// One row of the ledger.
@@ -157,13 +162,74 @@ fn case_of(bytes: &[u8], limits: Limits) -> Case<BigRational> {
     Case::new(initial_data(bytes, limits), None).with_engine(kernel::state_of_data)
 }
 
-/// Greedy shrinking of the generator input while `check` still fails.
+/// A failure of a checker inside its statement's domain: the violation
+/// at each time where it is shown (two times of one open interval between
+/// collisions for an a.e.-in-`t` statement; the checker's own probe times
+/// otherwise).
+#[derive(Debug, Clone)]
+pub struct Found {
+    /// The violation at each time, in order.
+    pub violations: Vec<Violation>,
+    /// The times (empty when the checker ran on all its probe times).
+    pub times: Vec<BigRational>,
+    /// The open interval holding `times`.
+    pub interval: Option<super::domain::OpenInterval<BigRational>>,
+}
+
+/// The first failure of `check` on `case` inside `domain`, or `None`. A
+/// datum outside the domain's hypotheses (`N`, `u⁰ ∈ H`) is skipped; an
+/// a.e.-in-`t` statement is run at two times of each open interval between
+/// collisions, one time alone at a time, and fails only if it fails at
+/// both. Every returned witness passes [`Domain::admits`].
+pub fn failure_in_domain(
+    check: super::CaseCheck<BigRational>,
+    case: &Case<BigRational>,
+    domain: &Domain,
+) -> Option<Found> {
+    domain.admits_datum(&case.traj).ok()?;
+    if domain.time != InTime::AlmostEvery {
+        return check(case).err().map(|v| Found {
+            violations: vec![v],
+            times: Vec::new(),
+            interval: None,
+        });
+    }
+    let at = |t: &BigRational| {
+        check(
+            &Case::with_times(case.traj.clone(), vec![t.clone()])
+                .with_engine(kernel::state_of_data),
+        )
+        .err()
+    };
+    let intervals = open_intervals(&case.traj);
+    // One run over every interval's first time first: most cases pass.
+    let firsts: Vec<BigRational> = intervals.iter().map(|iv| iv.times[0].clone()).collect();
+    check(&Case::with_times(case.traj.clone(), firsts).with_engine(kernel::state_of_data)).err()?;
+    for iv in intervals {
+        let Some(a) = at(&iv.times[0]) else { continue };
+        let Some(b) = at(&iv.times[1]) else { continue };
+        let times = iv.times.to_vec();
+        debug_assert!(domain.admits(&case.traj, &times).is_ok());
+        domain.admits(&case.traj, &times).ok()?;
+        return Some(Found {
+            violations: vec![a, b],
+            times,
+            interval: Some(iv),
+        });
+    }
+    None
+}
+
+/// Greedy shrinking of the generator input while `check` still fails
+/// inside `domain` ([`failure_in_domain`]).
 fn shrink(
     bytes: Vec<u8>,
     limits: Limits,
     check: super::CaseCheck<BigRational>,
-) -> (Vec<u8>, Limits, Violation) {
-    let fails = |b: &[u8], l: Limits| -> Option<Violation> { check(&case_of(b, l)).err() };
+    domain: &Domain,
+) -> (Vec<u8>, Limits, Found) {
+    let fails =
+        |b: &[u8], l: Limits| -> Option<Found> { failure_in_domain(check, &case_of(b, l), domain) };
     let mut best = bytes;
     let mut lim = limits;
     let Some(mut v) = fails(&best, lim) else {
@@ -171,7 +237,7 @@ fn shrink(
     };
     let mut budget = 3000usize;
     // Fewer particles first.
-    while lim.max_n > 1 && budget > 0 {
+    while lim.max_n > domain.min_n.max(1) && budget > 0 {
         budget -= 1;
         let l = Limits {
             max_n: lim.max_n - 1,
@@ -237,43 +303,95 @@ pub(crate) fn shipped_cases() -> Vec<(&'static str, Case<BigRational>)> {
         .collect()
 }
 
-/// The outcome of a random case that fails `check`: shrunk to a small
-/// witness scene; `cases` counts the cases run, this one included.
+/// The witness text and data of a failure found on `data`.
+fn report(
+    found: &Found,
+    scene: WitnessScene,
+    domain: &Domain,
+    tail: String,
+) -> (String, WitnessData) {
+    let mut text = found.violations[0].witness.clone();
+    if let (Some(iv), [_, b]) = (&found.interval, found.violations.as_slice()) {
+        text.push_str(&format!(
+            "\nfor a.e. t: it fails at t = {} and at t = {}, both in the open interval ({}, {}) between collision instants; the second: {}",
+            found.times[0].render(),
+            found.times[1].render(),
+            iv.lo.render(),
+            iv.hi.as_ref().map_or("∞".to_string(), |h| h.render()),
+            b.witness.lines().next().unwrap_or("")
+        ));
+    }
+    text.push_str(&tail);
+    let data = WitnessData {
+        scene,
+        domain: witness::DomainData::of(domain),
+        times: found
+            .times
+            .iter()
+            .map(crate::rational::render_exact)
+            .collect(),
+        interval: found.interval.as_ref().map(witness::interval),
+        failures: found.violations.iter().map(Failure::of).collect(),
+    };
+    (text, data)
+}
+
+/// The outcome of a random case that fails `check` inside `domain`: shrunk
+/// to a small witness scene; `cases` counts the cases run, this one included.
 fn random_counterexample(
     cases: usize,
     bytes: Vec<u8>,
     limits: Limits,
     check: super::CaseCheck<BigRational>,
+    domain: &Domain,
 ) -> Outcome {
-    let (b, l, v) = shrink(bytes, limits, check);
+    let (b, l, found) = shrink(bytes, limits, check, domain);
     let data = initial_data(&b, l);
-    Outcome {
-        status: Status::Counterexample,
-        cases,
-        witness: Some(format!(
-            "{}\nwitness scene (N = {}):\n{}",
-            v.witness,
+    let (text, wd) = report(
+        &found,
+        witness::particles(&data),
+        domain,
+        format!(
+            "\nwitness scene (N = {}):\n{}",
             data.n(),
             particles_toml(&data, Some("witness"))
-        )),
-        note: None,
-    }
-}
-
-/// The outcome of a shipped scene that fails: the violation and the file.
-fn shipped_counterexample(cases: usize, name: &str, v: Violation) -> Outcome {
+        ),
+    );
     Outcome {
         status: Status::Counterexample,
         cases,
-        witness: Some(format!("{}\nwitness: scenes/{name}.toml", v.witness)),
+        witness: Some(text),
         note: None,
+        witness_data: Some(wd),
     }
 }
 
-/// Runs one case-checker over the random cases then the shipped scenes.
+/// The outcome of a shipped scene that fails inside `domain`: the
+/// violation and the file.
+fn shipped_counterexample(cases: usize, name: &str, found: &Found, domain: &Domain) -> Outcome {
+    let (text, wd) = report(
+        found,
+        WitnessScene::Shipped {
+            name: name.to_string(),
+        },
+        domain,
+        format!("\nwitness: scenes/{name}.toml"),
+    );
+    Outcome {
+        status: Status::Counterexample,
+        cases,
+        witness: Some(text),
+        note: None,
+        witness_data: Some(wd),
+    }
+}
+
+/// Runs one case-checker over the random cases then the shipped scenes,
+/// keeping only failures inside `domain`.
 fn run_case_check(
     check: super::CaseCheck<BigRational>,
     applies: fn(&Case<BigRational>) -> bool,
+    domain: &Domain,
     budget: Budget,
     shipped: &[(&'static str, Case<BigRational>)],
 ) -> Outcome {
@@ -286,8 +404,8 @@ fn run_case_check(
             continue;
         }
         cases += 1;
-        if check(&case).is_err() {
-            return random_counterexample(cases, bytes, limits, check);
+        if failure_in_domain(check, &case, domain).is_some() {
+            return random_counterexample(cases, bytes, limits, check, domain);
         }
     }
     for (name, case) in shipped {
@@ -295,8 +413,8 @@ fn run_case_check(
             continue;
         }
         cases += 1;
-        if let Err(v) = check(case) {
-            return shipped_counterexample(cases, name, v);
+        if let Some(found) = failure_in_domain(check, case, domain) {
+            return shipped_counterexample(cases, name, &found, domain);
         }
     }
     Outcome {
@@ -304,18 +422,49 @@ fn run_case_check(
         cases,
         witness: None,
         note: None,
+        witness_data: None,
+    }
+}
+
+/// The witness data of a claim checked without a particle datum (a
+/// formula, or a scaling check on a shipped scene named first in the
+/// witness text).
+fn timeless(v: &Violation, domain: &Domain) -> WitnessData {
+    let name = v.witness.split(':').next().unwrap_or("");
+    let scene = if scene::shipped(name).is_some() {
+        WitnessScene::Shipped {
+            name: name.to_string(),
+        }
+    } else if let Some((blocks, _)) = v
+        .witness
+        .strip_prefix("blocks = ")
+        .and_then(|rest| rest.split_once(", N = "))
+    {
+        WitnessScene::Macro {
+            blocks: blocks.to_string(),
+        }
+    } else {
+        WitnessScene::Formula
+    };
+    WitnessData {
+        scene,
+        domain: witness::DomainData::of(domain),
+        times: Vec::new(),
+        interval: None,
+        failures: vec![Failure::of(v)],
     }
 }
 
 pub(crate) fn run_kind(
     kind: &Kind<BigRational>,
     applies: fn(&Case<BigRational>) -> bool,
+    domain: &Domain,
     budget: Budget,
     shipped: &[(&'static str, Case<BigRational>)],
 ) -> (Outcome, Vec<&'static str>) {
     match kind {
         Kind::Case(check) => (
-            run_case_check(*check, applies, budget, shipped),
+            run_case_check(*check, applies, domain, budget, shipped),
             engines(kind),
         ),
         Kind::Scaling(check) => {
@@ -325,6 +474,7 @@ pub(crate) fn run_kind(
                     status: Status::Holds,
                     cases: reports.iter().map(|r| r.cases).sum(),
                     witness: None,
+                    witness_data: None,
                     note: Some(
                         reports
                             .iter()
@@ -337,6 +487,7 @@ pub(crate) fn run_kind(
                     status: Status::Counterexample,
                     // The values of the scene that failed, one per N.
                     cases: scaling::ns(sb).len(),
+                    witness_data: Some(timeless(&v, domain)),
                     witness: Some(v.witness),
                     note: None,
                 },
@@ -350,10 +501,12 @@ pub(crate) fn run_kind(
                     cases: 1,
                     witness: None,
                     note: None,
+                    witness_data: None,
                 },
                 Err(v) => Outcome {
                     status: Status::Counterexample,
                     cases: 1,
+                    witness_data: Some(timeless(&v, domain)),
                     witness: Some(v.witness),
                     note: None,
                 },
@@ -366,9 +519,41 @@ pub(crate) fn run_kind(
                 cases: 0,
                 witness: None,
                 note: None,
+                witness_data: None,
             },
             engines(kind),
         ),
+    }
+}
+
+/// Runs one claim of the registry (and its correction) with `budget`,
+/// as [`run`] does for each.
+pub fn run_claim(claim: &Claim<BigRational>, budget: Budget) -> Entry {
+    entry(claim, budget, &shipped_cases())
+}
+
+fn entry(
+    claim: &Claim<BigRational>,
+    budget: Budget,
+    shipped: &[(&'static str, Case<BigRational>)],
+) -> Entry {
+    let (mut outcome, engines) =
+        run_kind(&claim.kind, claim.applies, &claim.domain, budget, shipped);
+    if let (Status::Holds, Some(why)) = (&outcome.status, claim.identity) {
+        outcome.status = Status::Identity(why.to_string());
+    }
+    let correction = claim.correction.as_ref().map(|c| {
+        // A correction must hold on every case, at every probe time.
+        let (o, _) = run_kind(&c.check, claim.applies, &Domain::EVERY_T, budget, shipped);
+        (c.statement, o, c.conclusion)
+    });
+    Entry {
+        id: claim.id,
+        section: claim.section,
+        statement: claim.statement,
+        engines,
+        outcome,
+        correction,
     }
 }
 
@@ -391,6 +576,7 @@ pub(crate) fn engines(kind: &Kind<BigRational>) -> Vec<&'static str> {
 pub(crate) fn run_case_range(
     check: super::CaseCheck<BigRational>,
     applies: fn(&Case<BigRational>) -> bool,
+    domain: &Domain,
     budget: Budget,
     shipped: &[(&'static str, Case<BigRational>)],
     range: std::ops::Range<usize>,
@@ -410,8 +596,8 @@ pub(crate) fn run_case_range(
                 continue;
             }
             cases += 1;
-            if check(&case).is_err() {
-                let outcome = random_counterexample(cases, bytes, limits, check);
+            if failure_in_domain(check, &case, domain).is_some() {
+                let outcome = random_counterexample(cases, bytes, limits, check, domain);
                 return (cases, Some(outcome));
             }
         } else if k >= range.start {
@@ -422,8 +608,9 @@ pub(crate) fn run_case_range(
                 continue;
             }
             cases += 1;
-            if let Err(v) = check(case) {
-                return (cases, Some(shipped_counterexample(cases, name, v)));
+            if let Some(found) = failure_in_domain(check, case, domain) {
+                let outcome = shipped_counterexample(cases, name, &found, domain);
+                return (cases, Some(outcome));
             }
         }
     }
@@ -444,22 +631,7 @@ pub fn run(budget: Budget, progress: &dyn Progress) -> Vec<Entry> {
             break;
         }
         progress.note(claim.id);
-        let (mut outcome, engines) = run_kind(&claim.kind, claim.applies, budget, &shipped);
-        if let (Status::Holds, Some(why)) = (&outcome.status, claim.identity) {
-            outcome.status = Status::Identity(why.to_string());
-        }
-        let correction = claim.correction.as_ref().map(|c| {
-            let (o, _) = run_kind(&c.check, claim.applies, budget, &shipped);
-            (c.statement, o, c.conclusion)
-        });
-        out.push(Entry {
-            id: claim.id,
-            section: claim.section,
-            statement: claim.statement,
-            engines,
-            outcome,
-            correction,
-        });
+        out.push(entry(claim, budget, &shipped));
         progress.advance(1);
     }
     progress.finish();
@@ -544,55 +716,8 @@ pub fn table(entries: &[Entry]) -> String {
     out
 }
 
-fn json_outcome(o: &Outcome) -> String {
-    let s = crate::text::string;
-    format!(
-        "\"status\": {}, \"cases\": {}, \"witness\": {}, \"note\": {}",
-        s(o.status.label()),
-        o.cases,
-        o.witness.as_deref().map_or("null".to_string(), s),
-        o.note
-            .as_deref()
-            .map(s)
-            .or_else(|| match &o.status {
-                Status::NotCheckable(r) | Status::Identity(r) => Some(s(r)),
-                _ => None,
-            })
-            .unwrap_or_else(|| "null".to_string())
-    )
-}
-
-/// The ledger as JSON: `[{"id", "statement", "status", "cases", "engines",
-/// "witness", …}, …]`.
-pub fn json(entries: &[Entry]) -> String {
-    let s = crate::text::string;
-    let items: Vec<String> = entries
-        .iter()
-        .map(|e| {
-            let engines: Vec<String> = e.engines.iter().map(|x| s(x)).collect();
-            let correction = match &e.correction {
-                None => "null".to_string(),
-                Some((st, o, concl)) => format!(
-                    "{{\"statement\": {}, {}, \"conclusion\": {}}}",
-                    s(st),
-                    json_outcome(o),
-                    s(concl)
-                ),
-            };
-            format!(
-                "{{\"id\": {}, \"section\": {}, \"statement\": {}, {}, \"engines\": [{}], \"correction\": {}, {}}}",
-                s(e.id),
-                s(e.section),
-                s(e.statement),
-                json_outcome(&e.outcome),
-                engines.join(", "),
-                correction,
-                super::coq::json_field(e.id)
-            )
-        })
-        .collect();
-    format!("[\n{}\n]", items.join(",\n"))
-}
+#[cfg(feature = "json")]
+pub use super::json::json;
 
 /// The index convention of the ledger's texts, said once at the top of the
 /// table and of `CLAIMS.md` (issue 28 item 5: every program output indexes

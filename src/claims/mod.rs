@@ -24,25 +24,32 @@ use crate::scalar::Scalar;
 use crate::state::State;
 use crate::trajectory::Trajectory;
 
+pub(crate) mod bump;
 #[cfg(feature = "json")]
 pub mod campaign;
 pub mod continuum;
 pub mod coq;
 pub mod density;
 pub mod discrete;
+pub mod domain;
 pub mod eulerian;
 pub mod fuzz;
 pub mod inclusion;
+#[cfg(feature = "json")]
+pub mod json;
 pub mod ledger;
 pub mod linf;
 pub mod macro_data;
 mod macro_measures;
 pub mod micro;
 pub mod momentum;
+pub mod paper_domains;
 pub mod registry;
 pub mod sampling;
 pub mod scaling;
 pub mod test_pressure;
+pub mod weak_pressure;
+pub mod witness;
 
 pub use registry::registry;
 
@@ -216,6 +223,9 @@ pub struct Claim<S> {
     pub kind: Kind<S>,
     /// Only cases satisfying this are checked (e.g. `2r = 1/N`).
     pub applies: fn(&Case<S>) -> bool,
+    /// What the statement quantifies over (times, N, test functions,
+    /// datum): the ledger accepts only witnesses inside it.
+    pub domain: domain::Domain,
     /// For a claim known to fail as printed: the corrected statement.
     pub correction: Option<Correction<S>>,
     /// For a claim that holds for any path whatever the dynamics (its

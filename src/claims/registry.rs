@@ -4,6 +4,8 @@
 //! them. A `correction` is attached to a claim once it has been found false
 //! as printed; the corrected statement is then what the test engines require.
 
+use super::domain::Domain;
+use super::paper_domains as pd;
 use super::{
     always, continuum, density, discrete, eulerian, inclusion, linf, micro, momentum, paper_radius,
     sampling, scaling, test_pressure,
@@ -32,6 +34,7 @@ pub fn registry<S: Scalar>() -> Vec<Claim<S>> {
         statement,
         kind: Kind::Case(check),
         applies: always::<S>,
+        domain: Domain::EVERY_T,
         correction: None,
         identity: None,
     };
@@ -41,6 +44,7 @@ pub fn registry<S: Scalar>() -> Vec<Claim<S>> {
         statement,
         kind: Kind::Case(check),
         applies: paper_radius::<S>,
+        domain: Domain::EVERY_T,
         correction: None,
         identity: None,
     };
@@ -50,6 +54,7 @@ pub fn registry<S: Scalar>() -> Vec<Claim<S>> {
         statement,
         kind: Kind::Formula(check),
         applies: always::<S>,
+        domain: Domain::FIXED,
         correction: None,
         identity: None,
     };
@@ -59,8 +64,13 @@ pub fn registry<S: Scalar>() -> Vec<Claim<S>> {
         statement,
         kind: Kind::Scaling(check),
         applies: always::<S>,
+        domain: Domain::FIXED,
         correction: None,
         identity: None,
+    };
+    let within = |mut c: Claim<S>, domain: Domain| {
+        c.domain = domain;
+        c
     };
     let identity = |mut c: Claim<S>, why| {
         c.identity = Some(why);
@@ -77,7 +87,7 @@ pub fn registry<S: Scalar>() -> Vec<Claim<S>> {
     vec![
         fixed("thm:main#sampling-mass", "§2.1 discretisation", "\"By construction, one has ∫_{x_i^0}^{x_{i+1}^0} ρ^0(x) dx = 1/N. Since ρ^0 ≤ 1, it follows that x_{i+1}^0 − x_i^0 ≥ 1/N\" (quantile sampling x⁰_i = X⁰(i/N); shipped macro scenes, N = 2, 4, …, 256, and 300 random macro data under hyp:u0, N = 2 … 16, 32, 64).", sampling::mass_between),
         corrected(
-            fixed("thm:main#sampling-contacts", "§2.1 discretisation", "\"if two particles are in contact then they have the same velocity\": from ∂_w U⁰ = 0 a.e. in (i/N, (i+1)/N), \"u⁰_{i+1} = U⁰((i+1)/N) = U⁰(i/N) = u⁰_i\" (u⁰_i = U⁰(i/N), under hyp:u0; shipped macro scenes, N = 2, 4, …, 256, and 300 random macro data, N = 2 … 16, 32, 64).", sampling::contacts_equal_velocities),
+            within(fixed("thm:main#sampling-contacts", "§2.1 discretisation", "\"if two particles are in contact then they have the same velocity\": from ∂_w U⁰ = 0 a.e. in (i/N, (i+1)/N), \"u⁰_{i+1} = U⁰((i+1)/N) = U⁰(i/N) = u⁰_i\" (u⁰_i = U⁰(i/N), under hyp:u0; shipped macro scenes, N = 2, 4, …, 256, and 300 random macro data, N = 2 … 16, 32, 64).", sampling::contacts_equal_velocities), pd::SAMPLING),
             "U⁰ is constant on (i/N, (i+1)/N) when particles i and i+1 touch, so the velocities sampled from inside that interval, U⁰(i/N+) and U⁰((i+1)/N−), are equal; U⁰ itself may jump at the end points i/N, (i+1)/N (a velocity jump on the boundary of a congested block is allowed by hyp:u0), and there the printed step \"∂_w U⁰ = 0 a.e. ⇒ U⁰((i+1)/N) = U⁰(i/N)\" does not follow.",
             Kind::Formula(sampling::contacts_equal_velocities_inside),
             "The theorem survives: U⁰ is an L² class, and sampling it with the representative that takes the congested side's value at the ends of a congested stretch (which changes u⁰_N only at particles sampled exactly on a block boundary, at most one per boundary, so U⁰_N → U⁰ is unaffected) gives admissible data u⁰_N ∈ C_{x⁰_N}; as printed, u⁰_i = U⁰(i/N) can put two touching particles on a collision course at t = 0 (u⁰_N ∉ C_{x⁰_N}, and sticky refuses such a [macro] scene).",
@@ -87,7 +97,7 @@ pub fn registry<S: Scalar>() -> Vec<Claim<S>> {
         case("def:velcone#tangent-cone", S2, "\"For any configuration x ∈ K^N, it is not difficult to check that the admissible velocities coincide with the tangent cone to K_N at x: C_x^N = T_x K^N := … {θ(y − x); y ∈ K^N, θ ≥ 0}\" (… : the closure bar) (at x = x(t), every probe time, on the generators ±(1, …, 1), s_j = Σ_{k>j} e_k for contacts and ±s_j for pairs apart (a spread of 8 contacts and 8 pairs apart when there are more): each is in C_x and x + θ g ∈ K^N for some θ > 0; y − x ∈ C_x for y = x(s) at every probe time s and y = x⁰ + t u⁰ when in K^N; −s_j ∉ C_x and x − θ s_j ∉ K^N (θ = 1, 1/1000) across each contact).", micro::tangent_cone),
         case("df:normal-cone#polar", S2, "\"and the normal cone is the polar cone of the tangent cone: N_x K^N = (T_x K^N)°\" (at x = x(t), every probe time, pairs spread as for def:velcone#tangent-cone: for each contact, n_j = e_j − e_{j+1} has ⟨n_j, g⟩ ≤ 0 on all the generators of T_x K (by tail sums) and ⟨n_j, y − x⟩ ≤ 0 for the sampled y ∈ K^N (df:normal-cone); for each pair apart, and for (1, …, 1), a generator and a point y ∈ K^N with positive products; and x⁰ + t u⁰ − x(t) ∈ N_x K lies in the polar and is Σ μ_j n_j with μ ≥ 0 on the contacts only).", micro::polar_cone),
         corrected(
-            case("df:H-micro#contacts-grow", S2, "\"the set of active constraints is non-decreasing in time … N_{x(s)}K^N ⊂ N_{x(t)}K^N for all s ≤ t\" (for x⁰ ∈ K^N, u⁰ ∈ C^N_{x⁰}).", micro::contacts_grow_printed),
+            within(case("df:H-micro#contacts-grow", S2, "\"the set of active constraints is non-decreasing in time … N_{x(s)}K^N ⊂ N_{x(t)}K^N for all s ≤ t\" (for x⁰ ∈ K^N, u⁰ ∈ C^N_{x⁰}).", micro::contacts_grow_printed), pd::SECTION2_EVERY_T),
             "Ω_{x(s)} ⊂ Ω_{x(t)} for 0 < s ≤ t, and from s = 0 when u⁰ ∈ H_{x⁰} (two particles touching at t = 0 with u⁰_{i+1} > u⁰_i separate at once).",
             Kind::Case(micro::contacts_grow_corrected),
             "Holds: the paper's main theorem assumes u⁰_{i+1} = u⁰_i on contacts (u⁰ ∈ H_{x⁰}), where the printed statement is true; only data in C_{x⁰} \\ H_{x⁰}, allowed by prop:proj-micro, break it at s = 0.",
@@ -101,34 +111,34 @@ pub fn registry<S: Scalar>() -> Vec<Claim<S>> {
         case("prop:proj-micro#orthogonality", S2, "(proof of prop:proj-micro) ⟨u(t) − u⁰, x̃(t)⟩ = Σ_i (u_i(t) − u⁰_i) x̃_i(t) = 0.", micro::orthogonality),
         case("lem:incl-HSN", S2, "H^N_{x(t)} ⊂ T_{x(t)}K^N ∩ [x⁰ + t u⁰ − x(t)]^⊥ for all t ≥ 0.", micro::incl_hsn),
         corrected(
-            case("lem:incl-HSN#proof-second-inclusion", S2, "\"Let us now show the second inclusion H_{x̃(t)}^N ⊂ [x⁰ + t u⁰]^⊥.\"", micro::incl_hsn_printed),
+            within(case("lem:incl-HSN#proof-second-inclusion", S2, "\"Let us now show the second inclusion H_{x̃(t)}^N ⊂ [x⁰ + t u⁰]^⊥.\"", micro::incl_hsn_printed), pd::SECTION2_EVERY_T),
             "H^N_{x(t)} ⊂ [x⁰ + t u⁰ − x(t)]^⊥ (the lemma's own statement; the proof then shows exactly this).",
             Kind::Case(micro::incl_hsn),
             "Holds: a typo (− x(t) dropped); the proof's computation is for x⁰ + t u⁰ − x(t).",
         ),
         case("prop:proj-velo-micro#step1", S2, "Step 1: ⟨u⁰ − u(t), u(t)⟩ ≥ 0.", micro::velo_step1),
         corrected(
-            case("eq:w-Hs-perp", S2, "\"We also know by the previous lemma that ⟨x⁰ + t u⁰, w⟩ = 0\" for w ∈ H^N_{x(t)}.", micro::w_hs_perp),
+            within(case("eq:w-Hs-perp", S2, "\"We also know by the previous lemma that ⟨x⁰ + t u⁰, w⟩ = 0\" for w ∈ H^N_{x(t)}.", micro::w_hs_perp), pd::SECTION2_AE_T),
             "⟨x⁰ + t u⁰ − x(t), w⟩ = 0 for w ∈ H^N_{x(t)} (lem:incl-HSN).",
             Kind::Case(micro::incl_hsn),
             "Holds: Step 2 uses the identity only through ⟨x⁰ + t u⁰ − x(t), ·⟩, whose vanishing on H is lem:incl-HSN.",
         ),
         case("eq:ineg-projortho", S2, "⟨u⁰ − u(t), y(t) − x(t)⟩ ≤ 0 for all y ∈ K^N (checked exactly on the generators of the tangent cone T_{x(t)}K^N).", micro::ineg_projortho),
         corrected(
-            case("eq:proj-u-micro", S2, "Writing Ω^N_{x(t)} = ∪_k J_k(t), J_k = ⟦j_k, j_k + L_k⟧: u_i(t) = u⁰_i if i ∉ Ω^N_{x(t)}, and u_i(t) = (1/L_k) Σ_{l=1}^{L_k} u⁰_{j_k+l} if i ∈ J_k (read literally: J_k are runs of contact indices, i a particle index).", micro::proj_u_micro_literal),
+            within(case("eq:proj-u-micro", S2, "Writing Ω^N_{x(t)} = ∪_k J_k(t), J_k = ⟦j_k, j_k + L_k⟧: u_i(t) = u⁰_i if i ∉ Ω^N_{x(t)}, and u_i(t) = (1/L_k) Σ_{l=1}^{L_k} u⁰_{j_k+l} if i ∈ J_k (read literally: J_k are runs of contact indices, i a particle index).", micro::proj_u_micro_literal), pd::SECTION2_AE_T),
             "u_i(t) = (1/|C|) Σ_{j ∈ C} u⁰_j where C is the contact cluster of particle i (a run of contacts ⟦j_k, j_k + L_k⟧ joins the L_k + 2 particles j_k … j_k + L_k + 1).",
             Kind::Case(micro::u_projection),
             "Holds: the lemma's first sentence (u(t) is the orthogonal projection of u⁰ onto H) is right; only the explicit index formula is off (0/0 for a single contact, a particle left out of the mean).",
         ),
         corrected(
-            case("prop:bound-micro#position-contraction", S2, "\"From the projection formula we obtain ‖x(t)‖ ≤ ‖x⁰ + t u⁰‖\" (contraction of P_{K^N}).", micro::position_contraction),
+            within(case("prop:bound-micro#position-contraction", S2, "\"From the projection formula we obtain ‖x(t)‖ ≤ ‖x⁰ + t u⁰‖\" (contraction of P_{K^N}).", micro::position_contraction), pd::SECTION2_EVERY_T),
             "P_{K^N} is non-expansive, not a contraction towards 0 (0 ∉ K^N for N ≥ 2): ‖x(t) − P_K(0)‖ ≤ ‖x⁰ + t u⁰ − P_K(0)‖, with ‖P_K(0)‖² = (2r)²(N² − 1)/12, so ‖x(t)‖ ≤ ‖x⁰‖ + T‖u⁰‖ + 2r√((N²−1)/12).",
             Kind::Case(micro::position_nonexpansive),
             "Holds: with 2r = 1/N the extra term is ≤ 1/√12, independent of N, so the bound of prop:bound-micro stands with C(T, ‖x⁰‖, ‖u⁰‖) + 1/√12.",
         ),
         case("prop:bound-micro#velocity-bound", S2, "‖u(t)‖ ≤ ‖u⁰‖.", micro::velocity_bound),
         corrected(
-            case("prop:bound-micro#multiplier-relation", S2, "\"using the relation N(λ_i(t) − λ_{i−1}(t)) = u_i(t) − u⁰_i\" (proofs of prop:bound-micro and prop:Linf-micro).", micro::multiplier_relation_printed),
+            within(case("prop:bound-micro#multiplier-relation", S2, "\"using the relation N(λ_i(t) − λ_{i−1}(t)) = u_i(t) − u⁰_i\" (proofs of prop:bound-micro and prop:Linf-micro).", micro::multiplier_relation_printed), pd::SECTION2_AE_T),
             "N(λ_i(t) − λ_{i−1}(t)) = u⁰_i − u_i(t) (the sign of eq:dyn-micro).",
             Kind::Case(micro::multiplier_relation_corrected),
             "Holds: only absolute values of the relation are used afterwards.",
@@ -148,13 +158,13 @@ pub fn registry<S: Scalar>() -> Vec<Claim<S>> {
         case("eq:projortho-sg", S2, "u(t) = P_{H^N_{x(t)}}(u(s)) for 0 ≤ s < t.", micro::projortho_sg),
         case("prop:micro-pressure", S2, "p_i = dλ_i/dt satisfies (x_{i+1} − x_i − 2r)p_i = 0 and p_i ≥ 0 (checked at every collision instant — a spread of 40 when there are more — on the jumps [λ_i] of λ across it; the sum of the jumps when Σ of the merged cluster sizes ≤ 20,000): every jump is ≥ 0, the pair (i, i+1) is in contact (zero gap) after every instant where λ_i jumps, and λ(t) is the sum of its jumps. λ_i may jump at an instant where another pair collides (N = 3, x⁰ = (0, 1/3, 2), u⁰ = (1, 1, 0), r = 1/6: at t = 4/3 the pair (1, 2) collides and λ[0] jumps 0 → 1/9, pair (0, 1) being already in contact; indices from 0); what is checked is the contact at the jump, not which pair caused it.", micro::micro_pressure),
         corrected(
-            case("prop:proj-micro#uniqueness-identity", S2, "For two solutions with the same u⁰: (N²/2) d/dt ‖x¹ − x²‖² = −⟨ξ¹ − ξ², x¹ − x²⟩.", micro::uniqueness_identity_printed),
+            within(case("prop:proj-micro#uniqueness-identity", S2, "For two solutions with the same u⁰: (N²/2) d/dt ‖x¹ − x²‖² = −⟨ξ¹ − ξ², x¹ − x²⟩.", micro::uniqueness_identity_printed), pd::SECTION2_AE_T),
             "(N/2) d/dt ‖x¹ − x²‖² = −⟨ξ¹ − ξ², x¹ − x²⟩ ≤ 0 (‖·‖² = (1/N)⟨·,·⟩).",
             Kind::Case(micro::uniqueness_identity_corrected),
             "Holds: only the sign of the derivative is used; uniqueness follows.",
         ),
         corrected(
-            case("app:KKT", APPA, "The KKT conditions \"yield the existence of multipliers λ_i(t) ≥ 0 such that x(t) − (x⁰ + t u⁰) + N Σ_{i=1}^{N−1} λ_i(t)(e_i − e_{i+1}) = 0, λ_i(t)(x_{i+1}(t) − x_i(t) − 2r) = 0. This provides directly the multipliers and the Signorini condition introduced in the main text.\"", micro::kkt_printed),
+            within(case("app:KKT", APPA, "The KKT conditions \"yield the existence of multipliers λ_i(t) ≥ 0 such that x(t) − (x⁰ + t u⁰) + N Σ_{i=1}^{N−1} λ_i(t)(e_i − e_{i+1}) = 0, λ_i(t)(x_{i+1}(t) − x_i(t) − 2r) = 0. This provides directly the multipliers and the Signorini condition introduced in the main text.\"", micro::kkt_printed), pd::SECTION2_AE_T),
             "The KKT multipliers μ(t) of the position projection satisfy x(t) − (x⁰ + t u⁰) + N Σ μ_i(t)(e_i − e_{i+1}) = 0, μ ≥ 0, μ_i(x_{i+1} − x_i − 2r) = 0, and μ(t) = ∫_0^t λ(s) ds: they are the time integral of the main text's λ, not λ.",
             Kind::Case(micro::kkt_corrected),
             "Holds: Appendix A gives existence of (other) multipliers; the main text's λ are obtained from the velocity projection, as the paper itself does in prop:proj-micro.",
@@ -165,14 +175,14 @@ pub fn registry<S: Scalar>() -> Vec<Claim<S>> {
             c
         },
         corrected(
-            s3("eq:PDE-Lagr-N-1#complementarity", "(∂_w X̃_N − 1) Λ_N = 0: on ((i−1)/N, i/N], (N(x_i − x_{i−1}) − 1) λ_i = 0.", discrete::lagr_n1_printed),
+            within(s3("eq:PDE-Lagr-N-1#complementarity", "(∂_w X̃_N − 1) Λ_N = 0: on ((i−1)/N, i/N], (N(x_i − x_{i−1}) − 1) λ_i = 0.", discrete::lagr_n1_printed), pd::SECTION3_AE_TW),
             "With df:LN re-indexed, Λ_N := λ_{i−1} on ((i−1)/N, i/N] (so P_N = ∂_t Λ_N := p_{i−1}; Λ̃_N is unchanged), λ_{i−1} and the slope N(x_i − x_{i−1}) belong to the same pair (i−1, i) and (∂_w X̃_N − 1) Λ_N = 0 holds as printed. This one re-indexing makes three printed statements exact at once, and this checker checks all three: eq:PDE-Lagr-N-1#complementarity, lem:discPDE2#exclusion ((∂_w X̃_N − 1) P_N = 0 at every collision) and eq:diffLambda_N's equality |Λ̃_N − Λ_N| = |N(λ_i − λ_{i−1})(w − (i−1)/N)|.",
             Kind::Case(discrete::reindexed),
             "Holds after the re-indexing: it leaves eq:PDE-Lagr-N-1's first line (which involves only Λ̃_N), Λ_N ≥ 0, the L² and L^∞ bounds on Λ_N (the same values, λ_0 = 0 in place of λ_N = 0) and the limit Λ unchanged; prop:cvg1's passage to the limit in the exclusion relation, which starts from (∂_w X̃_N − 1)Λ_N = 0, then starts from a true identity.",
         ),
         s3("lem:discPDE2", "∂_t X_N = U_N, ∂_t U_N + ∂_w P̃_N = 0, ∂_w X̃_N ≥ 1, P_N ≥ 0 in D'((0,T)×(0,1)) (eq:PDE-Lagr-N-2) — in discrete form, at every collision instant t_k (a spread of 40): u_i(t_k) − u_i(t_k⁻) = −N([λ_i] − [λ_{i−1}]) for i = 1 … N with [λ_0] = [λ_N] = 0 and [λ_i] ≥ 0 (velocities from the projection formula, jumps [λ] from the event history), x(t_k) − x(s) = (t_k − s)u(s) since the previous instant (and after the last one), N(x_{i+1} − x_i) ≥ 1.", momentum::disc_pde2),
         corrected(
-            s3("lem:discPDE2#exclusion", "(∂_w X̃_N − 1) P_N = 0, P_N ≥ 0 (P_N = ∂_t Λ_N, piecewise constant in w).", discrete::disc_pde2_printed),
+            within(s3("lem:discPDE2#exclusion", "(∂_w X̃_N − 1) P_N = 0, P_N ≥ 0 (P_N = ∂_t Λ_N, piecewise constant in w).", discrete::disc_pde2_printed), pd::SECTION3_PRESSURE),
             "(∂_w X̃_N − 1) P_N = 0 with P_N := p_{i−1} on ((i−1)/N, i/N] (the re-indexing of eq:PDE-Lagr-N-1#complementarity), i.e. the jump of λ_i occurs with N(x_{i+1} − x_i) = 1.",
             Kind::Case(discrete::reindexed),
             "Holds after the re-indexing stated once under eq:PDE-Lagr-N-1#complementarity (same checker).",
@@ -180,25 +190,25 @@ pub fn registry<S: Scalar>() -> Vec<Claim<S>> {
         s3("prop:Linf-micro", "\"Assume ... x⁰_N − x⁰_0 + sup_i |u⁰_i| ≤ C'_0 [cond:Linfty] ... Then, the following BV estimate holds: sup_{t ∈ [0,T]} ∫_0^1 |∂_w X̃_N(t,w)| dw ≤ C' [eq:BV_XN] ... Without loss of generality, we may assume x⁰_0 = 0 ... ‖X_N‖_{L^∞((0,T)×(0,1))} + ‖X̃_N‖_{L^∞((0,T)×(0,1))} ≤ C', and ‖Λ_N‖_{L^∞((0,T)×(0,1))} + ‖Λ̃_N‖_{L^∞((0,T)×(0,1))} ≤ C', for some positive constant C' = C'(T, C'_0)\" — per trajectory, with the constants of the proof: C'_0 the smallest constant of cond:Linfty (x⁰_0 = x⁰_1 − 1/N − δ, δ = 1), positions measured from x⁰_0, T = each probe time: sup|u(t)| ≤ sup|u⁰|; x_N − x_0 ≤ (x⁰_N − x⁰_0) + 2T sup|u⁰| ≤ (1 + 2T)C'_0; ‖X_N‖_∞ + ‖X̃_N‖_∞ ≤ 2(T sup|u⁰| + (x⁰_N − x⁰_0) + 2T sup|u⁰|) ≤ 2(1 + 3T)C'_0; ‖Λ_N‖_∞ + ‖Λ̃_N‖_∞ ≤ 4 sup|u⁰| ≤ 4C'_0.", linf::linf_micro),
         scal("cond:Linfty", S3, concat!("prop:Linf-micro's hypothesis \"x⁰_N − x⁰_0 + sup_i |u⁰_i| ≤ C'_0 with C'_0 > 0 independent of N\" (eq. cond:Linfty), which \"follows from the compact support of the initial density ρ⁰, which ensures that the discrete initial configurations remain uniformly confined\" — measured as the smallest C'_0 of the quantile sample at each N (artificial particle x⁰_0 = x⁰_1 − 1/N − δ, δ = 1, as prop:Linf-micro's checker uses it)", run_on!()), scaling::cond_linfty),
         corrected(
-            s3("prop:pressure-bound#exclusion", "(proof) \"Since (∂_w X̃_N − 1) P̃_N = 0, we may replace ∂_w X̃_N by 1 on the support of P̃_N\" (P̃_N piecewise affine).", discrete::pressure_bound_exclusion_printed),
+            within(s3("prop:pressure-bound#exclusion", "(proof) \"Since (∂_w X̃_N − 1) P̃_N = 0, we may replace ∂_w X̃_N by 1 on the support of P̃_N\" (P̃_N piecewise affine).", discrete::pressure_bound_exclusion_printed), pd::SECTION3_PRESSURE),
             "No re-indexing rescues this step: on [(i−1)/N, i/N], P̃_N interpolates p_{i−1} and p_i, carried by the pairs (i−1, i) and (i, i+1), and a continuous piecewise-affine P̃_N cannot vanish on an interval whose pair is apart while its end values are the pressures of the neighbouring pairs. The bound itself follows from the pair-indexed pressure: testing eq:micro-2nd-ID with φ_i = (x_N − x_0) i/N − x_i (the proof's test function at the nodes) and summing by parts, at every collision (1/N) Σ_i [u_i] φ_i = Σ_i [λ_i](φ_{i+1} − φ_i) = ((x_N − x_0) − 1)/N · Σ_i [λ_i] ≥ (δ/N) Σ_i [λ_i] (the exclusion is exact for the pair (i, i+1)), and (1/N) Σ_i [λ_i] is the mass of both P_N and P̃_N (trapezoid rule, p_0 = p_N = 0).",
             Kind::Case(momentum::pressure_bound_by_parts),
             "prop:pressure-bound holds by this other argument (the summation by parts above, checked exactly at every collision: it sees the sign and the scale of λ); the printed step is wrong. The same wrong step is reused in the proof of prop:2ndorder-LagrPDE, \"0 = ⟨P̃_N, (∂_w X̃_N − 1)Ψ⟩\", false as printed for the same reason (the counterexample above). That conclusion survives through the paper's own previous item: with the re-indexed P_N := p_{i−1} the exclusion (∂_w X̃_N − 1) P_N = 0 is exact, so ⟨P̃_N, (∂_w X̃_N − 1)Ψ⟩ = −⟨R¹_N, Ψ⟩ with R¹_N = (∂_w X̃_N − 1)(P_N − P̃_N), which the paper shows tends to 0; the final item then needs → 0 instead of = 0. That limit is not checked by the ledger.",
         ),
         corrected(
-            s3("prop:pressure-bound#test-function", "(proof) φ(t,w) = ((x_N(t) − x_0(t))w − X̃_N(t,w))ϕ(t): \"Observe that at the boundaries φ(t,0) = φ(t,1) = 0\" (with the normalisation x⁰_0 = 0 of prop:Linf-micro; checked at every probe time t > 0, any ϕ ≥ 0 with ϕ(t) > 0).", test_pressure::test_function_boundary),
+            within(s3("prop:pressure-bound#test-function", "(proof) φ(t,w) = ((x_N(t) − x_0(t))w − X̃_N(t,w))ϕ(t): \"Observe that at the boundaries φ(t,0) = φ(t,1) = 0\" (with the normalisation x⁰_0 = 0 of prop:Linf-micro; checked at every probe time t > 0, any ϕ ≥ 0 with ϕ(t) > 0).", test_pressure::test_function_boundary), pd::PRESSURE_TEST_FUNCTION),
             "φ(t,0) = φ(t,1) = −x_0(t)ϕ(t), and x_0(t) = ∫_0^t u_1 moves; the integration by parts in w needs only P̃_N(t,0) = p_0 = 0 and P̃_N(t,1) = p_N = 0, so the tested identity holds with this φ (its checker, eq:test-pressure-bound's correction, is run here).",
             Kind::Case(test_pressure::test_identity_corrected),
             "Holds: the boundary terms vanish because the pressure does; (x_0(t) + (x_N − x_0)w − X̃_N)ϕ, which does vanish at both ends, has the same ∂_w φ and changes the right side by −(∫U_N dw)∫(x_0ϕ)' dt = 0 (the mean velocity is conserved).",
         ),
         corrected(
-            s3("eq:test-pressure-bound", "\"Using (eq:PDE-Lagr-N-2), we obtain ∫_0^T∫_0^1 ((x_N(t) − x_0(t)) − ∂_w X̃_N(t,w))ϕ(t) P̃_N(w,dt) dw = −∫_0^T∫_0^1 ((U_N(t,0) − U_N(t,1))w − Ũ_N(t,w)) U_N(t,w) ϕ(t) dw dt − ∫_0^T∫_0^1 U_N(t,w)((x_N(t) − x_0(t))w − X̃_N(t,w)) ϕ'(t) dw dt. By the previously established bounds on U_N and X̃_N, the right-hand side is uniformly bounded. Hence … |∫_0^T∫_0^1 ((x_N(t) − x_0(t)) − ∂_w X̃_N(t,w))ϕ(t) P̃_N(dt,w) dw| ≤ C(‖U_N‖_{L^∞_{t,w}}² + ‖U_N‖_{L²_tL²_w}² + ‖X̃_N‖_{L²_tL²_w}²)\" — the identity checked exactly per trajectory (δ = 1, U_N(t,0) read as u_0 = u_1, the artificial particle moving with particle 1, U_N(t,1) = u_N) for ϕ = (t − a)²(b − t)² on [a, b] covering the collisions (up to 400 instants) and on [a, c] ending between the first two.", test_pressure::test_identity_printed),
+            within(s3("eq:test-pressure-bound", "\"Using (eq:PDE-Lagr-N-2), we obtain ∫_0^T∫_0^1 ((x_N(t) − x_0(t)) − ∂_w X̃_N(t,w))ϕ(t) P̃_N(w,dt) dw = −∫_0^T∫_0^1 ((U_N(t,0) − U_N(t,1))w − Ũ_N(t,w)) U_N(t,w) ϕ(t) dw dt − ∫_0^T∫_0^1 U_N(t,w)((x_N(t) − x_0(t))w − X̃_N(t,w)) ϕ'(t) dw dt. By the previously established bounds on U_N and X̃_N, the right-hand side is uniformly bounded. Hence … |∫_0^T∫_0^1 ((x_N(t) − x_0(t)) − ∂_w X̃_N(t,w))ϕ(t) P̃_N(dt,w) dw| ≤ C(‖U_N‖_{L^∞_{t,w}}² + ‖U_N‖_{L²_tL²_w}² + ‖X̃_N‖_{L²_tL²_w}²)\" — the identity checked exactly per trajectory (δ = 1, U_N(t,0) read as u_0 = u_1, the artificial particle moving with particle 1, U_N(t,1) = u_N) for ϕ = (t − a)²(b − t)² on [a, b] covering the collisions (up to 400 instants) and on [a, c] ending between the first two.", test_pressure::test_identity_printed), pd::PRESSURE_IDENTITY),
             "The identity holds with (u_N(t) − u_0(t))w in place of (U_N(t,0) − U_N(t,1))w — the ∂_t φ computed just before in the proof — exactly, and it gives |left side| ≤ 2‖ϕ‖_{L¹} sup_t ‖U_N‖²_∞ + ‖ϕ'‖_{L¹} sup_t ‖U_N(t)‖_∞ ((x_N − x_0) + max(|x_0|, |x_N|)) (checked), bounded independently of N by prop:Linf-micro: the bound needs the L^∞ bounds (the spread x_N − x_0 enters through (x_N − x_0)w), not only the L² norms listed.",
             Kind::Case(test_pressure::test_identity_corrected),
             "Holds: a sign slip in one factor; the proof only uses that the right side is bounded, which the corrected identity gives with C depending on ϕ through ‖ϕ‖_{L¹} ≤ T and ‖ϕ'‖_{L¹} (= 2 max ϕ for ϕ increasing then decreasing, enough for the total mass since P̃_N ≥ 0).",
         ),
         corrected(
-            s3("prop:2ndorder-LagrPDE#exclusion-pairing", "(proof of prop:2ndorder-LagrPDE) \"Now, for Ψ ∈ C_c^1((0,T)×(0,1)), we have 0 = ⟨P̃_N,(∂_w X̃_N − 1)Ψ⟩\" — at every collision instant (P̃_N is a Dirac mass in time there, weights the jumps [λ_i]; a spread of 40 collisions when more), for Ψ = 1: Σ_i (N(x_i − x_{i−1}) − 1)([λ_{i−1}] + [λ_i])/(2N), δ = 1 (every term is ≥ 0, so this Ψ is the sharpest).", discrete::pairing_printed),
+            within(s3("prop:2ndorder-LagrPDE#exclusion-pairing", "(proof of prop:2ndorder-LagrPDE) \"Now, for Ψ ∈ C_c^1((0,T)×(0,1)), we have 0 = ⟨P̃_N,(∂_w X̃_N − 1)Ψ⟩\" — at every collision instant (P̃_N is a Dirac mass in time there, weights the jumps [λ_i]; a spread of 40 collisions when more), for Ψ = 1: Σ_i (N(x_i − x_{i−1}) − 1)([λ_{i−1}] + [λ_i])/(2N), δ = 1 (every term is ≥ 0, so this Ψ is the sharpest).", discrete::pairing_printed), pd::EXCLUSION_PAIRING),
             "With the re-indexed P_N := p_{i−1} on ((i−1)/N, i/N] (the pressure of the pair whose gap is that cell's, as in eq:PDE-Lagr-N-1#complementarity's correction), ⟨P_N, (∂_w X̃_N − 1)Ψ⟩ = 0 exactly, hence ⟨P̃_N, (∂_w X̃_N − 1)Ψ⟩ = −⟨R¹_N, Ψ⟩ with R¹_N = (∂_w X̃_N − 1)(P_N − P̃_N), the term the proof's previous item shows tends to 0 in D': the step holds with → 0 in place of = 0 (checked: the re-indexed pairing is 0 and the printed one equals −⟨R¹_N, 1⟩ at every collision; the limit R¹_N → 0 is the paper's previous item, not measured by the ledger).",
             Kind::Case(discrete::pairing_reindexed),
             "The proposition survives: T¹_N + T²_N → 0 instead of = 0 leaves the limit (∂_w X − 1)P = 0 unchanged. The same wrong exclusion is prop:pressure-bound#exclusion's.",
@@ -206,13 +216,13 @@ pub fn registry<S: Scalar>() -> Vec<Claim<S>> {
         s3("prop:pressure-bound#gap-delta", "(x_N(t) − x_0(t)) − 1 ≥ 2r(N − 1) + (2r + δ) − 1 = δ.", discrete::gap_delta),
         s3("prop:cvg1#XN-L1", "∫_0^1 |X̃_N(t,w) − X_N(t,w)| dw = (1/2N) Σ_{i=0}^{N−1} (x_{i+1}(t) − x_i(t)) = (1/2N)(x_N(t) − x_0(t)).", discrete::xn_l1),
         corrected(
-            s3("eq:diffLambda_N", "For w ∈ ((i−1)/N, i/N]: |Λ̃_N(t,w) − Λ_N(t,w)| = |N(λ_i(t) − λ_{i−1}(t))(w − (i−1)/N)| ≤ |λ_i(t) − λ_{i−1}(t)| ≤ C'/N.", discrete::diff_lambda_printed),
+            within(s3("eq:diffLambda_N", "For w ∈ ((i−1)/N, i/N]: |Λ̃_N(t,w) − Λ_N(t,w)| = |N(λ_i(t) − λ_{i−1}(t))(w − (i−1)/N)| ≤ |λ_i(t) − λ_{i−1}(t)| ≤ C'/N.", discrete::diff_lambda_printed), pd::SECTION3_AE_TW),
             "|Λ̃_N − Λ_N| = |λ_i − λ_{i−1}| · |1 − N(w − (i−1)/N)| ≤ |λ_i − λ_{i−1}| ≤ 2 sup|u⁰|/N.",
             Kind::Case(discrete::diff_lambda_corrected),
             "Holds: the bound, which is all that is used, is right; and with the re-indexing Λ_N := λ_{i−1} of eq:PDE-Lagr-N-1#complementarity the printed equality itself is exact (checked there).",
         ),
         corrected(
-            s3("prop:2ndorder-LagrPDE#UN-L1", "∫_0^1 |Ũ_N(t,w) − U_N(t,w)| dw = (1/2N) Σ_{i=1}^N |u_i(t) − u_{i−1}(t)| = (1/2N)|u_N(t) − u_0(t)| ≤ C/N.", discrete::un_l1_printed),
+            within(s3("prop:2ndorder-LagrPDE#UN-L1", "∫_0^1 |Ũ_N(t,w) − U_N(t,w)| dw = (1/2N) Σ_{i=1}^N |u_i(t) − u_{i−1}(t)| = (1/2N)|u_N(t) − u_0(t)| ≤ C/N.", discrete::un_l1_printed), pd::SECTION3_AE_TW),
             "(1/2N) Σ |u_i − u_{i−1}| ≤ TV(u⁰)/(2N): the total variation of u(t) never exceeds that of u⁰ (cluster means create no variation); TV(u⁰) is bounded when U⁰ ∈ BV.",
             Kind::Case(discrete::un_l1_corrected),
             "Holds if U⁰ has bounded variation (or for t ≥ α by pwUN-L1); the second equality is true only for monotone u.",
@@ -251,7 +261,7 @@ pub fn registry<S: Scalar>() -> Vec<Claim<S>> {
         case("app:uniqueness#monotone-inclusion", APPC, "Proposition \"Monotone inclusion and uniqueness for (eq:Lagr-1)\" (unlabelled; app:uniqueness): \"ξ := ∂_w Λ. Then, for a.e. t ∈ (0,T), one has ξ(t) ∈ ∂I_K(X(t)) … Equivalently, ∂_t X(t) + ∂I_K(X(t)) ∋ U⁰. As a consequence, (eq:Lagr-1) admits at most one solution\" (proof: ∫ ∂_wΛ (Y − X) = −∫ Λ ∂_w(Y − X) ≤ 0; for two solutions (1/2) d/dt ‖X¹ − X²‖² = −∫(ξ¹ − ξ²)(X¹ − X²) ≤ 0) — its discrete analogue on the particles, at every probe time: ξ = N(λ_i − λ_{i−1}) from the multipliers (λ_0 = λ_N = 0) equals u⁰ − u(t); ⟨ξ, y − x(t)⟩ ≤ 0 with the proof's summation by parts ⟨ξ, y − x⟩ = −N Σ λ_i((y_{i+1} − y_i) − (x_{i+1} − x_i)), each term ≥ 0, on 3 pseudo-random y ∈ K^N (some gaps exactly 2r) and on the generators of T_{x(t)}K^N; and for second solutions with the same u⁰ and x⁰ translated by 1, with its slack halved, with its gaps widened: ⟨ξ¹ − ξ², x¹ − x²⟩ ≥ 0 at every probe and collision time of either history, and ‖x¹(t) − x²(t)‖ non-increasing on [0, T] (on each interval between consecutive such times, d/dt‖x¹ − x²‖² is affine and is checked ≤ 0 at both ends). Unlike eq:ineg-projortho (u⁰ − u on the generators) and prop:proj-micro#uniqueness-identity (one second datum, the derivative at the probe times), ξ is read from λ and the contraction is checked on the whole interval.", inclusion::monotone_inclusion),
         fixed("app:uniqueness#free-collision", APPC, "The collision occurs at t* = η/2, at which point X^f(t*, w) = w + η/2.", appendix_c::free_collision),
         corrected(
-            fixed("app:uniqueness#sticky-pressure", APPC, "P¹(t,w) = [w 1_{[0,1/2)}(w) − (1 − w) 1_{[1/2,1]}(w)] δ_{t=t*}, with U¹ = 0, X¹ = w + η/2 for t ≥ t*, solves eq:PDE-Lagr-2 (∂_t U + ∂_w P = 0, P ≥ 0).", appendix_c::sticky_pressure_printed),
+            within(fixed("app:uniqueness#sticky-pressure", APPC, "P¹(t,w) = [w 1_{[0,1/2)}(w) − (1 − w) 1_{[1/2,1]}(w)] δ_{t=t*}, with U¹ = 0, X¹ = w + η/2 for t ≥ t*, solves eq:PDE-Lagr-2 (∂_t U + ∂_w P = 0, P ≥ 0).", super::weak_pressure::sticky_pressure_printed), pd::APPENDIX_C_PRESSURE),
             "P¹ = [w 1_{[0,1/2)} + (1 − w) 1_{[1/2,1]}] δ_{t=t*} (≥ 0, continuous, vanishing at w = 0, 1); it is exactly the limit of the particles: the jump of λ_i at t* is P¹(i/N).",
             Kind::Formula(appendix_c::sticky_pressure_corrected),
             "Holds: the sticky continuation is a solution with the corrected pressure; the non-uniqueness argument is unaffected.",

@@ -118,24 +118,42 @@ pub fn mass_between() -> R {
 /// `§2.1#contacts-equal-velocities`: "if two particles are in contact then
 /// they have the same velocity" (from `hyp:u0`, `∂_x u⁰ = 0` in
 /// `{ρ⁰ = 1}`): `u⁰_{i+1} = u⁰_i` whenever `x⁰_{i+1} − x⁰_i = 2r = 1/N`,
-/// with `u⁰_i = U⁰(i/N)` as printed (`U⁰` left-continuous, see
-/// [`MacroDatum::u0`]).
+/// with `u⁰_i = U⁰(i/N)` as printed. `U⁰` is an `L²` class, so its value
+/// at `i/N` is a choice: both one-sided readings are checked, the
+/// left-continuous `U⁰(i/N−)` ([`MacroDatum::u0`]) and the
+/// right-continuous `U⁰(i/N+)` ([`MacroDatum::u0_right`]), and the
+/// statement is refuted only by a sample (one datum, one N) where both
+/// readings put two touching particles at different velocities.
 pub fn contacts_equal_velocities() -> R {
     const ID: &str = "thm:main#sampling-contacts";
-    each_sample(ID, |name, n, _datum, x, u| {
+    each_sample(ID, |name, n, datum, x, u| {
         let two_r = BigRational::one() / BigRational::from_usize(n);
-        for i in 0..n - 1 {
-            if x[i + 1].clone() - &x[i] == two_r && u[i] != u[i + 1] {
-                return Err(Violation::new(
-                    ID,
-                    format!(
-                        "{name}, N = {n}: pair ({i}, {}) touches with u = {} and {}",
-                        i + 1,
-                        u[i].render(),
-                        u[i + 1].render()
-                    ),
-                ));
-            }
+        let right: Vec<BigRational> = (1..=n)
+            .map(|i| datum.u0_right(&(BigRational::from_usize(i) * &two_r)))
+            .collect();
+        let first_failure = |v: &[BigRational]| {
+            (0..n - 1).find(|&i| x[i + 1].clone() - &x[i] == two_r && v[i] != v[i + 1])
+        };
+        if let (Some(l), Some(r)) = (first_failure(u), first_failure(&right)) {
+            return Err(Violation::new(
+                ID,
+                format!(
+                    "{name}, N = {n}: with U⁰ left-continuous (u⁰_i = U⁰(i/N−)) pair ({l}, {}) touches with u = {} and {}; with U⁰ right-continuous (u⁰_i = U⁰(i/N+)) pair ({r}, {}) touches with u = {} and {}",
+                    l + 1,
+                    u[l].render(),
+                    u[l + 1].render(),
+                    r + 1,
+                    right[r].render(),
+                    right[r + 1].render()
+                ),
+            )
+            .indices(&[l, l + 1, r, r + 1])
+            .sides(
+                "u⁰ of the touching pairs, left-continuous reading",
+                format!("{}, {}", u[l].render(), u[l + 1].render()),
+                "right-continuous reading",
+                format!("{}, {}", right[r].render(), right[r + 1].render()),
+            ));
         }
         Ok(())
     })

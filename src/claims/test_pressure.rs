@@ -16,66 +16,12 @@
 //! where the printed identity has `c = U_N(t,0) − U_N(t,1) = u_0 − u_N`
 //! and the corrected one `c = u_N − u_0` (the `∂_t φ` of the proof).
 
+use super::bump::Bump;
 use super::discrete::{abs, augmented, augmented_jumps, Augmented};
 use super::{Case, Violation};
 use crate::scalar::Scalar;
 
 type R = Result<(), Violation>;
-
-/// `ϕ(t) = (t − a)²(b − t)²` on `[a, b]` as coefficients, and its
-/// antiderivative.
-struct Bump<S> {
-    a: S,
-    b: S,
-    coeffs: Vec<S>,
-}
-
-impl<S: Scalar> Bump<S> {
-    fn new(a: S, b: S) -> Self {
-        let sq = |c: &S| {
-            // (t − c)² = t² − 2c t + c²
-            vec![c.clone() * c, -(S::from_i64(2) * c), S::one()]
-        };
-        let (p, q) = (sq(&a), sq(&b));
-        let mut coeffs = vec![S::zero(); 5];
-        for (i, x) in p.iter().enumerate() {
-            for (j, y) in q.iter().enumerate() {
-                coeffs[i + j] = coeffs[i + j].clone() + &(x.clone() * y);
-            }
-        }
-        Bump { a, b, coeffs }
-    }
-    fn clamp(&self, t: &S) -> S {
-        if *t < self.a {
-            self.a.clone()
-        } else if *t > self.b {
-            self.b.clone()
-        } else {
-            t.clone()
-        }
-    }
-    fn phi(&self, t: &S) -> S {
-        let t = self.clamp(t);
-        self.coeffs
-            .iter()
-            .rev()
-            .fold(S::zero(), |acc, c| acc * &t + c)
-    }
-    /// `∫_a^t ϕ`.
-    fn big_phi(&self, t: &S) -> S {
-        let prim = |t: &S| {
-            self.coeffs
-                .iter()
-                .enumerate()
-                .rev()
-                .fold(S::zero(), |acc, (k, c)| {
-                    acc * t + &(c.clone() / S::from_usize(k + 1))
-                })
-                * t
-        };
-        prim(&self.clamp(t)) - &prim(&self.a)
-    }
-}
 
 /// `∫_0^1 U_N (c w − Ũ_N) dw = c ∫_0^1 U_N w dw − ∫_0^1 U_N Ũ_N dw` is
 /// affine in `c`: its two integrals, and
@@ -299,6 +245,13 @@ pub fn test_function_boundary<S: Scalar>(case: &Case<S>) -> R {
                     at0.render(),
                     at1.render()
                 ),
+            )
+            .at(t.render())
+            .sides(
+                "φ(t,0)/ϕ(t), φ(t,1)/ϕ(t)",
+                format!("{}, {}", at0.render(), at1.render()),
+                "0, 0",
+                "0, 0",
             ));
         }
     }

@@ -68,7 +68,7 @@ mod tests {
     #[test]
     fn the_committed_spelling() {
         let r = ProofResult {
-            id: "prop:x".into(),
+            id: "prop:Oleinik".into(),
             n: 2,
             status: Status::Refuted,
             paths: 3,
@@ -80,7 +80,7 @@ mod tests {
         };
         assert_eq!(
             line(&r, true),
-            r#"{"id": "prop:x", "n": 2, "status": "refuted", "paths": 3, "queries": 4, "seconds": 0.031, "hypotheses": "N = 2, \"all\" real", "witness": "a = 1\nb = 2\n", "erratum": true, "note": null}"#
+            r#"{"id": "prop:Oleinik", "n": 2, "status": "refuted", "paths": 3, "queries": 4, "seconds": 0.031, "hypotheses": "N = 2, \"all\" real", "witness": "a = 1\nb = 2\n", "erratum": true, "note": null}"#
         );
     }
 }

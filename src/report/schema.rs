@@ -11,6 +11,7 @@ use std::path::{Path, PathBuf};
 use schemars::{schema_for, Schema};
 
 use crate::claims::coq::CoqRow;
+use crate::claims::json::ClaimJson;
 use crate::prove::json::ProofRecord;
 use crate::report::compare::json::ReportJson;
 use crate::report::export::ExportJson;
@@ -26,6 +27,7 @@ fn contracts() -> Vec<(&'static str, Schema)> {
         ("export", schema_for!(ExportJson)),
         ("prove", schema_for!(ProofRecord)),
         ("coq", schema_for!(Vec<CoqRow>)),
+        ("claims", schema_for!(Vec<ClaimJson>)),
     ]
 }
 

@@ -28,6 +28,13 @@ pub fn kkt_printed<S: Scalar>(case: &Case<S>) -> R {
                     render_vec(&mu),
                     render_vec(&s.multipliers)
                 ),
+            )
+            .at(t.render())
+            .sides(
+                "KKT multipliers μ(t)",
+                render_vec(&mu),
+                "λ(t) of eq:dyn-micro",
+                render_vec(&s.multipliers),
             ));
         }
     }
@@ -132,6 +139,13 @@ fn uniqueness<S: Scalar>(case: &Case<S>, id: &'static str, corrected: bool) -> R
                     lhs.render(),
                     rhs.render()
                 ),
+            )
+            .at(t.render())
+            .sides(
+                "(N²/2) d/dt‖x¹−x²‖² (N/2 corrected)",
+                lhs.render(),
+                "−⟨ξ¹−ξ², x¹−x²⟩",
+                rhs.render(),
             ));
         }
     }

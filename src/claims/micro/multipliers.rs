@@ -266,7 +266,10 @@ fn multiplier_relation<S: Scalar>(case: &Case<S>, id: &'static str, as_printed: 
                         lhs.render(),
                         rhs.render()
                     ),
-                ));
+                )
+                .at(t.render())
+                .indices(&[i])
+                .sides("N(λ_i − λ_{i−1})", lhs.render(), name, rhs.render()));
             }
         }
     }

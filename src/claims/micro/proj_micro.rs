@@ -175,16 +175,10 @@ pub fn proj_u_micro_literal<S: Scalar>(case: &Case<S>) -> R {
                     let j_k = omega[r.first] + 1;
                     let l_k = r.size - 1;
                     if l_k == 0 {
-                        return Err(Violation::new(
-                            ID,
-                            format!(
-                                "t = {}: particle [{}] is in J_k = ⟦{j_k}, {j_k}⟧ (paper's numbering: i = {i}), L_k = 0: the printed mean (1/L_k) Σ_{{l=1}}^{{L_k}} is 0/0, while u[{}](t) = {}",
-                                t.render(),
-                                i - 1,
-                                i - 1,
-                                s.velocities[i - 1].render()
-                            ),
-                        ));
+                        // A single contact: L_k = 0 is outside the paper's
+                        // range L_k ∈ ⟦1, N⟧ (the mean would be 0/0); such
+                        // a particle is not read, the other branch is.
+                        continue;
                     }
                     let sum = (1..=l_k).fold(S::zero(), |a, l| a + &u0[j_k + l - 1]);
                     sum / S::from_usize(l_k)
@@ -201,6 +195,14 @@ pub fn proj_u_micro_literal<S: Scalar>(case: &Case<S>) -> R {
                         i - 1,
                         s.velocities[i - 1].render()
                     ),
+                )
+                .at(t.render())
+                .indices(&[i - 1])
+                .sides(
+                    "the printed formula",
+                    printed.render(),
+                    "u_i(t)",
+                    s.velocities[i - 1].render(),
                 ));
             }
         }
@@ -248,7 +250,10 @@ fn orthogonal_to_h<S: Scalar>(case: &Case<S>, id: &'static str, subtract_x: bool
                         if subtract_x { "x⁰ + t u⁰ − x(t)" } else { "x⁰ + t u⁰" },
                         d.render()
                     ),
-                ));
+                )
+                .at(t.render())
+                .indices(&[first, first + size - 1])
+                .sides("⟨x⁰ + t u⁰ (− x(t)), w⟩", d.render(), "0", "0"));
             }
         }
     }
