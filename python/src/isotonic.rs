@@ -31,8 +31,28 @@ pub fn isotonic<'py>(
     z: &Bound<'py, PyAny>,
     exact: bool,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let z = convert::column(z, "z")?.into_exact("z")?;
+    let z = convert::column(z, "z")?;
+    if let (false, convert::Column::Doubles(d)) = (exact, &z) {
+        if d.iter().all(|v| v.is_finite()) {
+            let d = d.clone();
+            let steps = d.len();
+            let fitted = interrupt::run_sized(py, steps, move |_| {
+                sticky::fast::dyadic::isotonic::isotonic_doubles(&d).unwrap_or_else(|| {
+                    convert::nearest(&sticky::projection::isotonic(&exact_of(&d)))
+                })
+            })?;
+            return Ok(PyArray1::from_vec(py, fitted).into_any());
+        }
+    }
+    let z = z.into_exact("z")?;
     let steps = z.len();
     let fitted = interrupt::run_sized(py, steps, move |_| sticky::projection::isotonic(&z))?;
     output(py, &fitted, exact)
+}
+
+/// The exact values of finite doubles.
+fn exact_of(d: &[f64]) -> Vec<BigRational> {
+    d.iter()
+        .filter_map(|&v| BigRational::from_float(v))
+        .collect()
 }

@@ -288,7 +288,7 @@ impl Scene {
         z: &Bound<'py, PyAny>,
         exact: bool,
     ) -> PyResult<Bound<'py, PyAny>> {
-        let z = convert::column(z, "z")?.into_exact("z")?;
+        let z = convert::column(z, "z")?;
         let n = self.n(py)?;
         if z.len() != n {
             let message = format!(
@@ -298,6 +298,15 @@ impl Scene {
             return Err(crate::errors::argument(py, "z", message));
         }
         let inner = Arc::clone(&self.inner);
+        if let (false, convert::Column::Doubles(d)) = (exact, &z) {
+            if d.iter().all(|v| v.is_finite()) {
+                let d = d.clone();
+                let x = interrupt::run_sized(py, n, move |_| inner.solver.project_doubles(&d))?
+                    .map_err(py_error)?;
+                return Ok(PyArray1::from_vec(py, x).into_any());
+            }
+        }
+        let z = z.into_exact("z")?;
         let x =
             interrupt::run_sized(py, n, move |_| inner.solver.project(&z))?.map_err(py_error)?;
         crate::isotonic::output(py, &x, exact)

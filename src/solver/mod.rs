@@ -358,6 +358,28 @@ impl Solver {
         Ok(crate::projection::project_k(z, &two_r))
     }
 
+    /// [`Self::project`] of doubles (each read exactly), rounded to the
+    /// nearest doubles: on machine integers
+    /// ([`crate::fast::dyadic::isotonic`]) when the values and the radius
+    /// allow, else by the general projection. A NaN or an infinity is
+    /// [`Error::Unsupported`].
+    pub fn project_doubles(&self, z: &[f64]) -> Result<Vec<f64>, Error> {
+        let r = self.radius()?;
+        if let Some(x) = crate::fast::dyadic::isotonic::project_doubles(z, r) {
+            return Ok(x);
+        }
+        let exact = z
+            .iter()
+            .map(|&d| {
+                BigRational::from_float(d).ok_or_else(|| Error::Unsupported {
+                    message: format!("z contains {d}: every value must be finite"),
+                })
+            })
+            .collect::<Result<Vec<_>, Error>>()?;
+        let x = self.project(&exact)?;
+        Ok(x.iter().map(crate::Scalar::to_f64_lossy).collect())
+    }
+
     /// The engine that answers the one-shot states when no fast path does.
     pub fn engine(&self) -> Result<&'static dyn ExactEngine, Error> {
         Ok(self.choice()?.engine)

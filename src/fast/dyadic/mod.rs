@@ -43,6 +43,7 @@
 //! doubles, bit for bit.
 
 mod halves;
+pub mod isotonic;
 mod pava;
 pub mod quotient;
 pub mod round;
