@@ -238,9 +238,11 @@ impl Solver {
     /// column file, the projected peak memory ([`Lean::footprint`]).
     pub fn explain(&self) -> Result<String, Error> {
         if self.options.engine == Engine::Auto {
-            if let (Some(words), Some(path)) = (&self.words, self.source.path()) {
+            if let Some(words) = &self.words {
+                // The streaming path answers first (`state_with_progress`);
+                // a column file adds its projected memory.
                 let mut text = words.explain();
-                if let Some(f) = Lean::footprint(path) {
+                if let Some(f) = self.source.path().and_then(Lean::footprint) {
                     text.push_str(&format!("\nmemory: {f}"));
                 }
                 return Ok(text);
