@@ -5,7 +5,7 @@
 //! Each [`Proved`] row names a claim (printed or corrected statement), the
 //! Coq theorem, the quantity it bounds, and the constant in words and as a
 //! function of the datum's [`SceneData`]. A row with a [`Proved::measure`]
-//! is checked by the scaling checker [`Proved::checker`]: every measured
+//! is checked by the scaling checker its [`Measure::checker`]: every measured
 //! value (each datum, each N) above the constant is a violation of the
 //! proof by the code, and the report records the tightness
 //! `max measured / constant`. Everything is exact (`BigRational`).

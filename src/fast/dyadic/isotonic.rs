@@ -15,7 +15,7 @@
 //! `X̃` (pairs `(X̃_i, 0)`, plain isotonic regression) on `i128` sums, or
 //! 256-bit ones beyond the `i128` bound, shifted back by `+ 2r i` on the
 //! integers and rounded once to the nearest double (ties to even). No `f64`
-//! arithmetic: each input is read bit by bit ([`super::decompose`]).
+//! arithmetic: each input is read bit by bit (`decompose` in the parent module).
 //!
 //! `None` when a value is not finite, the radius's terms do not fit 64
 //! bits, or a scaled value leaves `i128` (exponents too far apart): the

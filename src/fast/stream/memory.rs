@@ -3,8 +3,8 @@
 //! file's size), and the limit it is held to.
 //!
 //! The path keeps two `i64` columns (16 bytes per particle), one read
-//! buffer ([`super::read::CHUNK_BYTES`]) and the PAVA stack: one
-//! [`Run`] per block, at most one per particle, touched only as blocks
+//! buffer (`CHUNK_BYTES` of the reader) and the PAVA stack: one
+//! run (`ΣY`, `ΣU`, size) per block, at most one per particle, touched only as blocks
 //! form. The projection charges the stack its worst case, so a file whose
 //! projection passes the limit cannot exhaust the memory on this path.
 

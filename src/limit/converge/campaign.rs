@@ -1,5 +1,5 @@
 //! `sticky converge` as a campaign (issue 38, item 3): one unit per N (and
-//! one for the engine check), each unit's [`UnitResult`] written by its
+//! one for the engine check), each unit's [`super::UnitResult`] written by its
 //! shard, and the single run's report built from them by the merge
 //! ([`ConvergeSetup::study`], then [`Study::report`]).
 
