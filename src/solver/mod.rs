@@ -38,7 +38,8 @@
 //! let state = solver.state(&q(1, 1))?.into_state();
 //! assert_eq!(state.positions, vec![q(3, 4), q(5, 4)]);
 //! assert_eq!(solver.events(&sticky::progress::Silent)?.collisions()[0].t, q(3, 4));
-//! assert!(solver.explain()?.starts_with("engine: kernel (N = 2,"));
+//! // Data on machine words: the streaming path answers first.
+//! assert!(solver.explain()?.starts_with("engine: streaming (N = 2,"));
 //! # Ok::<(), sticky::Error>(())
 //! ```
 
