@@ -21,12 +21,14 @@ use serde::{Deserialize, Serialize};
 use super::domain::Domain;
 use super::ledger::{engines, run_case_range, run_kind, shipped_cases};
 use super::ledger::{Budget, Entry, Outcome, Status};
+use super::proved::Tightness;
 use super::witness::WitnessData;
 use super::{registry, Case, Claim, Kind};
 use crate::campaign::file::{ShardLines, UnitLine};
 use crate::campaign::jobs::run_units;
 use crate::campaign::Shard;
 use crate::progress::Progress;
+use crate::rational::{parse_exact, render_exact};
 
 /// The most blocks a statement's random cases are cut into.
 pub const CASE_BLOCKS: usize = 64;
@@ -170,6 +172,9 @@ pub struct OutcomeLine {
     pub witness: Option<String>,
     /// The witness, machine-readable.
     pub witness_data: Option<WitnessData>,
+    /// The tightness against a proved constant, per datum.
+    #[serde(default)]
+    pub tightness: Vec<TightnessLine>,
     /// Measurements.
     pub note: Option<String>,
 }
@@ -186,8 +191,46 @@ impl From<&Outcome> for OutcomeLine {
             cases: o.cases,
             witness: o.witness.clone(),
             witness_data: o.witness_data.clone(),
+            tightness: o.tightness.iter().map(TightnessLine::from).collect(),
             note: o.note.clone(),
         }
+    }
+}
+
+/// A [`Tightness`] as a shard writes it: the numbers as exact strings.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct TightnessLine {
+    /// The datum.
+    pub scene: String,
+    /// The N where the ratio is largest.
+    pub n: usize,
+    /// The measured value there.
+    pub measured: String,
+    /// The proved constant there.
+    pub constant: String,
+}
+
+impl From<&Tightness> for TightnessLine {
+    fn from(t: &Tightness) -> Self {
+        TightnessLine {
+            scene: t.scene.clone(),
+            n: t.n,
+            measured: render_exact(&t.measured),
+            constant: render_exact(&t.constant),
+        }
+    }
+}
+
+impl TightnessLine {
+    /// The tightness back.
+    fn tightness(&self) -> Result<Tightness, String> {
+        let num = |s: &str| parse_exact(s).map_err(|e| format!("tightness {s:?}: {e}"));
+        Ok(Tightness {
+            scene: self.scene.clone(),
+            n: self.n,
+            measured: num(&self.measured)?,
+            constant: num(&self.constant)?,
+        })
     }
 }
 
@@ -207,7 +250,11 @@ impl OutcomeLine {
             cases: self.cases,
             witness: self.witness.clone(),
             witness_data: self.witness_data.clone(),
-            tightness: Vec::new(),
+            tightness: self
+                .tightness
+                .iter()
+                .map(TightnessLine::tightness)
+                .collect::<Result<_, _>>()?,
             note: self.note.clone(),
         })
     }
