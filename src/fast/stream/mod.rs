@@ -210,6 +210,18 @@ impl Lean {
         Lean::column_file(path).map(|(_, file)| Lean::footprint_of(&file))
     }
 
+    /// The radius (`None`: `1/(2N)`) and `2r` as an `i128` fraction; `None`
+    /// for a radius that is not positive or whose `2r` is not on words.
+    fn radius_of(radius: Option<BigRational>, n: usize) -> Option<(BigRational, (i128, i128))> {
+        let radius = radius.unwrap_or_else(|| BigRational::new(1.into(), BigInt::from(2 * n)));
+        if !radius.is_positive() {
+            return None;
+        }
+        let two_r = &radius + &radius;
+        let two_r = (two_r.numer().to_i128()?, two_r.denom().to_i128()?);
+        Some((radius, two_r))
+    }
+
     /// The scene of radius `radius` (`None`: `1/(2N)`) whose columns are in
     /// `file`, read in two passes ([`scale`]).
     fn from_file(radius: Option<BigRational>, file: &ColumnFile) -> Option<Lean> {
@@ -221,12 +233,7 @@ impl Lean {
         if n == 0 {
             return None;
         }
-        let radius = radius.unwrap_or_else(|| BigRational::new(1.into(), BigInt::from(2 * n)));
-        if !radius.is_positive() {
-            return None;
-        }
-        let two_r = &radius + &radius;
-        let two_r = (two_r.numer().to_i128()?, two_r.denom().to_i128()?);
+        let (radius, two_r) = Lean::radius_of(radius, n)?;
         let mut sx = lx.scaler(Some((two_r.0, u128::try_from(two_r.1).ok()?)), n)?;
         let mut su = lu.scaler(None, n)?;
         let again = file.rows(|(px, dx), (pu, du)| {
@@ -284,12 +291,7 @@ impl Lean {
         if total > MAX_NUMBER_BITS {
             return None;
         }
-        let radius = radius.unwrap_or_else(|| BigRational::new(1.into(), BigInt::from(2 * n)));
-        if !radius.is_positive() {
-            return None;
-        }
-        let two_r = &radius + &radius;
-        let two_r = (two_r.numer().to_i128()?, two_r.denom().to_i128()?);
+        let (radius, two_r) = Lean::radius_of(radius, n)?;
         let s = scale_pairs((two_r.0, u128::try_from(two_r.1).ok()?), &xs, &us)?;
         drop((xs, us));
         let column = |values: &[i128], den: BigInt, range: Range| {
