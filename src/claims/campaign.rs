@@ -19,7 +19,7 @@ use num_rational::BigRational;
 use serde::{Deserialize, Serialize};
 
 use super::domain::Domain;
-use super::ledger::{engines, run_case_range, run_kind, shipped_cases};
+use super::ledger::{engines, run_case_range, run_kind, shipped_cases, CORRECTION_DOMAIN};
 use super::ledger::{Budget, Entry, Outcome, Status};
 use super::proved::Tightness;
 use super::witness::WitnessData;
@@ -109,7 +109,7 @@ fn kind_of(claim: &Claim<BigRational>, version: Version) -> Option<&Kind<BigRati
 fn domain_of(claim: &Claim<BigRational>, version: Version) -> &Domain {
     match version {
         Version::Printed => &claim.domain,
-        Version::Corrected => &Domain::EVERY_T,
+        Version::Corrected => &CORRECTION_DOMAIN,
     }
 }
 

@@ -537,6 +537,10 @@ pub(crate) fn run_kind(
     }
 }
 
+/// The domain of every corrected statement: a correction must hold on
+/// every case, at every probe time.
+pub(crate) const CORRECTION_DOMAIN: Domain = Domain::EVERY_T;
+
 /// Runs one claim of the registry (and its correction) with `budget`,
 /// as [`run`] does for each.
 pub fn run_claim(claim: &Claim<BigRational>, budget: Budget) -> Entry {
@@ -554,8 +558,7 @@ fn entry(
         outcome.status = Status::Identity(why.to_string());
     }
     let correction = claim.correction.as_ref().map(|c| {
-        // A correction must hold on every case, at every probe time.
-        let (o, _) = run_kind(&c.check, claim.applies, &Domain::EVERY_T, budget, shipped);
+        let (o, _) = run_kind(&c.check, claim.applies, &CORRECTION_DOMAIN, budget, shipped);
         (c.statement, o, c.conclusion)
     });
     Entry {
