@@ -93,8 +93,8 @@ fn constants() -> String {
     let mut out = String::from(
         "\n### Constants proved in Coq, and the ledger's comparison\n\n\
          `M = max_i |u⁰_i|`, `S = x⁰_N − x⁰_0` with `x⁰_0 = x⁰_1 − 1/N − δ`, `δ = 1` (`df:x0`), \
-         `T` the horizon, `‖·‖² = (1/N) Σ`. A claim with a scaling checker fails when a \
-         measurement (any datum, any N = 4 … 4096) exceeds the constant; its tightness \
+         `T` the horizon, `‖·‖² = (1/N) Σ`. A claim fails when a measurement of its quantity \
+         (any datum, any N = 4 … 4096) exceeds the constant; its tightness \
          `max measured / constant` is in its `CLAIMS.md` note and in `sticky claims --json` \
          (`proved.tightness`, per shipped scene and for the tightest random datum).\n\n\
          | claim | statement | Coq theorem | quantity | constant | compared by |\n|---|---|---|---|---|---|\n",
@@ -104,10 +104,18 @@ fn constants() -> String {
             Statement::Printed => "printed",
             Statement::Corrected => "corrected",
         };
-        let by = if p.measure.is_some() {
-            "the scaling checker"
-        } else {
-            "— (checked case by case, not yet against the constant)"
+        let claim = registry::<BigRational>()
+            .into_iter()
+            .find(|c| c.id == p.claim)
+            .expect("a proved constant names a claim");
+        let kind = match p.statement {
+            Statement::Printed => claim.kind,
+            Statement::Corrected => claim.correction.expect("a corrected row").check,
+        };
+        let by = match (p.measure, kind) {
+            (None, _) => "—",
+            (Some(_), Kind::Case(_)) => "the ledger, on the scaling data once the cases hold",
+            (Some(_), _) => "the scaling checker",
         };
         out.push_str(&format!(
             "| `{}` | {statement} | `{}` | {} | {} | {by} |\n",

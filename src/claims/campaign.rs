@@ -19,7 +19,8 @@ use num_rational::BigRational;
 use serde::{Deserialize, Serialize};
 
 use super::domain::Domain;
-use super::ledger::{engines, run_case_range, run_kind, shipped_cases, CORRECTION_DOMAIN};
+use super::ledger::CORRECTION_DOMAIN;
+use super::ledger::{engines, run_case_range, run_kind, shipped_cases, with_proved};
 use super::ledger::{Budget, Entry, Outcome, Status};
 use super::proved::Tightness;
 use super::witness::WitnessData;
@@ -75,6 +76,15 @@ pub enum Version {
     Printed,
     /// The corrected statement.
     Corrected,
+}
+
+impl From<Version> for super::coq::Statement {
+    fn from(v: Version) -> Self {
+        match v {
+            Version::Printed => super::coq::Statement::Printed,
+            Version::Corrected => super::coq::Statement::Corrected,
+        }
+    }
 }
 
 /// One statement of the ledger.
@@ -270,6 +280,11 @@ pub enum UnitResult {
         applied: usize,
         /// The first violation of the block, with its witness.
         counterexample: Option<OutcomeLine>,
+        /// The statement's last block, when every case of it holds: the
+        /// tightness against the constant proved in Coq, per datum
+        /// ([`with_proved`]; empty for a statement without one).
+        #[serde(default)]
+        tightness: Vec<TightnessLine>,
     },
     /// Not run: an earlier block of the same statement in this shard has a
     /// violation, so the merged ledger stops before this block.
@@ -300,9 +315,38 @@ fn run_unit(
                 shipped,
                 range.clone(),
             );
+            let last = range.end == budget.cases + shipped.len();
+            // The single run compares a statement that holds with its
+            // proved constant after its last case; so does the last block.
+            let (failure, tightness) = match failure {
+                None if last => {
+                    let held = Outcome {
+                        status: Status::Holds,
+                        cases: applied,
+                        witness: None,
+                        witness_data: None,
+                        tightness: Vec::new(),
+                        note: None,
+                    };
+                    let o = with_proved(
+                        kind,
+                        domain,
+                        claim.id,
+                        unit.statement.version.into(),
+                        held,
+                        budget,
+                    );
+                    match o.status {
+                        Status::Holds => (None, o.tightness),
+                        _ => (Some(o), Vec::new()),
+                    }
+                }
+                other => (other, Vec::new()),
+            };
             UnitResult::Cases {
                 applied,
                 counterexample: failure.as_ref().map(OutcomeLine::from),
+                tightness: tightness.iter().map(TightnessLine::from).collect(),
             }
         }
         _ => UnitResult::Whole(OutcomeLine::from(
@@ -365,14 +409,17 @@ pub fn run_shard(
 /// The outcome of one statement from its units' results, in order.
 fn statement_outcome<'a>(results: impl Iterator<Item = &'a UnitResult>) -> Result<Outcome, String> {
     let mut applied = 0;
+    let mut last_tightness: &[TightnessLine] = &[];
     for r in results {
         match r {
             UnitResult::Whole(o) => return o.outcome(),
             UnitResult::Cases {
                 applied: k,
                 counterexample,
+                tightness,
             } => {
                 applied += k;
+                last_tightness = tightness;
                 if let Some(o) = counterexample {
                     let mut outcome = o.outcome()?;
                     outcome.cases = applied;
@@ -384,13 +431,17 @@ fn statement_outcome<'a>(results: impl Iterator<Item = &'a UnitResult>) -> Resul
             }
         }
     }
+    let tightness: Vec<Tightness> = last_tightness
+        .iter()
+        .map(TightnessLine::tightness)
+        .collect::<Result<_, _>>()?;
     Ok(Outcome {
         status: Status::Holds,
         cases: applied,
         witness: None,
         witness_data: None,
-        tightness: Vec::new(),
-        note: None,
+        note: super::proved::note(&tightness),
+        tightness,
     })
 }
 
@@ -538,6 +589,7 @@ mod shard_tests {
                 };
                 let domain = domain_of(c, version);
                 let single = run_kind(kind, c.applies, domain, budget, &shipped).0;
+                let single = with_proved(kind, domain, c.id, version.into(), single, budget);
                 seen.0 |= single.status == Status::Holds;
                 seen.1 |= single.status == Status::Counterexample;
                 for count in [1, 3, 4] {

@@ -85,7 +85,8 @@ pub struct ProvedJson {
     pub quantity: &'static str,
     /// The constant, as a formula in the datum's data.
     pub constant: &'static str,
-    /// Per datum measured (empty for a claim checked case by case).
+    /// Per datum measured (empty when no measurement of the ledger is
+    /// this quantity).
     pub scenes: Vec<TightnessJson>,
     /// The largest tightness over `scenes`, exact (`null` when empty).
     pub tightness: Option<String>,

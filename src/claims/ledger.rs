@@ -13,7 +13,9 @@
 
 use num_rational::BigRational;
 
+use super::coq::Statement;
 use super::domain::{open_intervals, Domain, InTime};
+use super::proved::{self, proved};
 use super::witness::{self, Failure, WitnessData, WitnessScene};
 use super::{scaling, Case, Claim, Kind, Violation};
 use crate::fast::kernel;
@@ -552,13 +554,28 @@ fn entry(
     budget: Budget,
     shipped: &[(&'static str, Case<BigRational>)],
 ) -> Entry {
-    let (mut outcome, engines) =
-        run_kind(&claim.kind, claim.applies, &claim.domain, budget, shipped);
+    let (outcome, engines) = run_kind(&claim.kind, claim.applies, &claim.domain, budget, shipped);
+    let mut outcome = with_proved(
+        &claim.kind,
+        &claim.domain,
+        claim.id,
+        Statement::Printed,
+        outcome,
+        budget,
+    );
     if let (Status::Holds, Some(why)) = (&outcome.status, claim.identity) {
         outcome.status = Status::Identity(why.to_string());
     }
     let correction = claim.correction.as_ref().map(|c| {
         let (o, _) = run_kind(&c.check, claim.applies, &CORRECTION_DOMAIN, budget, shipped);
+        let o = with_proved(
+            &c.check,
+            &CORRECTION_DOMAIN,
+            claim.id,
+            Statement::Corrected,
+            o,
+            budget,
+        );
         (c.statement, o, c.conclusion)
     });
     Entry {
@@ -568,6 +585,41 @@ fn entry(
         engines,
         outcome,
         correction,
+    }
+}
+
+/// A statement checked case by case that holds, and whose quantity has a
+/// constant proved in Coq with a measurement (`claims::proved`): the
+/// measurement on the scaling table (`budget.scaling_max_n`) is compared
+/// with the constant; the outcome gains the tightness, or becomes the
+/// counterexample of a measurement above the constant (the code against
+/// the proof). Every other outcome is returned as it is.
+pub(crate) fn with_proved(
+    kind: &Kind<BigRational>,
+    domain: &Domain,
+    id: &str,
+    statement: Statement,
+    outcome: Outcome,
+    budget: Budget,
+) -> Outcome {
+    let (Kind::Case(_), Status::Holds, Some(p)) = (kind, &outcome.status, proved(id, statement))
+    else {
+        return outcome;
+    };
+    match scaling::proved_tightness(p, budget.scaling_max_n) {
+        Ok(tightness) => Outcome {
+            note: outcome.note.or_else(|| proved::note(&tightness)),
+            tightness,
+            ..outcome
+        },
+        Err(v) => Outcome {
+            status: Status::Counterexample,
+            cases: outcome.cases,
+            witness_data: Some(timeless(&v, domain)),
+            witness: Some(v.witness),
+            tightness: Vec::new(),
+            note: None,
+        },
     }
 }
 

@@ -131,6 +131,15 @@ pub struct Row {
     /// `sup_t (‖X_N(t)‖² + ‖∂_t X_N(t)‖²)` in `L²(0,1)`: `(1/N) Σ_i (x_i² +
     /// u_i²)`, the two norms of `prop:L2-micro` with a constant proved in Coq.
     pub l2_xu: Q,
+    /// `sup_t max_{i=1…N} N|λ_i(t) − λ_{i−1}(t)|` over the probe times
+    /// (`λ_0 = 0`): the increments of `eq:sup-micro-u-L`, and `N · sup_w
+    /// |Λ̃_N − Λ_N|` of `eq:diffLambda_N` (on cell `i` the affine `Λ̃_N`
+    /// runs from `λ_{i−1}` to `λ_i` and `Λ_N` is one of them).
+    pub increment_sup: Q,
+    /// `sup_t (x_N(t) − x_0(t))` over the probe times, the artificial
+    /// particle `x_0 = x_1 − 1/N − δ`, `δ = 1` (`df:x0`): `∫_0^1 |∂_w X̃_N|`
+    /// of `eq:BV_XN`, and twice `N ‖X̃_N − X_N‖_{L¹}` of `prop:cvg1#XN-L1`.
+    pub width_sup: Q,
     /// The datum's data at this N, for the proved constants.
     pub data: SceneData,
 }
@@ -252,6 +261,9 @@ fn row_of(c: &MacroCase, traj: &Trajectory<Q>, id: &'static str) -> Result<Row, 
     let mut lambda_nodes: Option<Q> = None;
     let mut pn_gap = Q::zero();
     let mut l2_xu = Q::zero();
+    let (mut increment_sup, mut width_sup) = (Q::zero(), Q::zero());
+    // x_N − x_0 = x_N − x_1 + 1/N + δ, δ = 1 (df:x0).
+    let artificial = nn.recip() + Q::one();
     // t = kT/4, k = 0 … 4: the comparison times and 0.
     let probes = std::iter::once((Q::zero(), None))
         .chain(c.profiles.iter().map(|(t, p)| (t.clone(), p.as_ref())));
@@ -269,6 +281,14 @@ fn row_of(c: &MacroCase, traj: &Trajectory<Q>, id: &'static str) -> Result<Row, 
         }
         for v in &s.velocities {
             u_sup = max(u_sup, abs(v.clone()) * Q::from_i64(2));
+        }
+        let mut previous = Q::zero();
+        for v in &l {
+            increment_sup = max(increment_sup, abs(v.clone() - &previous) * &nn);
+            previous = v.clone();
+        }
+        if let (Some(first), Some(last)) = (s.positions.first(), s.positions.last()) {
+            width_sup = max(width_sup, last.clone() - first + &artificial);
         }
         l2 = max(l2, seven_norms(&s.positions, &s.velocities, &l));
         let mut xu = Sum::default();
@@ -341,6 +361,8 @@ fn row_of(c: &MacroCase, traj: &Trajectory<Q>, id: &'static str) -> Result<Row, 
         momentum,
         mass_interpolated,
         l2_xu,
+        increment_sup,
+        width_sup,
         data: scene_data,
     })
 }

@@ -71,16 +71,18 @@ pub struct Proved {
     pub constant: &'static str,
     /// The constant on one datum.
     pub value: fn(&SceneData) -> Q,
-    /// The scaling checker that compares its measurement with the
-    /// constant; `None` for a claim checked case by case (no scaling
-    /// measurement to compare yet).
+    /// The measurement compared with the constant (`None`: no measured
+    /// quantity of the ledger is this one).
     pub measure: Option<Measure>,
 }
 
-/// A scaling checker's measurement of a proved quantity.
+/// A measurement of a proved quantity on the scaling table
+/// ([`super::macro_data::table`]).
 #[derive(Debug, Clone, Copy)]
 pub struct Measure {
-    /// The id the scaling checker reports under.
+    /// Who compares it: the id a scaling checker reports under, or the
+    /// claim's own id for a statement checked case by case (the ledger
+    /// then measures it on the scaling table once the cases hold).
     pub checker: &'static str,
     /// The measured quantity of a [`Row`].
     pub of: fn(&Row) -> Q,
@@ -94,8 +96,17 @@ fn bv(d: &SceneData) -> Q {
     d.s.clone() + d.t.clone() * &d.m * Q::from_i64(2)
 }
 
+/// `C_α = 2(1 + 2T)C'_0/α + 2M` of `S3BVU.pwUN_L1` at the ledger's
+/// `α = T/2`: `4(1 + 2T)(S + M)/T + 2M`.
+fn c_alpha(d: &SceneData) -> Q {
+    debug_assert!(d.t.is_positive(), "pwUN-L1 needs 0 < α = T/2");
+    let c0 = d.s.clone() + &d.m;
+    let one_2t = Q::one() + d.t.clone() * Q::from_i64(2);
+    one_2t * c0 * Q::from_i64(4) / &d.t + two_m(d)
+}
+
 /// Every proved constant, in the ledger's order.
-pub const PROVED: [Proved; 9] = [
+pub const PROVED: [Proved; 10] = [
     Proved {
         claim: "eq:sup-micro-u-L#velocity-and-increments",
         statement: Statement::Printed,
@@ -103,7 +114,10 @@ pub const PROVED: [Proved; 9] = [
         quantity: "sup_t max_i |N(λ_i(t) − λ_{i−1}(t))|",
         constant: "2M, M = max_i |u⁰_i|",
         value: two_m,
-        measure: None,
+        measure: Some(Measure {
+            checker: "eq:sup-micro-u-L#velocity-and-increments",
+            of: |r| r.increment_sup.clone(),
+        }),
     },
     Proved {
         claim: "eq:sup-micro-u-L#N-lambda",
@@ -124,7 +138,10 @@ pub const PROVED: [Proved; 9] = [
         quantity: "N · sup_{t,w} |Λ̃_N − Λ_N|",
         constant: "2M, M = max_i |u⁰_i|",
         value: two_m,
-        measure: None,
+        measure: Some(Measure {
+            checker: "eq:diffLambda_N",
+            of: |r| r.increment_sup.clone(),
+        }),
     },
     Proved {
         claim: "eq:BV_XN",
@@ -133,7 +150,10 @@ pub const PROVED: [Proved; 9] = [
         quantity: "sup_{t ≤ T} (x_N(t) − x_0(t)) = ∫|∂_w X̃_N|",
         constant: "S + 2TM, S = x⁰_N − x⁰_0 (x⁰_0 = x⁰_1 − 1/N − δ, δ = 1), M = max_i |u⁰_i|",
         value: bv,
-        measure: None,
+        measure: Some(Measure {
+            checker: "eq:BV_XN",
+            of: |r| r.width_sup.clone(),
+        }),
     },
     Proved {
         claim: "prop:cvg1#XN-L1",
@@ -142,7 +162,10 @@ pub const PROVED: [Proved; 9] = [
         quantity: "N · sup_{t ≤ T} ‖X̃_N − X_N‖_{L¹}",
         constant: "(S + 2TM)/2, S = x⁰_N − x⁰_0 (x⁰_0 = x⁰_1 − 1/N − δ, δ = 1), M = max_i |u⁰_i|",
         value: |d| bv(d) / Q::from_i64(2),
-        measure: None,
+        measure: Some(Measure {
+            checker: "prop:cvg1#XN-L1",
+            of: |r| r.width_sup.clone() / Q::from_i64(2),
+        }),
     },
     Proved {
         claim: "prop:pressure-bound",
@@ -193,6 +216,18 @@ pub const PROVED: [Proved; 9] = [
         measure: Some(Measure {
             checker: "eq:bound-UN-Linf",
             of: |r| r.u_sup.clone(),
+        }),
+    },
+    Proved {
+        claim: "pwUN-L1#independent-of-N",
+        statement: Statement::Printed,
+        theorem: "S3BVU.pwUN_L1",
+        quantity: "sup_{t ∈ [α, T]} ‖∂_w Ũ_N(t)‖_{L¹} = Σ_i |u_i − u_{i−1}| at α = T/2",
+        constant: "C_α = 2(1 + 2T)C'_0/α + 2M at α = T/2, C'_0 = S + M (cond:Linfty's smallest), S = x⁰_N − x⁰_0 (x⁰_0 = x⁰_1 − 1/N − δ, δ = 1), M = max_i |u⁰_i|",
+        value: c_alpha,
+        measure: Some(Measure {
+            checker: "pwUN-L1#independent-of-N",
+            of: |r| r.tv_late.clone(),
         }),
     },
 ];
@@ -247,6 +282,23 @@ impl Tightness {
             self.constant.render()
         )
     }
+}
+
+/// The note of a statement checked case by case whose quantity was
+/// measured against its proved constant: one [`Tightness::summary`] per
+/// datum.
+pub fn note(tightness: &[Tightness]) -> Option<String> {
+    if tightness.is_empty() {
+        return None;
+    }
+    let each: Vec<String> = tightness
+        .iter()
+        .map(|t| format!("{}: {}", t.scene, t.summary()))
+        .collect();
+    Some(format!(
+        "on the scaling data, against the constant proved in Coq: {}",
+        each.join("; ")
+    ))
 }
 
 /// `q ≥ 0` truncated to four decimals (integer arithmetic only).
@@ -379,6 +431,53 @@ mod tests {
                 p.claim
             );
         }
+    }
+
+    /// A statement checked case by case carries its tightness too: once
+    /// its cases hold, the ledger measures its quantity on the scaling
+    /// table (the shipped scenes and the tightest random datum).
+    #[test]
+    fn case_checked_constants_report_their_tightness() {
+        use crate::claims::ledger::{run_claim, Budget, Status};
+        let budget = Budget {
+            cases: 2,
+            max_n: 4,
+            scaling_max_n: 16,
+            seed: 1,
+        };
+        let claims = crate::claims::registry::<Q>();
+        let mut checked = 0;
+        for p in PROVED {
+            let claim = claims.iter().find(|c| c.id == p.claim).unwrap();
+            let kind = match p.statement {
+                Statement::Printed => &claim.kind,
+                Statement::Corrected => &claim.correction.as_ref().unwrap().check,
+            };
+            if p.measure.is_none() || !matches!(kind, crate::claims::Kind::Case(_)) {
+                continue;
+            }
+            checked += 1;
+            let entry = run_claim(claim, budget);
+            let outcome = match p.statement {
+                Statement::Printed => &entry.outcome,
+                Statement::Corrected => &entry.correction.as_ref().unwrap().1,
+            };
+            assert!(
+                matches!(outcome.status, Status::Holds | Status::Identity(_)),
+                "{}: {:?} {:?}",
+                p.claim,
+                outcome.status,
+                outcome.witness
+            );
+            assert!(outcome.tightness.len() >= 3, "{}", p.claim);
+            assert!(
+                outcome.tightness.iter().all(|t| t.ratio() <= Q::one())
+                    && outcome.tightness.iter().any(|t| t.ratio().is_positive()),
+                "{}",
+                p.claim
+            );
+        }
+        assert_eq!(checked, 4);
     }
 
     /// The ledger's scaling checker of `eq:bound-UN-Linf` with every
