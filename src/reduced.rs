@@ -111,11 +111,11 @@ mod tests {
             state ^= state << 17;
             state
         };
-        let mut big = |words: u64, next: &mut dyn FnMut() -> u64| -> BigInt {
+        let big = |words: u64, next: &mut dyn FnMut() -> u64| -> BigInt {
             let digits: Vec<u32> = (0..2 * words).map(|_| next() as u32).collect();
             BigInt::from_biguint(Sign::Plus, num_bigint::BigUint::from_slice(&digits))
         };
-        let mut value = |k: u64, next: &mut dyn FnMut() -> u64| -> BigRational {
+        let value = |k: u64, next: &mut dyn FnMut() -> u64| -> BigRational {
             let factor = BigInt::from(1 + next() % 60);
             let n = match k % 4 {
                 0 => BigInt::zero(),
