@@ -469,7 +469,7 @@ fn atlas_scene_shards_merge_to_the_single_run() {
 }
 
 #[test]
-#[ignore = "campaign: atlas --quick twice (single, 4 shards), about 1.5 min"]
+#[ignore = "campaign: atlas --quick twice (single, 4 shards), about a minute"]
 fn atlas_quick_shards_merge_to_the_single_run() {
     atlas_shards_merge_to_the_single_run("atlas-quick", &["atlas", "--quick"]);
 }
