@@ -41,6 +41,7 @@ use crate::gcd;
 use crate::initial::InitialData;
 use crate::progress::Progress;
 use crate::projection::pools;
+use crate::reduced;
 use crate::state::State;
 
 /// Steps (particles) between two polls of [`Progress::cancelled`] and two
@@ -247,9 +248,11 @@ fn reduced_flight(
     };
     for (i, (x, u)) in data.positions().iter().zip(data.velocities()).enumerate() {
         poll(progress, i)?;
-        let shifted = x.clone() - &offset;
-        offset += &two_r;
-        flight.y.push(Sum::of(&(shifted + &(t.clone() * u))));
+        let shifted = reduced::difference(x, &offset);
+        offset = reduced::sum(&offset, &two_r);
+        flight
+            .y
+            .push(Sum::of(&reduced::sum(&shifted, &reduced::product(t, u))));
         flight.u.push(Sum::of(u));
     }
     Ok(flight)

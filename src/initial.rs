@@ -32,9 +32,9 @@ impl<S: Scalar> InitialData<S> {
                 radius: radius.render(),
             });
         }
-        let two_r = radius.clone() + &radius;
+        let two_r = radius.plus(&radius);
         for i in 0..positions.len() - 1 {
-            let gap = positions[i + 1].clone() - &positions[i];
+            let gap = positions[i + 1].minus(&positions[i]);
             match gap.total_cmp(&two_r) {
                 std::cmp::Ordering::Less => {
                     return Err(Error::Overlap {
@@ -130,8 +130,8 @@ pub fn shift<S: Scalar>(x: &[S], two_r: &S) -> Vec<S> {
     let mut offset = S::zero();
     x.iter()
         .map(|xi| {
-            let v = xi.clone() - &offset;
-            offset = offset.clone() + two_r;
+            let v = xi.minus(&offset);
+            offset = offset.plus(two_r);
             v
         })
         .collect()

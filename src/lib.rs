@@ -93,6 +93,7 @@ pub mod projection;
 pub mod quantile;
 pub mod rate;
 pub mod rational;
+pub mod reduced;
 pub mod scalar;
 pub mod scene;
 pub mod state;

@@ -86,6 +86,27 @@ pub trait Scalar:
         })
     }
 
+    /// `self + other`: the operator, which this default is. An exact type
+    /// may reduce faster (`BigRational`: [`crate::reduced`]).
+    fn plus(&self, other: &Self) -> Self {
+        self.clone() + other
+    }
+
+    /// `self − other` ([`Scalar::plus`]).
+    fn minus(&self, other: &Self) -> Self {
+        self.clone() - other
+    }
+
+    /// `self · other` ([`Scalar::plus`]).
+    fn times(&self, other: &Self) -> Self {
+        self.clone() * other
+    }
+
+    /// `self / other` ([`Scalar::plus`]).
+    fn over(&self, other: &Self) -> Self {
+        self.clone() / other
+    }
+
     /// The smaller of two values (the left one on ties).
     fn min_of(a: Self, b: Self) -> Self {
         if b.total_cmp(&a) == Ordering::Less {
@@ -159,6 +180,18 @@ impl Scalar for BigRational {
             }
         }
         total + BigRational::new(num, den)
+    }
+    fn plus(&self, other: &Self) -> Self {
+        crate::reduced::sum(self, other)
+    }
+    fn minus(&self, other: &Self) -> Self {
+        crate::reduced::difference(self, other)
+    }
+    fn times(&self, other: &Self) -> Self {
+        crate::reduced::product(self, other)
+    }
+    fn over(&self, other: &Self) -> Self {
+        crate::reduced::quotient(self, other)
     }
     /// `p^k / q^k` is already in lowest terms when `p/q` is (no gcd).
     fn powi(&self, k: u32) -> Self {

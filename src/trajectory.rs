@@ -62,7 +62,7 @@ impl<S: Scalar> Node<S> {
         }
     }
     fn velocity(&self) -> S {
-        self.sum_u.clone() / S::from_usize(self.size)
+        self.sum_u.over(&S::from_usize(self.size))
     }
 }
 
@@ -123,12 +123,12 @@ struct Prefix<S> {
 fn meeting_time<S: Scalar>(l: &Node<S>, r: &Node<S>) -> Option<S> {
     let kl = S::from_usize(l.size);
     let kr = S::from_usize(r.size);
-    let closing = l.sum_u.clone() * &kr - r.sum_u.clone() * &kl;
+    let closing = l.sum_u.times(&kr).minus(&r.sum_u.times(&kl));
     if closing.total_cmp(&S::zero()).is_le() {
         return None;
     }
-    let gap = r.sum_x.clone() * &kl - l.sum_x.clone() * &kr;
-    Some(gap / closing)
+    let gap = r.sum_x.times(&kl).minus(&l.sum_x.times(&kr));
+    Some(gap.over(&closing))
 }
 
 /// The prefix sums of the translated positions `x̃⁰` and of the velocities
@@ -148,7 +148,7 @@ fn tree_sum<S: Scalar>(v: &[S]) -> S {
     match v.len() {
         0 => S::zero(),
         1 => v[0].clone(),
-        len => tree_sum(&v[..len / 2]) + &tree_sum(&v[len / 2..]),
+        len => tree_sum(&v[..len / 2]).plus(&tree_sum(&v[len / 2..])),
     }
 }
 
@@ -157,7 +157,7 @@ fn prefix<S: Scalar>(v: &[S]) -> Vec<S> {
     let mut acc = S::zero();
     out.push(acc.clone());
     for x in v {
-        acc = acc + x;
+        acc = acc.plus(x);
         out.push(acc.clone());
     }
     out
@@ -482,8 +482,8 @@ fn merge<S: Scalar>(
     let node = Node {
         first: left.first,
         size: left.size + right.size,
-        sum_x: left.sum_x.clone() + &right.sum_x,
-        sum_u: left.sum_u.clone() + &right.sum_u,
+        sum_x: left.sum_x.plus(&right.sum_x),
+        sum_u: left.sum_u.plus(&right.sum_u),
         alive: true,
         prev: left.prev,
         next: right.next,

@@ -1,9 +1,9 @@
 //! Campaigns split into shards (issue 38, item 3): `--shard I/N` of every
 //! shard, then `sticky merge`, prints the single run's report; `--jobs K`
-//! too. The fast tests use `prove` at N = 1 and `converge` to N = 64
-//! (seconds each); the ledger and
-//! `prove` at N ≤ 2 are campaigns (`cargo test --release --test campaign
-//! -- --ignored`).
+//! too. The fast tests use `prove` at N = 1, `converge` to N = 64 and
+//! `atlas --quick` on three scenes (seconds each); the ledger, `prove` at
+//! N ≤ 2 and the whole `atlas --quick` are campaigns (`cargo test --release
+//! --test campaign -- --ignored`).
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -362,4 +362,120 @@ fn converge_shards_merge_to_the_single_run() {
         "{e}"
     );
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The rows of an atlas CSV (`atlas.csv`, `stability.csv`) without the
+/// columns measured on the clock, `wall_seconds` and `repeats` (each row
+/// split on commas outside double quotes).
+fn atlas_rows_without_clock(csv: &str) -> Vec<Vec<String>> {
+    let fields = |line: &str| -> Vec<String> {
+        let (mut out, mut cell, mut quoted) = (Vec::new(), String::new(), false);
+        for c in line.chars() {
+            match c {
+                '"' => quoted = !quoted,
+                ',' if !quoted => out.push(std::mem::take(&mut cell)),
+                _ => {}
+            }
+            if c != ',' || quoted {
+                cell.push(c);
+            }
+        }
+        out.push(cell);
+        out
+    };
+    let mut lines = csv.lines();
+    let header = fields(lines.next().expect("a header"));
+    let clock: Vec<usize> = ["wall_seconds", "repeats"]
+        .iter()
+        .map(|c| header.iter().position(|h| h == c).expect("clock column"))
+        .collect();
+    std::iter::once(header.clone())
+        .chain(lines.map(fields))
+        .map(|row| {
+            assert_eq!(row.len(), header.len(), "{row:?}");
+            row.into_iter()
+                .enumerate()
+                .filter(|(i, _)| !clock.contains(i))
+                .map(|(_, cell)| cell)
+                .collect()
+        })
+        .collect()
+}
+
+/// `sticky atlas ARGS` once, then as the guide's Slurm array over four
+/// shards and `sticky merge --out`: the same paths printed, and every file
+/// equal — byte for byte but for what the clock measures: the
+/// `wall_seconds` and `repeats` columns of the two CSV files, and the
+/// charts drawn against the wall time (`pareto-*`, `cost-vs-n`).
+fn atlas_shards_merge_to_the_single_run(name: &str, args: &[&str]) {
+    let dir = scratch(name);
+    let single_dir = dir.join("single");
+    let single = stdout(sticky().args(args).arg("--out").arg(&single_dir));
+    std::fs::create_dir_all(dir.join("work")).expect("work folder");
+    let merged_dir = dir.join("merged");
+    let merged = slurm_campaign(
+        &dir.join("work"),
+        &args.join(" "),
+        4,
+        &["--out", merged_dir.to_str().expect("UTF-8 path")],
+    );
+    let relative = |text: &str, d: &Path| text.replace(&format!("{}/", d.display()), "");
+    assert_eq!(
+        relative(&merged, &merged_dir),
+        relative(&single, &single_dir)
+    );
+    let mut names: Vec<String> = std::fs::read_dir(&single_dir)
+        .expect("single run's files")
+        .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert!(names.contains(&"stability.md".to_string()), "{names:?}");
+    let mut equal = 0;
+    for name in &names {
+        let a = std::fs::read(single_dir.join(name)).expect("single file");
+        let b = std::fs::read(merged_dir.join(name)).expect("merged file");
+        if name.ends_with(".csv") {
+            let text = |v: Vec<u8>| String::from_utf8(v).expect("UTF-8");
+            assert_eq!(
+                atlas_rows_without_clock(&text(b)),
+                atlas_rows_without_clock(&text(a)),
+                "{name}"
+            );
+        } else if !(name.starts_with("pareto-") || name.starts_with("cost-vs-n")) {
+            assert!(a == b, "{name} differs");
+            equal += 1;
+        }
+    }
+    assert!(equal >= 2, "{names:?}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Two suite scenes and one stability scene of `atlas --quick`: seconds.
+#[test]
+fn atlas_scene_shards_merge_to_the_single_run() {
+    atlas_shards_merge_to_the_single_run(
+        "atlas-scenes",
+        &[
+            "atlas",
+            "--quick",
+            "--scene",
+            "random-10",
+            "--scene",
+            "three-cluster-simultaneous",
+            "--scene",
+            "near-simultaneous",
+        ],
+    );
+}
+
+#[test]
+#[ignore = "campaign: atlas --quick twice (single, 4 shards), about a minute"]
+fn atlas_quick_shards_merge_to_the_single_run() {
+    atlas_shards_merge_to_the_single_run("atlas-quick", &["atlas", "--quick"]);
+}
+
+#[test]
+fn atlas_shards_refuse_the_peers() {
+    let err = refusal(sticky().args(["atlas", "--quick", "--peers", "--shard", "0/2"]));
+    assert!(err.contains("--peers runs in a single atlas only"), "{err}");
 }

@@ -20,6 +20,21 @@ pub mod one {
     }
 }
 
+/// An `Option<f64>`.
+pub mod maybe {
+    use super::*;
+
+    /// Writes the bits, or `null`.
+    pub fn serialize<S: Serializer>(v: &Option<f64>, s: S) -> Result<S::Ok, S::Error> {
+        v.map(f64::to_bits).serialize(s)
+    }
+
+    /// Reads the bits, or `null`.
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Option<f64>, D::Error> {
+        Option::<u64>::deserialize(d).map(|v| v.map(f64::from_bits))
+    }
+}
+
 /// A `Vec<f64>`.
 pub mod many {
     use super::*;
@@ -46,6 +61,10 @@ mod tests {
         x: f64,
         #[serde(with = "super::many")]
         xs: Vec<f64>,
+        #[serde(with = "super::maybe")]
+        some: Option<f64>,
+        #[serde(with = "super::maybe")]
+        none: Option<f64>,
     }
 
     #[test]
@@ -60,11 +79,15 @@ mod tests {
         let text = serde_json::to_string(&Both {
             x: -0.0,
             xs: xs.clone(),
+            some: Some(f64::NAN),
+            none: None,
         })
         .unwrap();
         let back: Both = serde_json::from_str(&text).unwrap();
         assert_eq!(back.x.to_bits(), (-0.0f64).to_bits());
         let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
         assert_eq!(bits(&back.xs), bits(&xs));
+        assert_eq!(back.some.map(f64::to_bits), Some(f64::NAN.to_bits()));
+        assert_eq!(back.none, None);
     }
 }

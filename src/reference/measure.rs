@@ -107,26 +107,36 @@ impl ErrorsF64 {
     }
 }
 
-/// [`Errors`] rounded to `f64` (for tables and charts only).
+/// [`Errors`] rounded to `f64` (for tables and charts only). In JSON (the
+/// atlas's shard files) each double is its bit pattern
+/// ([`crate::campaign::bits`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "json", derive(serde::Serialize, serde::Deserialize))]
 pub struct ErrorsF64 {
     /// See [`Errors::position`].
+    #[cfg_attr(feature = "json", serde(with = "crate::campaign::bits::one"))]
     pub position: f64,
     /// See [`Errors::velocity`].
+    #[cfg_attr(feature = "json", serde(with = "crate::campaign::bits::maybe"))]
     pub velocity: Option<f64>,
     /// See [`Errors::lambda`].
+    #[cfg_attr(feature = "json", serde(with = "crate::campaign::bits::maybe"))]
     pub lambda: Option<f64>,
     /// See [`Errors::kkt`].
+    #[cfg_attr(feature = "json", serde(with = "crate::campaign::bits::maybe"))]
     pub kkt: Option<f64>,
     /// See [`Errors::missed_contacts`].
     pub missed_contacts: usize,
     /// See [`Errors::spurious_contacts`].
     pub spurious_contacts: usize,
     /// See [`Errors::min_gap`].
+    #[cfg_attr(feature = "json", serde(with = "crate::campaign::bits::maybe"))]
     pub min_gap: Option<f64>,
     /// See [`Errors::min_lambda`].
+    #[cfg_attr(feature = "json", serde(with = "crate::campaign::bits::maybe"))]
     pub min_lambda: Option<f64>,
     /// See [`Errors::min_pressure_jump`].
+    #[cfg_attr(feature = "json", serde(with = "crate::campaign::bits::maybe"))]
     pub min_pressure_jump: Option<f64>,
     /// See [`Errors::oleinik_violations`].
     pub oleinik_violations: Option<usize>,

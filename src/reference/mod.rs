@@ -127,6 +127,7 @@ impl Output {
 
 /// Work counters of one solve.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "json", derive(serde::Serialize, serde::Deserialize))]
 pub struct Work {
     /// Time steps taken (time-steppers) or collision events processed
     /// (event-driven); `1` for one-shot projections.

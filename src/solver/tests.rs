@@ -8,6 +8,7 @@ use super::*;
 use crate::fast::engine::ENGINES;
 use crate::progress::Silent;
 use crate::rational::ratio as q;
+use crate::solver::cost::Cost;
 
 /// Two collisions at different instants, a cluster that stays apart, a
 /// contact at t = 0 that separates: every value on words.
@@ -246,4 +247,65 @@ fn a_full_mantissa_double_time_stays_on_the_dyadic_path() {
     let gap = &oracle.positions[1] - &oracle.positions[0];
     assert_eq!(gap, q(2, 1) * data.radius());
     assert_eq!(a.into_state(), oracle);
+}
+
+/// The hostile scene of issue 38 at N = 400: positions `i·10^4000`
+/// (13,288-bit numerators), velocities `(−1)^i·i/(i+1)` (`lcm(1, …, 400)`
+/// together). With a cap of one operation less than the work estimate of
+/// the event merge, passed through the API, `events` is refused by the
+/// work check before the merge begins (no progress stage), with the
+/// estimate, the cap and what to do in the error; at the estimate, it
+/// answers.
+#[test]
+fn a_hostile_history_past_the_callers_cap_is_refused_up_front() {
+    #[derive(Default)]
+    struct Stages(std::sync::atomic::AtomicUsize);
+    impl Progress for Stages {
+        fn stage(&self, _: &str, _: Option<u64>) {
+            self.0.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        }
+    }
+    let n = 400i64;
+    let big = BigInt::from(10).pow(4000);
+    let data = InitialData::new(
+        q(1, 2),
+        (0..n)
+            .map(|i| BigRational::from_integer(&big * i))
+            .collect(),
+        (0..n)
+            .map(|i| q(if i % 2 == 0 { i } else { -i }, i + 1))
+            .collect(),
+    )
+    .unwrap();
+    let words = Cost::of(&data).common_denominator.bits().div_ceil(64);
+    assert!(words > 1, "{words}");
+    let estimate = n as u64 * words * words;
+    let capped = |cap: u64| {
+        Solver::from_data(data.clone()).with_options(Options {
+            work: WorkCap::Operations(cap),
+            ..Options::default()
+        })
+    };
+    let stages = Stages::default();
+    match capped(estimate - 1).events(&stages) {
+        Err(Error::WorkLimit { work, cap, message }) => {
+            assert_eq!((work, cap), (estimate, estimate - 1));
+            assert!(
+                message.contains("engine merge")
+                    && message.contains("N = 400")
+                    && message.contains(work::WORK_VAR),
+                "{message}"
+            );
+        }
+        other => panic!("not refused: {:?}", other.map(|h| h.collisions().len())),
+    }
+    assert_eq!(stages.0.load(std::sync::atomic::Ordering::Relaxed), 0);
+    let answered = capped(estimate).events(&stages).unwrap().collisions();
+    let plain = Solver::from_data(data)
+        .events(&Silent)
+        .unwrap()
+        .collisions();
+    assert!(!answered.is_empty());
+    assert_eq!(answered, plain);
+    assert!(stages.0.load(std::sync::atomic::Ordering::Relaxed) > 0);
 }

@@ -30,15 +30,21 @@ pub enum WorkCap {
     /// line's bar, Python's Ctrl-C): only what is hopeless is refused,
     /// above [`MAX_WATCHED_WORK`].
     Watched,
+    /// This many word operations, whatever `$STICKY_MAX_WORK` says: a
+    /// caller's own cap (the environment variable sets the two defaults
+    /// above).
+    Operations(u64),
 }
 
 impl WorkCap {
-    /// The cap in word operations: `$STICKY_MAX_WORK` when set, else this
-    /// kind's default.
+    /// The cap in word operations: the caller's own
+    /// ([`WorkCap::Operations`]), else `$STICKY_MAX_WORK` when set, else
+    /// this kind's default.
     pub fn operations(self) -> u64 {
         let default = match self {
             WorkCap::Plain => MAX_WORK,
             WorkCap::Watched => MAX_WATCHED_WORK,
+            WorkCap::Operations(cap) => return cap,
         };
         std::env::var(WORK_VAR)
             .ok()

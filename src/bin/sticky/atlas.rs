@@ -1,8 +1,13 @@
-//! `sticky atlas [--quick] [--peers] [--scene NAME]…`: the speed-vs-accuracy atlas.
+//! `sticky atlas [--quick] [--peers] [--scene NAME]… [--shard I/N] [--jobs K]`:
+//! the speed-vs-accuracy atlas.
 
 use std::io::{self, Write};
 use std::path::PathBuf;
 
+use sticky::campaign::jobs::run_units;
+use sticky::report::atlas::campaign::{AtlasSetup, Campaign, UnitRow};
+
+use crate::campaign::{setup_value, Split};
 use crate::{print_paths, Failure};
 
 /// The speed-vs-accuracy atlas of the floating-point reference solvers
@@ -22,18 +27,73 @@ pub struct Args {
     /// Output folder (default ./out/atlas/).
     #[arg(long)]
     out: Option<PathBuf>,
+    #[command(flatten)]
+    split: Split,
 }
+
+/// The output folder when none is given.
+pub const DEFAULT_OUT: &str = "out/atlas";
 
 /// Runs `sticky atlas`.
 pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
-    let opts = sticky::report::atlas::AtlasOptions {
+    let dir = args.out.unwrap_or_else(|| PathBuf::from(DEFAULT_OUT));
+    if args.split.shard.is_none() && args.split.jobs.get() == 1 {
+        let opts = sticky::report::atlas::AtlasOptions {
+            quick: args.quick,
+            out: dir,
+            peers: args.peers,
+            scenes: args.scenes,
+        };
+        let tty = io::IsTerminal::is_terminal(&io::stderr());
+        return sticky::report::atlas::run(&opts, tty)
+            .map_err(|e| Failure(e.to_string()))
+            .and_then(|paths| print_paths(out, &paths));
+    }
+    if args.peers {
+        return Err(Failure(
+            "--peers runs in a single atlas only, not with --shard or --jobs".to_string(),
+        ));
+    }
+    let setup = AtlasSetup {
         quick: args.quick,
-        out: args.out.unwrap_or_else(|| PathBuf::from("out/atlas")),
-        peers: args.peers,
         scenes: args.scenes,
     };
-    let tty = io::IsTerminal::is_terminal(&io::stderr());
-    sticky::report::atlas::run(&opts, tty)
-        .map_err(|e| Failure(e.to_string()))
-        .and_then(|paths| print_paths(out, &paths))
+    let campaign = Campaign::new(&setup).map_err(|e| Failure(e.to_string()))?;
+    let units = campaign.units();
+    let work = |&u: &_| campaign.run_unit(u);
+    match args.split.shard {
+        Some(shard) => {
+            let value = setup_value(&setup)?;
+            args.split
+                .run_shard(shard, "atlas", value, &units, out, work)
+        }
+        None => {
+            let rows = run_units(&units, args.split.jobs, work)
+                .into_iter()
+                .collect::<Result<Vec<UnitRow>, String>>()
+                .map_err(Failure)?;
+            publish(out, &campaign, rows, &dir)
+        }
+    }
+}
+
+/// Writes the atlas's files from every unit's row and prints their paths
+/// (the run with `--jobs`, and the merge of the shards).
+pub fn publish(
+    out: &mut impl Write,
+    campaign: &Campaign,
+    rows: Vec<UnitRow>,
+    dir: &std::path::Path,
+) -> Result<(), Failure> {
+    if rows.len() != campaign.units().len() {
+        return Err(Failure(format!(
+            "{} rows for the atlas's {} units: the shards were run by another version",
+            rows.len(),
+            campaign.units().len()
+        )));
+    }
+    let paths = campaign
+        .publish(dir, rows)
+        .map_err(|e| Failure(e.to_string()))?;
+    print_paths(out, &paths)
 }

@@ -1,5 +1,5 @@
 //! `--shard I/N` and `--jobs K`, shared by the campaign commands (`claims`,
-//! `prove`, `converge`), and `sticky merge FILES…` (issue 38, item 3).
+//! `prove`, `converge`, `atlas`), and `sticky merge FILES…` (issue 38, item 3).
 
 use std::io::Write;
 use std::num::NonZeroUsize;

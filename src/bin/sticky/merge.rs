@@ -1,6 +1,7 @@
 //! `sticky merge FILES…`: the shards' files of one campaign (`--shard I/N`
-//! of `claims`, `prove` or `converge`) combined into the report a single
-//! run prints (for `converge`, with its files under `--out`).
+//! of `claims`, `prove`, `converge` or `atlas`) combined into the report a
+//! single run prints (for `converge` and `atlas`, with their files under
+//! `--out`).
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -10,6 +11,7 @@ use sticky::campaign::file::{self, Merged};
 use sticky::claims::campaign::{self as ledger, ClaimsSetup};
 use sticky::limit::converge::campaign::ConvergeSetup;
 use sticky::limit::converge::UnitResult;
+use sticky::report::atlas::campaign::{AtlasSetup, Campaign, UnitRow};
 
 use crate::{io_err, Failure};
 
@@ -25,8 +27,9 @@ pub struct Args {
     /// The claims ledger as Markdown (`claims --markdown`).
     #[arg(long)]
     markdown: bool,
-    /// The output folder of a campaign that writes files (`converge`;
-    /// default, as for the single run, ./out/converge/).
+    /// The output folder of a campaign that writes files (`converge`,
+    /// `atlas`; default, as for the single run, ./out/converge/ or
+    /// ./out/atlas/).
     #[arg(long)]
     out: Option<PathBuf>,
 }
@@ -55,15 +58,16 @@ pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
         json: args.json,
         markdown: args.markdown,
     };
-    if args.out.is_some() && campaign != "converge" {
+    let writes_files = ["converge", "atlas"].contains(&campaign.as_str());
+    if args.out.is_some() && !writes_files {
         return Err(Failure(format!(
-            "--out is for campaigns that write files (converge), not `{campaign}`"
+            "--out is for campaigns that write files (converge, atlas), not `{campaign}`"
         )));
     }
-    if how.json && campaign == "converge" {
-        return Err(Failure(
-            "--json is for the claims ledger and prove, not `converge`".to_string(),
-        ));
+    if how.json && writes_files {
+        return Err(Failure(format!(
+            "--json is for the claims ledger and prove, not `{campaign}`"
+        )));
     }
     if how.markdown && campaign != "claims" {
         return Err(Failure(format!(
@@ -97,8 +101,21 @@ pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
                 .unwrap_or_else(|| PathBuf::from(crate::converge::DEFAULT_OUT));
             crate::converge::publish(out, &report, &dir)
         }
+        "atlas" => {
+            let (setup, results) = merged::<AtlasSetup, Result<UnitRow, String>>(&files)?;
+            let rows = results
+                .into_iter()
+                .collect::<Result<Vec<_>, _>>()
+                .map_err(|e| Failure(format!("a shard's unit failed: {e}")))?;
+            let campaign = Campaign::new(&setup)
+                .map_err(|e| Failure(format!("{name}: the campaign's scenes: {e}")))?;
+            let dir = args
+                .out
+                .unwrap_or_else(|| PathBuf::from(crate::atlas::DEFAULT_OUT));
+            crate::atlas::publish(out, &campaign, rows, &dir)
+        }
         other => Err(Failure(format!(
-            "{name}: unknown campaign `{other}` (claims, prove or converge)"
+            "{name}: unknown campaign `{other}` (claims, prove, converge or atlas)"
         ))),
     }
 }

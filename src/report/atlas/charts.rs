@@ -5,7 +5,7 @@ use crate::reference::ErrorsF64;
 use crate::report::plot::{palette, series_style, Axis, Chart, Marker, Rgb, Series, BLACK_RGB};
 
 use super::csv::short;
-use super::jobs::{EVENTS_TOL, ITERATIVE_TOL, SWEEP_DT};
+use super::jobs::{Sweep, EVENTS_TOL, ITERATIVE_TOL, SWEEP_DT};
 use super::peers::peer_methods;
 use super::solve::{Row, Status};
 use super::{EXACT_METHODS, METHODS};
@@ -146,7 +146,7 @@ pub(super) fn dt_chart(case: &str, rows: &[&Row]) -> Option<Chart> {
         .copied()
         .filter(|r| {
             steppers.contains(&r.setting.method.as_str())
-                && r.setting.sweep == "dt"
+                && r.setting.sweep == Sweep::Dt
                 && r.errors.is_some()
         })
         .collect();
@@ -220,12 +220,12 @@ pub(super) fn representative(r: &Row) -> Option<String> {
             Some(format!("events-f64 (tol {EVENTS_TOL:e})"))
         }
         "moreau-jean" | "catching-up"
-            if r.setting.sweep == "dt" && r.setting.dt == Some(SWEEP_DT) =>
+            if r.setting.sweep == Sweep::Dt && r.setting.dt == Some(SWEEP_DT) =>
         {
             Some(format!("{} (Δt = 2^-8)", r.setting.method))
         }
         "iterative-projection"
-            if r.setting.sweep == "tol" && r.setting.tol == Some(ITERATIVE_TOL) =>
+            if r.setting.sweep == Sweep::Tol && r.setting.tol == Some(ITERATIVE_TOL) =>
         {
             Some(format!("iterative-projection (tol {ITERATIVE_TOL:e})"))
         }

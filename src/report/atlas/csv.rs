@@ -41,7 +41,7 @@ fn csv_row(row: &Row) -> Vec<String> {
         num(row.t),
         row.setting.method.to_string(),
         row.setting.parameter.clone(),
-        row.setting.sweep.to_string(),
+        row.setting.sweep.as_str().to_string(),
         opt(row.setting.dt, num),
         opt(row.setting.tol, num),
         opt(row.setting.cap, int),

@@ -4,6 +4,8 @@
 
 use crate::reference::{CatchingUp, EventsF64, IterativeProjection, MoreauJean, PavaF64, Solver};
 
+use serde::{Deserialize, Serialize};
+
 use super::suite::Case;
 
 pub(super) enum Engine {
@@ -14,7 +16,7 @@ pub(super) enum Engine {
 
 /// What identifies a job, and the row it becomes: the method and its
 /// settings.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub(super) struct Setting {
     /// One of [`super::EXACT_METHODS`] or [`super::METHODS`], or
     /// `peer:<name>` for a peer solver ([`crate::report::peers`]).
@@ -22,14 +24,42 @@ pub(super) struct Setting {
     /// The solver's own [`Solver::parameters`] string (empty for the exact
     /// engines).
     pub(super) parameter: String,
-    /// The parameter varied: `dt`, `tol`, `cap` or empty.
-    pub(super) sweep: &'static str,
+    /// The parameter varied.
+    pub(super) sweep: Sweep,
     /// The time step, when the method has one.
+    #[serde(with = "crate::campaign::bits::maybe")]
     pub(super) dt: Option<f64>,
     /// The tolerance, when the method has one.
+    #[serde(with = "crate::campaign::bits::maybe")]
     pub(super) tol: Option<f64>,
     /// The iteration cap, when the method has one.
     pub(super) cap: Option<usize>,
+}
+
+/// The parameter a job's row varies (the `sweep` column).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub(super) enum Sweep {
+    /// None: a single run (the exact engines, `pava-f64`, the stability
+    /// section, the peers).
+    Single,
+    /// The time step `Δt`.
+    Dt,
+    /// The tolerance.
+    Tol,
+    /// The iteration cap.
+    Cap,
+}
+
+impl Sweep {
+    /// Its name in the CSV: empty, `dt`, `tol` or `cap`.
+    pub(super) fn as_str(self) -> &'static str {
+        match self {
+            Sweep::Single => "",
+            Sweep::Dt => "dt",
+            Sweep::Tol => "tol",
+            Sweep::Cap => "cap",
+        }
+    }
 }
 
 pub(super) struct Job {
@@ -43,7 +73,7 @@ impl Job {
             setting: Setting {
                 method: if pava { "exact-pava" } else { "exact-events" }.to_string(),
                 parameter: String::new(),
-                sweep: "",
+                sweep: Sweep::Single,
                 dt: None,
                 tol: None,
                 cap: None,
@@ -58,7 +88,7 @@ impl Job {
 
     fn float(
         solver: Box<dyn Solver>,
-        sweep: &'static str,
+        sweep: Sweep,
         dt: Option<f64>,
         tol: Option<f64>,
         cap: Option<usize>,
@@ -108,7 +138,13 @@ pub(super) fn jobs(case: &Case, quick: bool) -> Vec<Job> {
     let n = case.n as f64;
     let budget: f64 = if quick { 2e7 } else { 5e8 };
     let mut out = vec![Job::exact(true), Job::exact(false)];
-    out.push(Job::float(Box::new(PavaF64), "", None, None, None));
+    out.push(Job::float(
+        Box::new(PavaF64),
+        Sweep::Single,
+        None,
+        None,
+        None,
+    ));
     let event_tols: &[f64] = if quick {
         &[1e-6, 1e-12, 1e-16]
     } else {
@@ -117,7 +153,7 @@ pub(super) fn jobs(case: &Case, quick: bool) -> Vec<Job> {
     for &tol in event_tols {
         out.push(Job::float(
             Box::new(EventsF64 { tol }),
-            "tol",
+            Sweep::Tol,
             None,
             Some(tol),
             None,
@@ -146,7 +182,7 @@ pub(super) fn jobs(case: &Case, quick: bool) -> Vec<Job> {
             if n * steps(dt) <= budget {
                 out.push(Job::float(
                     make(dt, STEP_TOL, STEP_CAP),
-                    "dt",
+                    Sweep::Dt,
                     Some(dt),
                     Some(STEP_TOL),
                     Some(STEP_CAP),
@@ -157,7 +193,7 @@ pub(super) fn jobs(case: &Case, quick: bool) -> Vec<Job> {
             for &tol in step_tols {
                 out.push(Job::float(
                     make(SWEEP_DT, tol, STEP_CAP),
-                    "tol",
+                    Sweep::Tol,
                     Some(SWEEP_DT),
                     Some(tol),
                     Some(STEP_CAP),
@@ -166,7 +202,7 @@ pub(super) fn jobs(case: &Case, quick: bool) -> Vec<Job> {
             for &cap in step_caps {
                 out.push(Job::float(
                     make(SWEEP_DT, STEP_TOL, cap),
-                    "cap",
+                    Sweep::Cap,
                     Some(SWEEP_DT),
                     Some(STEP_TOL),
                     Some(cap),
@@ -186,7 +222,7 @@ pub(super) fn jobs(case: &Case, quick: bool) -> Vec<Job> {
                     tol: 1e-15,
                     max_iterations: cap,
                 }),
-                "cap",
+                Sweep::Cap,
                 None,
                 Some(1e-15),
                 Some(cap),
@@ -205,7 +241,7 @@ pub(super) fn jobs(case: &Case, quick: bool) -> Vec<Job> {
                 tol,
                 max_iterations: cap,
             }),
-            "tol",
+            Sweep::Tol,
             None,
             Some(tol),
             Some(cap),
@@ -226,24 +262,24 @@ pub(super) fn stability_jobs(case: &Case) -> Vec<Job> {
     let cap = case.cap;
     let step_cap = case.step_cap;
     vec![
-        Job::float(Box::new(PavaF64), "", None, None, None),
+        Job::float(Box::new(PavaF64), Sweep::Single, None, None, None),
         Job::float(
             Box::new(EventsF64::default()),
-            "",
+            Sweep::Single,
             None,
             Some(EventsF64::default().tol),
             None,
         ),
         Job::float(
             moreau_jean(dt, STEP_TOL, step_cap),
-            "",
+            Sweep::Single,
             Some(dt),
             Some(STEP_TOL),
             Some(step_cap),
         ),
         Job::float(
             catching_up(dt, STEP_TOL, step_cap),
-            "",
+            Sweep::Single,
             Some(dt),
             Some(STEP_TOL),
             Some(step_cap),
@@ -253,7 +289,7 @@ pub(super) fn stability_jobs(case: &Case) -> Vec<Job> {
                 tol: 1e-12,
                 max_iterations: cap,
             }),
-            "",
+            Sweep::Single,
             None,
             Some(1e-12),
             Some(cap),

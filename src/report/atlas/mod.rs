@@ -94,12 +94,13 @@
 //! parameters; `solve.rs`: timing and exact measurement; `failure.rs`: the
 //! failure kinds ([`Failure`]) and their classification; `csv.rs`,
 //! `charts.rs`, `stability.rs`: the files written; `peers.rs`: the peers'
-//! rows.
+//! rows; `campaign.rs`: the jobs as the units of `sticky atlas --shard I/N`
+//! and `sticky merge` ([`campaign`]).
 
 use std::fmt;
 use std::fs;
 use std::io::IsTerminal;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 use indicatif::{ProgressBar, ProgressStyle};
@@ -109,6 +110,7 @@ use crate::report::plot::{
     png_support, write_chart, write_grid, write_whole, PlotError, PngSupport,
 };
 
+pub mod campaign;
 mod charts;
 mod csv;
 mod failure;
@@ -282,6 +284,11 @@ fn peer_budget(quick: bool) -> f64 {
     }
 }
 
+/// The least time each job is timed for (repeated solves until then).
+fn min_time(quick: bool) -> Duration {
+    Duration::from_millis(if quick { 2 } else { 20 })
+}
+
 fn file_stem(scene: &str) -> String {
     scene
         .chars()
@@ -327,7 +334,7 @@ pub fn run(opts: &AtlasOptions, progress: bool) -> Result<Vec<PathBuf>, AtlasErr
     // Each job counts twice: solved, then measured.
     let total: usize = main_jobs.iter().chain(&stab_jobs).map(Vec::len).sum();
     bar.set_length(2 * total as u64);
-    let min_time = Duration::from_millis(if opts.quick { 2 } else { 20 });
+    let min_time = min_time(opts.quick);
 
     let mut rows = Vec::new();
     for (case, jobs) in suite.iter().zip(&main_jobs) {
@@ -350,27 +357,45 @@ pub fn run(opts: &AtlasOptions, progress: bool) -> Result<Vec<PathBuf>, AtlasErr
         }
     }
     bar.set_message("writing files");
+    let budget = opts.peers.then(|| peer_budget(opts.quick));
+    let written = write_files(out_dir, &suite, &stability, &rows, &stab_rows, budget)?;
+    bar.finish_and_clear();
+    Ok(written)
+}
+
+/// Writes the atlas's files under `out_dir` from its rows (suite, then
+/// stability section), in the order of [`run`]'s result: the one writer of
+/// a single run and of a merge of shards ([`campaign`]). `peer_budget`,
+/// when the rows include the peers' (with this budget per run, seconds),
+/// adds the note on them to `stability.md`.
+fn write_files(
+    out_dir: &Path,
+    suite: &[suite::Case],
+    stability: &[suite::Case],
+    rows: &[Row],
+    stab_rows: &[Row],
+    peer_budget: Option<f64>,
+) -> Result<Vec<PathBuf>, AtlasError> {
     let failures: Vec<Vec<Failure>> = stab_rows.iter().map(classify).collect();
 
     let mut written = Vec::new();
     let atlas_csv = out_dir.join("atlas.csv");
-    write_csv(&atlas_csv, &rows, None)?;
+    write_csv(&atlas_csv, rows, None)?;
     written.push(atlas_csv);
     let stab_csv = out_dir.join("stability.csv");
-    write_csv(&stab_csv, &stab_rows, Some(&failures))?;
+    write_csv(&stab_csv, stab_rows, Some(&failures))?;
     written.push(stab_csv);
     let stab_md = out_dir.join("stability.md");
-    let mut md = stability_markdown(&stability, &stab_rows, &failures);
-    if opts.peers {
+    let mut md = stability_markdown(stability, stab_rows, &failures);
+    if let Some(budget) = peer_budget {
         md.push_str(&format!(
             "\nPeers (`--peers`): run once per scene with N ≤ {PEER_MAX_N} (wall time of the \
              whole call, interpreter and setup included; errors exact, \
-             `reference::measure::compare`), each run within a budget of {} s: a run \
+             `reference::measure::compare`), each run within a budget of {budget} s: a run \
              predicted beyond it (start-up {STARTUP_SECONDS} s plus N·⌈t/h⌉ particle-steps \
              at the peer's measured cost) is not started, a run still going at the budget \
              is stopped; both are `—` with the reason. A peer that is not installed has no \
-             column.\n",
-            peer_budget(opts.quick)
+             column.\n"
         ));
     }
     if let PngSupport::Skipped(why) = png_support() {
@@ -379,7 +404,7 @@ pub fn run(opts: &AtlasOptions, progress: bool) -> Result<Vec<PathBuf>, AtlasErr
     write_whole(&stab_md, md.as_bytes())?;
     written.push(stab_md);
 
-    for case in &suite {
+    for case in suite {
         let case_rows: Vec<&Row> = rows.iter().filter(|r| r.scene == case.name).collect();
         let stem = file_stem(&case.name);
         for velocity in [false, true] {
@@ -394,16 +419,15 @@ pub fn run(opts: &AtlasOptions, progress: bool) -> Result<Vec<PathBuf>, AtlasErr
             written.extend(w.paths());
         }
     }
-    let w = write_chart(&cost_chart(&rows), out_dir, "cost-vs-n")?;
+    let w = write_chart(&cost_chart(rows), out_dir, "cost-vs-n")?;
     written.extend(w.paths());
     if !stability.is_empty() {
         let w = write_grid(
-            &stability_grid(&stability, &stab_rows, &failures),
+            &stability_grid(stability, stab_rows, &failures),
             out_dir,
             "stability",
         )?;
         written.extend(w.paths());
     }
-    bar.finish_and_clear();
     Ok(written)
 }

@@ -35,7 +35,7 @@ use crate::scalar::Scalar;
 use crate::scene::{Scene, SceneKind};
 
 use super::failure::OVERLAP_TOLERANCE;
-use super::jobs::Setting;
+use super::jobs::{Setting, Sweep};
 use super::solve::{Row, Status};
 use super::suite::Case;
 
@@ -126,7 +126,7 @@ impl PeerRunner {
                 Setting {
                     method: peer_method(&peer),
                     parameter: peer.args.join(" "),
-                    sweep: "",
+                    sweep: Sweep::Single,
                     dt: None,
                     tol: None,
                     cap: None,

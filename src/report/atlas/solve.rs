@@ -8,6 +8,7 @@ use std::time::{Duration, Instant};
 
 use indicatif::ProgressBar;
 use num_rational::BigRational;
+use serde::{Deserialize, Serialize};
 
 use crate::fast::kernel::{self, IntegerData};
 use crate::fast::merge::IntegerTrajectory;
@@ -21,7 +22,7 @@ use super::suite::{data_err, Case};
 use super::AtlasError;
 
 /// How a row ended.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub(super) enum Status {
     Ok,
     NoConvergence,
@@ -41,25 +42,33 @@ impl fmt::Display for Status {
     }
 }
 
-/// One measured (scene, method, parameter).
-#[derive(Debug, Clone)]
+/// One measured (scene, method, parameter); in a shard's file
+/// ([`super::campaign`]) each double is its bit pattern.
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub(super) struct Row {
     pub(super) scene: String,
     pub(super) n: usize,
+    #[serde(with = "crate::campaign::bits::one")]
     pub(super) t: f64,
+    #[serde(with = "crate::campaign::bits::one")]
     pub(super) two_r: f64,
+    #[serde(with = "crate::campaign::bits::one")]
     pub(super) v: f64,
     pub(super) setting: Setting,
     pub(super) status: Status,
+    #[serde(with = "crate::campaign::bits::one")]
     pub(super) wall: f64,
     pub(super) repeats: usize,
     pub(super) errors: Option<ErrorsF64>,
     pub(super) work: Option<Work>,
     pub(super) converged: Option<bool>,
+    #[serde(with = "crate::campaign::bits::maybe")]
     pub(super) residual: Option<f64>,
     /// A peer's whole process, seconds (see [`super::CSV_COLUMNS`]).
+    #[serde(with = "crate::campaign::bits::maybe")]
     pub(super) process_seconds: Option<f64>,
     /// A peer's set-up done apart from its solver call, seconds.
+    #[serde(with = "crate::campaign::bits::maybe")]
     pub(super) setup_seconds: Option<f64>,
 }
 
@@ -106,14 +115,14 @@ pub(super) fn timed<T>(
 }
 
 /// The two exact engines' states at `t`, computed once per scene.
-struct ExactStates {
+pub(super) struct ExactStates {
     pava: State<BigRational>,
     events: State<BigRational>,
     /// The smallest pressure jump of the collisions up to `t`.
     min_jump: Option<BigRational>,
 }
 
-fn exact_states(case: &Case) -> Result<ExactStates, AtlasError> {
+pub(super) fn exact_states(case: &Case) -> Result<ExactStates, AtlasError> {
     let err = data_err(&case.name);
     let pava = state_at(&case.exact, &case.tq).map_err(&err)?;
     let traj = Trajectory::new(case.exact.clone());
@@ -220,10 +229,7 @@ fn measure_all(case: &Case, solved: Vec<(Row, Option<Output>)>, bar: &ProgressBa
             scope.spawn(move || {
                 for (row, out) in part {
                     if let Some(out) = out.take() {
-                        match measure(&out, &case.exact, &case.tq) {
-                            Ok(e) => row.errors = Some(e.to_f64()),
-                            Err(e) => row.status = Status::Refused(format!("measure: {e}")),
-                        }
+                        measure_one(case, row, &out);
                     }
                     bar.inc(1);
                 }
@@ -231,6 +237,28 @@ fn measure_all(case: &Case, solved: Vec<(Row, Option<Output>)>, bar: &ProgressBa
         }
     });
     slots.into_iter().map(|(row, _)| row).collect()
+}
+
+/// Measures one solved output exactly into its row.
+fn measure_one(case: &Case, row: &mut Row, out: &Output) {
+    match measure(out, &case.exact, &case.tq) {
+        Ok(e) => row.errors = Some(e.to_f64()),
+        Err(e) => row.status = Status::Refused(format!("measure: {e}")),
+    }
+}
+
+/// Solves (timed) and measures one job: the row [`run_case`] gives it.
+pub(super) fn solve_unit(
+    case: &Case,
+    exact: Option<&ExactStates>,
+    job: &Job,
+    min_time: Duration,
+) -> Row {
+    let (mut row, out) = solve_job(case, exact, job, min_time);
+    if let Some(out) = out {
+        measure_one(case, &mut row, &out);
+    }
+    row
 }
 
 /// Solves every job of one scene (timed, one at a time), then measures.
