@@ -23,7 +23,7 @@
     rest on the standard real-number axioms and no other, which
     [check-assumptions.sh] checks. *)
 
-From Coq Require Import Reals Lra Lia Arith Classical.
+From Coq Require Import Reals Lra Lia Arith Classical List.
 From Coquelicot Require Import Coquelicot.
 From Sticky Require Import Uniqueness.
 Open Scope R_scope.
@@ -119,6 +119,35 @@ Proof.
     rewrite Hdouble in H. pose proof (Hs1 n). pose proof (Hs2 n). lra.
 Qed.
 
+(** A point is null, hence (by [NullSet_union]) every finite set: a path
+    differentiable off finitely many times is differentiable off a null
+    set. *)
+Lemma NullSet_point (x : R) : NullSet (fun t => t = x).
+Proof.
+  intros eps Heps.
+  exists (fun k => match k with O => x - eps / 4 | S _ => 0 end),
+         (fun k => match k with O => x + eps / 4 | S _ => 0 end).
+  split; [|split].
+  - intros [|k]; lra.
+  - intros t ->. exists O. lra.
+  - intros n. destruct n as [|n]; simpl; [lra|].
+    induction n as [|n IH]; simpl in *; lra.
+Qed.
+
+Lemma NullSet_finite (l : list R) : NullSet (fun t => In t l).
+Proof.
+  induction l as [|x l IH].
+  - intros eps Heps. exists (fun _ => 0), (fun _ => 0). split; [|split].
+    + intros; lra.
+    + intros t [].
+    + intros n. rewrite (sumN_ext n _ (fun _ => 0)) by (intros; ring).
+      rewrite sumN_zero_fun. lra.
+  - intros eps Heps.
+    destruct (NullSet_union _ _ (NullSet_point x) IH eps Heps) as (c & d & H1 & H2 & H3).
+    exists c, d. split; [exact H1|split; [|exact H3]].
+    intros t [Ht|Ht]; apply H2; [left; symmetry; exact Ht|right; exact Ht].
+Qed.
+
 (** ** Closure properties of absolute continuity *)
 
 Lemma Chain_sub (a b a' b' : R) (n : nat) (p q : nat -> R) :
@@ -186,6 +215,23 @@ Proof.
   - apply (AbsCont_plus a b (fun s => sumN N (fun i => g i s)) (g N)).
     + apply IH. intros i Hi. apply H. lia.
     + apply H. lia.
+Qed.
+
+(** A Lipschitz function on [[a, b]] is absolutely continuous there (the
+    projection path is Lipschitz with constant [‖u⁰‖]). *)
+Lemma AbsCont_lipschitz (a b L : R) (f : R -> R) :
+  0 <= L -> (forall s t, a <= s -> s <= t -> t <= b -> Rabs (f t - f s) <= L * (t - s)) ->
+  AbsCont a b f.
+Proof.
+  intros HL Hf eps Heps. exists (eps / (L + 1)). split; [apply Rdiv_lt_0_compat; lra|].
+  intros n p q Hc Hs.
+  assert (Hle : sumN n (fun i => Rabs (f (q i) - f (p i))) <= sumN n (fun i => (L + 1) * (q i - p i))).
+  { apply sumN_le. intros i Hi. destruct (proj1 Hc i Hi) as (A & B & C).
+    pose proof (Hf (p i) (q i) A B C). nra. }
+  rewrite sumN_scal in Hle.
+  assert ((L + 1) * sumN n (fun i => q i - p i) < (L + 1) * (eps / (L + 1)))
+    by (apply Rmult_lt_compat_l; [lra|exact Hs]).
+  replace ((L + 1) * (eps / (L + 1))) with eps in H by (field; lra). lra.
 Qed.
 
 (** One interval [[s, t]]. *)
