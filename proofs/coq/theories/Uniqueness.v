@@ -9,7 +9,7 @@
     [t = 0].
 
     This file is over Coq's real numbers (with Coquelicot's derivatives and
-    mean value theorem), the only one of the development: its theorem
+    mean value theorem), as are [UniquenessAC.v] and [NormalConeR.v]: its theorem
     rests on the four axioms of the standard library's real numbers
     ([ClassicalDedekindReals.sig_not_dec], [sig_forall_dec],
     [functional_extensionality_dep], [Classical_Prop.classic]) and no
@@ -18,8 +18,8 @@
     The class of solutions ([SolutionR]): continuous paths in [K^N],
     differentiable outside a finite set of times, satisfying the inclusion
     where differentiable. It contains the piecewise-C¹ paths with finitely
-    many pieces on [[0, T]]; it is narrower than the absolutely continuous
-    solutions of the paper's setting. *)
+    many pieces on [[0, T]]. Uniqueness among the absolutely continuous
+    solutions, the paper's setting, is [UniquenessAC.solution_unique_ac]. *)
 
 From Coq Require Import Reals Lra Lia List.
 From Coquelicot Require Import Coquelicot.
