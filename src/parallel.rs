@@ -14,7 +14,7 @@ pub fn workers() -> usize {
 
 /// Calls `take(work(item))` for every item in order, `work` running on
 /// `workers` threads (item `k` on worker `k mod workers`, at most
-/// [`AHEAD`] results waiting per worker) while `take` runs on this one.
+/// two results waiting per worker) while `take` runs on this one.
 /// With one worker or fewer than two items, everything runs here. Stops at
 /// the first error of `take` and returns it (the workers then stop).
 pub fn in_order<T: Sync, R: Send, E>(
