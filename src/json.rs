@@ -78,6 +78,9 @@ impl Formatter for Contract {
         text: &str,
     ) -> io::Result<()> {
         // serde_json leaves DEL as it is; a TOML basic string may not hold it.
+        if !text.as_bytes().contains(&0x7f) {
+            return w.write_all(text.as_bytes());
+        }
         let mut pieces = text.split('\u{7f}');
         if let Some(first) = pieces.next() {
             w.write_all(first.as_bytes())?;

@@ -88,6 +88,7 @@ pub mod generate;
 pub mod initial;
 #[cfg(feature = "json")]
 pub mod json;
+pub mod parallel;
 pub mod progress;
 pub mod projection;
 pub mod quantile;

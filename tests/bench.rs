@@ -92,14 +92,47 @@ fn e2e_rows_measure_every_sticky_pipeline() {
                 assert!(row.note.starts_with("in "), "{row:?}");
                 // An answer was written: N positions at least.
                 assert!(row.out_bytes.is_some_and(|b| b > 1000), "{row:?}");
+                // The I/O floor of the same bytes, and the ratio to it.
+                assert!(row.floor_s.is_some_and(|f| f > 0.0), "{row:?}");
+                assert!(r.vs_floor(row).is_some(), "{row:?}");
             }
         }
         let v: serde_json::Value = serde_json::from_str(&e2e::json(&r)).expect("valid JSON");
         assert_eq!(v["n"], 500);
         assert_eq!(v["e2e"].as_array().map(Vec::len), Some(PIPELINES.len()));
-        assert!(e2e::table(&r).contains("sticky events --json"));
+        for row in v["e2e"].as_array().unwrap() {
+            let sticky = row["pipeline"].as_str().unwrap().starts_with("sticky");
+            assert_eq!(row["floor_s"].is_f64(), sticky, "{row}");
+            assert_eq!(row["vs_floor"].is_f64(), sticky, "{row}");
+        }
+        let table = e2e::table(&r);
+        assert!(table.contains("sticky events --json"));
+        assert!(
+            table.contains("floor s") && table.contains("× floor"),
+            "{table}"
+        );
     }
     let _ = std::fs::remove_dir_all(&empty);
+}
+
+/// The I/O floor reads every input whole and writes exactly the answer's
+/// number of bytes at the answer's place (replacing what was there).
+#[test]
+fn e2e_floor_reads_the_inputs_and_writes_the_answer_bytes() {
+    use sticky::report::bench::e2e::io_floor;
+    let dir = std::env::temp_dir().join(format!("sticky-e2e-floor-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (input, out) = (dir.join("in.csv"), dir.join("out.json"));
+    std::fs::write(&input, "position,velocity\n0,1\n").unwrap();
+    std::fs::write(&out, vec![b'x'; 50_000]).unwrap();
+    let wall = io_floor(std::slice::from_ref(&input), &out, 12_345).unwrap();
+    assert!(wall > 0.0);
+    assert_eq!(std::fs::metadata(&out).unwrap().len(), 12_345);
+    // A missing input is an error naming it, not a floor.
+    let missing = dir.join("missing.csv");
+    let err = io_floor(&[missing], &out, 1).unwrap_err();
+    assert!(err.contains("missing.csv"), "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
 }
 
 /// The three inputs of the end-to-end rows hold the same particles: the

@@ -631,3 +631,36 @@ fn explain_projects_memory_and_the_limit_refuses() {
     assert!(o.stdout.is_empty());
     std::fs::remove_dir_all(&d).unwrap();
 }
+
+/// The state formatted in pieces on several threads gives the bytes of the
+/// general path whatever the pieces' size: one piece (all on one thread),
+/// or many small pieces, each shorter than some blocks, on 1 to 3 workers
+/// (the core count of the machine decides, the result must not).
+#[test]
+fn pieces_on_several_threads_give_the_same_bytes() {
+    let d = dir("pieces");
+    sticky::report::bench::e2e::write_inputs(&d, 3000, 7).unwrap();
+    for scene in ["dec.toml", "dyadic.toml"] {
+        let path = d.join(scene);
+        let lean = Lean::load(&path).expect("the streaming path takes it");
+        for t in [q(1, 1000), q(1, 97), q(1, 1)] {
+            let want = general(&path, &t);
+            let b = lean.blocks_at(&t).unwrap();
+            // Many pieces early on; blocks longer than the smallest pieces
+            // (fewer pieces than particles) always.
+            let pieces = b.pieces(7).len();
+            assert!(pieces < b.n() / 7, "{scene} at {t}: {pieces}");
+            assert!(t > q(1, 100) || pieces > 100, "{scene} at {t}: {pieces}");
+            for piece in [1, 7, 500, usize::MAX] {
+                let mut out = Vec::new();
+                json::write_lean_state_in_pieces(&mut out, &b, lean.radius(), piece).unwrap();
+                assert_eq!(
+                    String::from_utf8(out).unwrap(),
+                    want,
+                    "{scene} at {t}, {piece}"
+                );
+            }
+        }
+    }
+    std::fs::remove_dir_all(&d).unwrap();
+}

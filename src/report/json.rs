@@ -27,7 +27,7 @@ use serde::{Serialize, Serializer};
 use crate::cluster::Cluster;
 use crate::contact::Impulse;
 use crate::fast::merge::WordHistory;
-use crate::fast::stream::{Exact, LeanBlocks};
+use crate::fast::stream::{Exact, LeanBlocks, Piece};
 use crate::json::{Displayed, Rational};
 use crate::limit::continuum::Profile;
 use crate::limit::surd::Surd;
@@ -139,46 +139,99 @@ enum Column {
     Multipliers,
 }
 
+/// The particles of a piece of the blocks whose values are formatted
+/// together on one thread ([`write_lean_state`]).
+pub const PIECE_PARTICLES: usize = 1 << 14;
+
 /// One column of the streaming path's state, serialised value by value as
-/// the blocks give it (no string per value).
+/// the blocks give it: the blocks cut into pieces of `piece` particles,
+/// each piece's values reduced and formatted on a worker thread
+/// ([`crate::parallel::in_order`]), then written in order.
 #[derive(Debug, Clone, Copy)]
 pub struct LeanColumn<'a> {
     blocks: &'a LeanBlocks<'a>,
     column: Column,
+    piece: usize,
+}
+
+/// The values of one piece of a column, formatted: value `j` is
+/// `text[ends[j - 1]..ends[j]]` (from 0 for the first).
+struct Formatted {
+    text: String,
+    ends: Vec<usize>,
+}
+
+impl LeanColumn<'_> {
+    /// The values of `piece` in this column, formatted as `Exact`'s
+    /// `Display` writes them.
+    fn format(&self, piece: &Piece) -> io::Result<Formatted> {
+        use std::fmt::Write as _;
+        let mut out = Formatted {
+            text: String::new(),
+            ends: Vec::new(),
+        };
+        let each = |v: &Exact| {
+            write!(out.text, "{v}").map_err(io::Error::other)?;
+            out.ends.push(out.text.len());
+            Ok(())
+        };
+        match self.column {
+            Column::Positions => self.blocks.positions_of(piece, each),
+            Column::Velocities => self.blocks.velocities_of(piece, each),
+            Column::Multipliers => self.blocks.multipliers_of(piece, each),
+        }?;
+        Ok(out)
+    }
 }
 
 impl Serialize for LeanColumn<'_> {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         let mut seq = s.serialize_seq(None)?;
-        let mut failure = None;
-        let mut each = |v: &Exact| {
-            seq.serialize_element(&Displayed(v)).map_err(|e| {
-                failure = Some(e);
-                io::Error::other("stopped by the serializer")
-            })
-        };
-        let walked = match self.column {
-            Column::Positions => self.blocks.positions(&mut each),
-            Column::Velocities => self.blocks.velocities(&mut each),
-            Column::Multipliers => self.blocks.multipliers(&mut each),
-        };
-        if let Some(e) = failure {
-            return Err(e);
-        }
-        walked.map_err(S::Error::custom)?;
+        let pieces = self.blocks.pieces(self.piece);
+        let workers = crate::parallel::workers();
+        crate::parallel::in_order(
+            &pieces,
+            workers,
+            |piece| self.format(piece),
+            |formatted| {
+                let f = formatted.map_err(S::Error::custom)?;
+                let mut start = 0;
+                for &end in &f.ends {
+                    seq.serialize_element(&f.text[start..end])?;
+                    start = end;
+                }
+                Ok(())
+            },
+        )?;
         seq.end()
     }
 }
 
 /// [`state`] written straight from the streaming path's blocks
-/// ([`crate::fast::stream`]), value by value, with no string per value:
-/// the same bytes (the tests compare them), and a final newline.
+/// ([`crate::fast::stream`]), value by value, formatted on every core in
+/// pieces of [`PIECE_PARTICLES`]: the same bytes (the tests compare them),
+/// and a final newline.
 pub fn write_lean_state(
     out: &mut impl io::Write,
     b: &LeanBlocks<'_>,
     radius: &num_rational::BigRational,
 ) -> io::Result<()> {
-    let column = |column| LeanColumn { blocks: b, column };
+    write_lean_state_in_pieces(out, b, radius, PIECE_PARTICLES)
+}
+
+/// [`write_lean_state`] with pieces of at least `piece` particles (the
+/// bytes do not depend on it; the tests take small pieces).
+pub fn write_lean_state_in_pieces(
+    out: &mut impl io::Write,
+    b: &LeanBlocks<'_>,
+    radius: &num_rational::BigRational,
+    piece: usize,
+) -> io::Result<()> {
+    let column = |column| LeanColumn {
+        blocks: b,
+        column,
+        piece,
+    };
     let state = StateJson {
         n: b.n(),
         radius: Rational::of(radius),

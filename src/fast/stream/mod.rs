@@ -469,6 +469,16 @@ pub struct Nearest {
     pub multipliers: Vec<f64>,
 }
 
+/// A stretch of whole blocks of a [`LeanBlocks`] ([`LeanBlocks::pieces`]):
+/// its values can be computed apart from the others' and put back in order.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Piece {
+    /// The index of its first particle.
+    first: usize,
+    /// Its blocks, as indices into the blocks of the time.
+    runs: std::ops::Range<usize>,
+}
+
 /// The PAVA blocks of a [`Lean`] scene at one time, and the state they give,
 /// value by value.
 #[derive(Debug)]
@@ -514,16 +524,75 @@ impl LeanBlocks<'_> {
     /// Calls `f` on every position `x_i(t)` in order: the block's `x̃` plus
     /// `2r·i`, one fraction in lowest terms.
     pub fn positions(&self, f: impl FnMut(&Exact) -> io::Result<()>) -> io::Result<()> {
-        self.positions_from(0, f)
+        self.positions_from(&self.runs, 0, f)
+    }
+
+    /// The blocks cut, at block ends, into pieces of at least `particles`
+    /// particles each (the last one may hold fewer), in order: together
+    /// they hold every block once.
+    pub fn pieces(&self, particles: usize) -> Vec<Piece> {
+        let mut pieces = Vec::new();
+        let (mut first, mut start, mut size) = (0usize, 0usize, 0usize);
+        for (j, r) in self.runs.iter().enumerate() {
+            size += r.k as usize;
+            if size >= particles.max(1) {
+                pieces.push(Piece {
+                    first,
+                    runs: start..j + 1,
+                });
+                first += size;
+                (start, size) = (j + 1, 0);
+            }
+        }
+        if start < self.runs.len() {
+            pieces.push(Piece {
+                first,
+                runs: start..self.runs.len(),
+            });
+        }
+        debug_assert_eq!(
+            pieces.iter().map(|p| p.runs.len()).sum::<usize>(),
+            self.runs.len()
+        );
+        pieces
+    }
+
+    /// [`Self::positions`] of the particles of `piece` only.
+    pub fn positions_of(
+        &self,
+        piece: &Piece,
+        f: impl FnMut(&Exact) -> io::Result<()>,
+    ) -> io::Result<()> {
+        self.positions_from(&self.runs[piece.runs.clone()], piece.first, f)
+    }
+
+    /// [`Self::velocities`] of the particles of `piece` only.
+    pub fn velocities_of(
+        &self,
+        piece: &Piece,
+        f: impl FnMut(&Exact) -> io::Result<()>,
+    ) -> io::Result<()> {
+        self.velocities_from(&self.runs[piece.runs.clone()], f)
+    }
+
+    /// [`Self::multipliers`] of the pairs `(i, i + 1)` whose left particle
+    /// `i` is in `piece` (none for the last particle).
+    pub fn multipliers_of(
+        &self,
+        piece: &Piece,
+        f: impl FnMut(&Exact) -> io::Result<()>,
+    ) -> io::Result<()> {
+        self.multipliers_from(&self.runs[piece.runs.clone()], piece.first, self.n(), f)
     }
 
     fn positions_from(
         &self,
+        runs: &[Run<i128>],
         mut i: usize,
         mut f: impl FnMut(&Exact) -> io::Result<()>,
     ) -> io::Result<()> {
         let (rn, rd) = self.d.two_r;
-        for r in &self.runs {
+        for r in runs {
             let y = self.mean_y(r);
             for _ in 0..r.k {
                 let small = match &y {
@@ -549,8 +618,16 @@ impl LeanBlocks<'_> {
 
     /// Calls `f` on every velocity `u_i(t)` in order (the right derivative,
     /// `eq:proj-u-micro`): one value per block, given `k` times.
-    pub fn velocities(&self, mut f: impl FnMut(&Exact) -> io::Result<()>) -> io::Result<()> {
-        for r in &self.runs {
+    pub fn velocities(&self, f: impl FnMut(&Exact) -> io::Result<()>) -> io::Result<()> {
+        self.velocities_from(&self.runs, f)
+    }
+
+    fn velocities_from(
+        &self,
+        runs: &[Run<i128>],
+        mut f: impl FnMut(&Exact) -> io::Result<()>,
+    ) -> io::Result<()> {
+        for r in runs {
             let v = self.mean_u(r);
             for _ in 0..r.k {
                 f(&v)?;
@@ -564,17 +641,18 @@ impl LeanBlocks<'_> {
     /// `(k Σ_{j ≤ m} U_j − m S) / (k D_u N)`
     /// ([`crate::contact::cluster_multiplier_numerators`]).
     pub fn multipliers(&self, f: impl FnMut(&Exact) -> io::Result<()>) -> io::Result<()> {
-        self.multipliers_from(0, self.n(), f)
+        self.multipliers_from(&self.runs, 0, self.n(), f)
     }
 
     fn multipliers_from(
         &self,
+        runs: &[Run<i128>],
         mut first: usize,
         n: usize,
         mut f: impl FnMut(&Exact) -> io::Result<()>,
     ) -> io::Result<()> {
         let big_n = i128::try_from(n).unwrap_or(i128::MAX);
-        for r in &self.runs {
+        for r in runs {
             let k = i128::from(r.k);
             let den = k.checked_mul(self.d.du).and_then(|v| v.checked_mul(big_n));
             let mut prefix = 0i128;
@@ -631,7 +709,7 @@ impl LeanBlocks<'_> {
             };
             let (mut xs, mut us, mut ls) = (Vec::new(), Vec::new(), Vec::new());
             let k = r.k as usize;
-            one.positions_from(i, |v| {
+            one.positions_from(&one.runs, i, |v| {
                 xs.push(v.clone());
                 Ok(())
             })?;
@@ -639,7 +717,7 @@ impl LeanBlocks<'_> {
                 us.push(v.clone());
                 Ok(())
             })?;
-            one.multipliers_from(i, n, |v| {
+            one.multipliers_from(&one.runs, i, n, |v| {
                 ls.push(v.clone());
                 Ok(())
             })?;

@@ -27,11 +27,19 @@
 //! ([`write_peak_rss`]), and so does the Python helper. No polling, no
 //! platform call: where `/proc` is missing the column stays empty.
 //!
+//! **The I/O floor** of a row is what the same bytes cost without any
+//! work on them, measured in the same run right after each repetition of
+//! the row, page cache warm: reading the row's input files whole
+//! (the scene and its column file) and writing as many bytes as its answer
+//! file holds into a fresh file at the same place ([`io_floor`]). A row's
+//! `× floor` is its wall time over that floor (medians of each).
+//!
 //! When Python, numpy or scipy is missing, the scipy rows say why and the
 //! `sticky` rows still run.
 
 use crate::json::Fixed;
 use std::fs::File;
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::Instant;
@@ -141,6 +149,9 @@ pub struct E2eRow {
     pub peak_kib: Option<f64>,
     /// Size of the answer file of the last run, bytes.
     pub out_bytes: Option<u64>,
+    /// Median I/O floor for the same bytes, seconds ([`io_floor`]; `None`:
+    /// the row was not measured).
+    pub floor_s: Option<f64>,
     /// Input and output sizes, or why the row is empty.
     pub note: String,
 }
@@ -175,6 +186,12 @@ impl E2eReport {
         let b = self.row(Tool::Scipy, base)?.wall_s?;
         let w = row.wall_s?;
         (b > 0.0).then(|| w / b)
+    }
+
+    /// The wall time of `row` over its I/O floor ([`io_floor`]).
+    pub fn vs_floor(&self, row: &E2eRow) -> Option<f64> {
+        let (w, f) = (row.wall_s?, row.floor_s?);
+        (f > 0.0).then(|| w / f)
     }
 
     /// Peak memory per particle, bytes.
@@ -249,6 +266,30 @@ pub fn write_inputs(dir: &Path, n: usize, seed: u64) -> std::io::Result<()> {
         dir.join("dyadic.toml"),
         "[particles]\nradius = \"1/1024\"\ndata = \"dyadic.npy\"\n",
     )
+}
+
+/// The I/O floor of a pipeline, in seconds: reading every file of
+/// `inputs` whole, then writing `out_bytes` bytes into a new file `out`
+/// (created or truncated, as the child's answer file is), the buffer to
+/// write filled before the clock starts. The file is left in place (the
+/// caller removes it), `out_bytes` long.
+pub fn io_floor(inputs: &[PathBuf], out: &Path, out_bytes: u64) -> Result<f64, String> {
+    let len = usize::try_from(out_bytes).map_err(|e| format!("{out_bytes} bytes: {e}"))?;
+    let answer = vec![b'0'; len];
+    let t0 = Instant::now();
+    let mut read = 0usize;
+    for path in inputs {
+        read += std::fs::read(path)
+            .map_err(|e| format!("{}: {e}", path.display()))?
+            .len();
+    }
+    let mut file = File::create(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    file.write_all(&answer)
+        .map_err(|e| format!("{}: {e}", out.display()))?;
+    drop(file);
+    let wall = t0.elapsed().as_secs_f64();
+    debug_assert!(read > 0 || inputs.is_empty());
+    Ok(wall)
 }
 
 /// One run of a child: wall seconds and peak kB, or why it failed.
@@ -326,6 +367,7 @@ fn measure(
     let mut peaks: Vec<Vec<f64>> = vec![Vec::new(); PIPELINES.len()];
     let mut notes: Vec<Option<String>> = vec![None; PIPELINES.len()];
     let mut out_bytes: Vec<Option<u64>> = vec![None; PIPELINES.len()];
+    let mut floors: Vec<Vec<f64>> = vec![Vec::new(); PIPELINES.len()];
     // Skipped, or failed once: not run again.
     let mut stopped = [false; PIPELINES.len()];
     for rep in 0..opts.reps.max(1) {
@@ -339,6 +381,10 @@ fn measure(
                 Input::Toml => ("inline.toml", "dec.csv"),
             };
             let out = dir.join(format!("out.{}", input.name()));
+            let inputs: Vec<PathBuf> = match input {
+                Input::Toml => vec![dir.join(scene)],
+                Input::Csv | Input::Npy => vec![dir.join(scene), dir.join(columns)],
+            };
             let cmd = match tool {
                 Tool::Scipy if !opts.peers => {
                     notes[k] = Some("skipped (--no-peers)".into());
@@ -384,6 +430,11 @@ fn measure(
                     let bytes = std::fs::metadata(&out).map_or(0, |m| m.len());
                     out_bytes[k] = Some(bytes);
                     notes[k] = Some(format!("in {}, out {}", input_note(input), mib(bytes)));
+                    // The same bytes, no work, right after (page cache warm).
+                    match io_floor(&inputs, &out, bytes) {
+                        Ok(f) => floors[k].push(f),
+                        Err(why) => notes[k] = Some(format!("no floor: {why}")),
+                    }
                 }
                 Err(why) => {
                     notes[k] = Some(why);
@@ -391,6 +442,7 @@ fn measure(
                     stopped[k] = true;
                     walls[k].clear();
                     peaks[k].clear();
+                    floors[k].clear();
                 }
             }
             let _ = std::fs::remove_file(&out);
@@ -405,27 +457,30 @@ fn measure(
             wall_s: median(std::mem::take(&mut walls[k])),
             peak_kib: median(std::mem::take(&mut peaks[k])),
             out_bytes: out_bytes[k],
+            floor_s: median(std::mem::take(&mut floors[k])),
             note: notes[k].take().unwrap_or_default(),
         })
         .collect();
     Ok(E2eReport { n, rows })
 }
 
-/// The table: wall time, ratio to scipy on the same input, peak memory
-/// and bytes per particle.
+/// The table: wall time, ratio to scipy on the same input, the I/O floor
+/// and the ratio to it, peak memory and bytes per particle.
 pub fn table(r: &E2eReport) -> String {
     let mut out = format!(
-        "N = {}, file -> answer -> file, whole processes (median)\n  {:<26} {:>5} {:>8} {:>10} {:>9} {:>10}  note\n",
-        r.n, "pipeline", "input", "wall s", "× scipy", "peak MiB", "B/particle"
+        "N = {}, file -> answer -> file, whole processes (median); floor: read the input + write the answer's bytes\n  {:<26} {:>5} {:>8} {:>10} {:>8} {:>8} {:>9} {:>10}  note\n",
+        r.n, "pipeline", "input", "wall s", "× scipy", "floor s", "× floor", "peak MiB", "B/particle"
     );
     let f = |v: Option<f64>, d: usize| v.map_or("—".into(), |x| format!("{x:.d$}"));
     for row in &r.rows {
         out.push_str(&format!(
-            "  {:<26} {:>5} {:>8} {:>10} {:>9} {:>10}  {}\n",
+            "  {:<26} {:>5} {:>8} {:>10} {:>8} {:>8} {:>9} {:>10}  {}\n",
             row.tool.name(),
             row.input.name(),
             f(row.wall_s, 2),
             f(r.vs_scipy(row), 2),
+            f(row.floor_s, 3),
+            f(r.vs_floor(row), 1),
             f(row.peak_kib.map(|k| k / 1024.0), 0),
             f(r.bytes_per_particle(row), 0),
             row.note
@@ -454,6 +509,10 @@ pub struct E2eRowJson {
     pub wall_s: Option<Fixed<4>>,
     /// Its ratio to the SciPy pipeline.
     pub vs_scipy: Option<Fixed<4>>,
+    /// The I/O floor of the same bytes, seconds (`null`: not measured).
+    pub floor_s: Option<Fixed<4>>,
+    /// Its ratio to the I/O floor.
+    pub vs_floor: Option<Fixed<4>>,
     /// Peak resident bytes per particle.
     pub peak_bytes_per_particle: Option<Fixed<4>>,
     /// A remark.
@@ -470,6 +529,8 @@ pub fn json(r: &E2eReport) -> String {
             input: row.input.name(),
             wall_s: row.wall_s.map(Fixed),
             vs_scipy: r.vs_scipy(row).map(Fixed),
+            floor_s: row.floor_s.map(Fixed),
+            vs_floor: r.vs_floor(row).map(Fixed),
             peak_bytes_per_particle: r.bytes_per_particle(row).map(Fixed),
             note: row.note.clone(),
         })
