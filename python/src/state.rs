@@ -22,15 +22,17 @@ use crate::convert;
 use crate::scene::{py_error, Inner};
 
 /// What an engine answered at one time: the nearest doubles of the
-/// positions (and of the rest when they came with them), the clusters, the
-/// dyadic path's blocks to round the rest from later, and the exact state
-/// when the engine gave it whole.
+/// positions (and of the rest when they came with them), the clusters (or
+/// the dyadic path's blocks to find them later), the dyadic path's blocks to
+/// round the rest from later, and the exact state when the engine gave it
+/// whole.
 pub struct Answer {
     t: BigRational,
     positions: Vec<f64>,
     velocities: Option<Vec<f64>>,
     multipliers: Option<Vec<f64>>,
-    clusters: Vec<Cluster>,
+    /// `None`: found from `blocks` (or the exact state) on first use.
+    clusters: Option<Vec<Cluster>>,
     blocks: Option<DyadicBlocks>,
     exact: Option<sticky::State<BigRational>>,
 }
@@ -45,7 +47,7 @@ impl Answer {
             positions: nearest.positions,
             velocities: Some(nearest.velocities),
             multipliers: Some(nearest.multipliers),
-            clusters: b.clusters(),
+            clusters: Some(b.clusters()),
             blocks: None,
             exact: None,
         }
@@ -62,7 +64,9 @@ impl Answer {
                 positions,
                 velocities: None,
                 multipliers: None,
-                clusters: b.clusters(),
+                // A pass over the blocks a caller of `positions` need not
+                // pay for: found on first use.
+                clusters: None,
                 blocks: Some(b),
                 exact: None,
             }),
@@ -91,7 +95,7 @@ impl Answer {
             positions: round(&s.positions)?,
             velocities: Some(round(&s.velocities)?),
             multipliers: Some(round(&s.multipliers)?),
-            clusters: s.clusters.clone(),
+            clusters: Some(s.clusters.clone()),
             blocks: None,
             exact: Some(s),
         })
@@ -117,7 +121,8 @@ pub struct State {
     positions: Py<PyArray1<f64>>,
     velocities: OnceLock<Py<PyArray1<f64>>>,
     multipliers: OnceLock<Py<PyArray1<f64>>>,
-    clusters: Vec<Cluster>,
+    /// Found on first use when the engine did not give them.
+    clusters: OnceLock<Vec<Cluster>>,
     /// The dyadic path's blocks, for the arrays not yet computed.
     blocks: Option<DyadicBlocks>,
     exact: OnceLock<sticky::State<BigRational>>,
@@ -146,13 +151,17 @@ impl State {
             }
             Ok(cell)
         };
+        let clusters = OnceLock::new();
+        if let Some(c) = a.clusters {
+            let _ = clusters.set(c);
+        }
         Ok(State {
             scene,
             t: a.t,
             positions: convert::read_only(py, a.positions)?.unbind(),
             velocities: array(a.velocities)?,
             multipliers: array(a.multipliers)?,
-            clusters: a.clusters,
+            clusters,
             blocks: a.blocks,
             exact,
         })
@@ -189,6 +198,20 @@ impl State {
         };
         let array = convert::read_only(py, values)?.unbind();
         Ok(cell.get_or_init(|| array).bind(py).clone())
+    }
+
+    /// The contact clusters: given by the engine, or found on first use
+    /// (GIL released) from the kept blocks, else from the exact state.
+    fn contact_clusters(&self, py: Python<'_>) -> PyResult<&[Cluster]> {
+        if let Some(c) = self.clusters.get() {
+            return Ok(c);
+        }
+        let blocks = &self.blocks;
+        let found = match py.detach(|| blocks.as_ref().map(DyadicBlocks::clusters)) {
+            Some(c) => c,
+            None => self.exact(py)?.clusters.clone(),
+        };
+        Ok(self.clusters.get_or_init(|| found))
     }
 
     /// The exact state (computed again on first use for the streaming
@@ -248,8 +271,9 @@ impl State {
     /// The contact clusters of x(t), left to right, as (first, size) pairs
     /// (first indexed from 0), as `run --json` gives them.
     #[getter]
-    fn clusters(&self) -> Vec<(usize, usize)> {
-        self.clusters.iter().map(|c| (c.first, c.size)).collect()
+    fn clusters(&self, py: Python<'_>) -> PyResult<Vec<(usize, usize)>> {
+        let clusters = self.contact_clusters(py)?;
+        Ok(clusters.iter().map(|c| (c.first, c.size)).collect())
     }
 
     /// x(t) exact: a list of fractions.Fraction.
@@ -283,19 +307,19 @@ impl State {
             .map_err(Into::into)
     }
 
-    fn __repr__(&self, py: Python<'_>) -> String {
-        let shown: Vec<String> = self
-            .clusters
+    fn __repr__(&self, py: Python<'_>) -> PyResult<String> {
+        let clusters = self.contact_clusters(py)?;
+        let shown: Vec<String> = clusters
             .iter()
             .take(8)
             .map(|c| format!("({}, {})", c.first, c.size))
             .collect();
-        let more = if self.clusters.len() > 8 { ", ..." } else { "" };
-        format!(
+        let more = if clusters.len() > 8 { ", ..." } else { "" };
+        Ok(format!(
             "State(t={}, n={}, clusters=[{}{more}])",
             convert::shown(&self.t),
             self.n(py),
             shown.join(", ")
-        )
+        ))
     }
 }

@@ -110,6 +110,7 @@ impl<const L: usize> Int<L> {
     }
 
     /// `−v` (wrapping).
+    #[inline]
     pub fn wrapping_neg(self) -> Self {
         let mut out = [0u64; L];
         let mut carry = true;
@@ -211,14 +212,18 @@ impl<const L: usize> Int<L> {
         debug_assert!(u64::from(j) < Self::BITS);
         let (limbs, bits) = ((j / 64) as usize, j % 64);
         let mut out = [0u64; L];
-        for (i, o) in out.iter_mut().enumerate().skip(limbs) {
-            let lo = self.0[i - limbs];
-            let below = if bits == 0 || i == limbs {
-                0
-            } else {
-                self.0[i - limbs - 1] >> (64 - bits)
-            };
-            *o = (lo << bits) | below;
+        if limbs >= L {
+            return Int(out);
+        }
+        if bits == 0 {
+            out[limbs..].copy_from_slice(&self.0[..L - limbs]);
+        } else {
+            // Limb `i` of the result takes the low bits of limb `i − limbs`
+            // and the high bits of the limb below it.
+            out[limbs] = self.0[0] << bits;
+            for (o, pair) in out[limbs + 1..].iter_mut().zip(self.0.windows(2)) {
+                *o = (pair[1] << bits) | (pair[0] >> (64 - bits));
+            }
         }
         Int(out)
     }

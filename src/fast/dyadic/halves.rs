@@ -40,7 +40,7 @@ pub(crate) fn pava<T: Copy + Into<W> + Sync, W: Sum + Into<i128> + Send>(
     parallel_min: usize,
     y: impl Fn(T, T) -> W + Sync,
 ) -> Vec<Run<i128>> {
-    match halves(xs, us, parallel_min, y) {
+    match halves::<T, W, W>(xs, us, parallel_min, y) {
         Halves::One(runs) => widened(runs),
         Halves::Two(left, right) => {
             // The join pools sums of blocks of both halves: on `i128`.
@@ -51,14 +51,20 @@ pub(crate) fn pava<T: Copy + Into<W> + Sync, W: Sum + Into<i128> + Send>(
     }
 }
 
-/// [`pava`] on sums of type `W` kept as they are (the 256-bit sums of a
-/// time beyond the `i128` bound).
-pub(crate) fn pava_in<T: Copy + Into<W> + Sync, W: Sum + Word + Send>(
+/// [`pava`] on `Y` sums of type `W` and `U` sums of type `V` kept as they
+/// are (the 256-bit `Y` sums of a time beyond the `i128` bound, with `i128`
+/// `U` sums).
+pub(crate) fn pava_in<T, W, V>(
     xs: &[T],
     us: &[T],
     parallel_min: usize,
     y: impl Fn(T, T) -> W + Sync,
-) -> Vec<Run<W>> {
+) -> Vec<Run<W, V>>
+where
+    T: Copy + Into<V> + Sync,
+    W: Sum + Word + Send,
+    V: Sum + Word + Send,
+{
     match halves(xs, us, parallel_min, y) {
         Halves::One(runs) => runs,
         Halves::Two(mut left, right) => {
@@ -69,21 +75,21 @@ pub(crate) fn pava_in<T: Copy + Into<W> + Sync, W: Sum + Word + Send>(
 }
 
 /// The blocks of all the entries, or of each half.
-enum Halves<W> {
+enum Halves<W, V> {
     /// One thread ran on all of them.
-    One(Vec<Run<W>>),
+    One(Vec<Run<W, V>>),
     /// The left half's blocks and the right half's, still to be joined.
-    Two(Vec<Run<W>>, Vec<Run<W>>),
+    Two(Vec<Run<W, V>>, Vec<Run<W, V>>),
 }
 
 /// [`pava_columns`] on the two halves by two threads when
 /// `n ≥ parallel_min`, on all the entries by one otherwise.
-fn halves<T: Copy + Into<W> + Sync, W: Sum + Send>(
+fn halves<T: Copy + Into<V> + Sync, W: Sum + Send, V: Sum + Send>(
     xs: &[T],
     us: &[T],
     parallel_min: usize,
     y: impl Fn(T, T) -> W + Sync,
-) -> Halves<W> {
+) -> Halves<W, V> {
     let n = xs.len().min(us.len());
     if n < parallel_min.max(2) {
         return Halves::One(pava_columns(xs, us, &y));
@@ -109,7 +115,7 @@ fn halves<T: Copy + Into<W> + Sync, W: Sum + Send>(
 /// Pushes the blocks of `right` (PAVA's blocks of the entries that follow
 /// `stack`'s) on `stack`, pooling while the top violates (module
 /// documentation).
-pub(crate) fn join<W: Word>(stack: &mut Vec<Run<W>>, right: Vec<Run<W>>) {
+pub(crate) fn join<W: Word, V: Word>(stack: &mut Vec<Run<W, V>>, right: Vec<Run<W, V>>) {
     let mut rest = right.into_iter();
     while let Some(mut b) = rest.next() {
         let mut pooled = false;

@@ -128,9 +128,12 @@ const NARROW_BITS: u64 = 63;
 #[derive(Debug, Clone)]
 enum Columns {
     /// Every `|X̃_i|`, `|U_i|` has at most [`NARROW_BITS`] bits.
-    Narrow { x: Arc<[i64]>, u: Arc<[i64]> },
+    Narrow { x: Arc<Vec<i64>>, u: Arc<Vec<i64>> },
     /// Some value has more.
-    Wide { x: Arc<[i128]>, u: Arc<[i128]> },
+    Wide {
+        x: Arc<Vec<i128>>,
+        u: Arc<Vec<i128>>,
+    },
 }
 
 impl Columns {
@@ -139,22 +142,25 @@ impl Columns {
     fn new(x: Vec<i128>, u: Vec<i128>, x_bits: u64, u_bits: u64) -> Columns {
         if x_bits <= NARROW_BITS && u_bits <= NARROW_BITS {
             // Exact: |v| < 2^63 fits i64.
-            let narrow = |v: Vec<i128>| -> Arc<[i64]> {
-                v.into_iter()
-                    .map(|w| {
-                        debug_assert!(i64::try_from(w).is_ok());
-                        w as i64
-                    })
-                    .collect()
+            let narrow = |v: Vec<i128>| -> Arc<Vec<i64>> {
+                Arc::new(
+                    v.into_iter()
+                        .map(|w| {
+                            debug_assert!(i64::try_from(w).is_ok());
+                            w as i64
+                        })
+                        .collect(),
+                )
             };
             Columns::Narrow {
                 x: narrow(x),
                 u: narrow(u),
             }
         } else {
+            // The vectors themselves, not a copy.
             Columns::Wide {
-                x: x.into(),
-                u: u.into(),
+                x: Arc::new(x),
+                u: Arc::new(u),
             }
         }
     }
@@ -212,43 +218,50 @@ impl Dyadic {
         if a == 0 {
             return None;
         }
-        let px = xs
-            .iter()
-            .map(|&d| decompose(d))
-            .collect::<Option<Vec<_>>>()?;
-        let pu = us
-            .iter()
-            .map(|&d| decompose(d))
-            .collect::<Option<Vec<_>>>()?;
-        let least = |p: &[(i64, i64)]| p.iter().filter(|v| v.0 != 0).map(|v| v.1).min();
-        let ex = least(&px).map_or(-b_s, |e| e.min(-b_s));
-        let eu = least(&pu).unwrap_or(0);
+        // Two passes over the doubles and none over intermediate vectors:
+        // the least exponents first, then each scaled value straight into
+        // its column, checked and measured on the way.
+        let least = |v: &[f64]| -> Option<Option<i64>> {
+            let mut least: Option<i64> = None;
+            for &d in v {
+                let (m, e) = decompose(d)?;
+                if m != 0 {
+                    least = Some(least.map_or(e, |l| l.min(e)));
+                }
+            }
+            Some(least)
+        };
+        let ex = least(xs)?.map_or(-b_s, |e| e.min(-b_s));
+        let eu = least(us)?.unwrap_or(0);
         // R = a 2^{−b_s − ex}, X̃_i = b_o m_i 2^{e_i − ex} − R i.
         let two_r = shl_exact(i128::from(a), u64::try_from(-b_s - ex).ok()?)?;
         let b = i128::from(b_odd);
-        let x = px
-            .iter()
-            .enumerate()
-            .map(|(i, &(m, e))| {
-                let scaled = shl_exact(i128::from(m) * b, (e - ex) as u64)?;
-                scaled.checked_sub(two_r.checked_mul(i128::try_from(i).ok()?)?)
-            })
-            .collect::<Option<Vec<_>>>()?;
-        drop(px);
-        let u = pu
-            .iter()
-            .map(|&(m, e)| shl_exact(i128::from(m), (e - eu) as u64))
-            .collect::<Option<Vec<_>>>()?;
-        drop(pu);
-        // `df:KN` and `def:velcone` on the scaled data, the checks of
-        // `InitialData::new` (the general path names the first failure).
-        for i in 1..n {
-            if x[i] < x[i - 1] || (x[i] == x[i - 1] && u[i] < u[i - 1]) {
-                return None;
+        let mut x = Vec::with_capacity(n);
+        let mut u = Vec::with_capacity(n);
+        let (mut x_or, mut u_or) = (0u128, 0u128);
+        // `R i`, `None` once it leaves `i128` (an error only if used).
+        let mut step = Some(0i128);
+        for (&dx, &du) in xs.iter().zip(us) {
+            let (m, e) = decompose(dx)?;
+            let scaled = shl_exact(i128::from(m) * b, (e - ex) as u64)?;
+            let xi = scaled.checked_sub(step?)?;
+            let (m, e) = decompose(du)?;
+            let ui = shl_exact(i128::from(m), (e - eu) as u64)?;
+            // `df:KN` and `def:velcone` on the scaled data, the checks of
+            // `InitialData::new` (the general path names the first failure).
+            if let (Some(&xp), Some(&up)) = (x.last(), u.last()) {
+                if xi < xp || (xi == xp && ui < up) {
+                    return None;
+                }
             }
+            // The bits of the largest `|v|` are those of the `or` of all.
+            x_or |= xi.unsigned_abs();
+            u_or |= ui.unsigned_abs();
+            x.push(xi);
+            u.push(ui);
+            step = step.and_then(|s| s.checked_add(two_r));
         }
-        let max_bits = |v: &[i128]| v.iter().map(|w| bits(w.unsigned_abs())).max().unwrap_or(0);
-        let (x_bits, u_bits) = (max_bits(&x), max_bits(&u));
+        let (x_bits, u_bits) = (bits(x_or), bits(u_or));
         Some(Dyadic {
             radius,
             x_bits,
@@ -275,7 +288,8 @@ impl Dyadic {
     /// The same scene on `i128` columns (tests compare the two widths).
     #[cfg(test)]
     fn widened(&self) -> Dyadic {
-        let widen = |v: &[i64]| -> Arc<[i128]> { v.iter().map(|&w| i128::from(w)).collect() };
+        let widen =
+            |v: &[i64]| -> Arc<Vec<i128>> { Arc::new(v.iter().map(|&w| i128::from(w)).collect()) };
         let columns = match &self.columns {
             Columns::Narrow { x, u } => Columns::Wide {
                 x: widen(x),
@@ -371,7 +385,7 @@ impl Dyadic {
     }
 
     /// The PAVA on 256-bit sums ([`wide`]).
-    fn wide_sums<T: Copy + Into<I256> + Sync>(
+    fn wide_sums<T: Copy + Into<I256> + Into<i128> + Sync>(
         &self,
         x: &[T],
         u: &[T],

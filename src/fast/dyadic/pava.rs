@@ -98,7 +98,7 @@ impl<const L: usize> Sum for Int<L> {
 /// [`crate::fast::kernel::pools`] on sums of type `W`: is `a`'s mean `≥`
 /// `b`'s in the lexicographic order on `(Y, U)`?
 #[inline]
-fn pools<W: Sum>(a: &Run<W>, b: &Run<W>) -> bool {
+fn pools<W: Sum, V: Sum>(a: &Run<W, V>, b: &Run<W, V>) -> bool {
     projection::pools(a.sy.times_size(b.k).cmp(&b.sy.times_size(a.k)), || {
         a.su.times_size(b.k).cmp(&b.su.times_size(a.k))
     })
@@ -119,14 +119,17 @@ pub(crate) fn widened<W: Sum + Into<i128>>(runs: Vec<Run<W>>) -> Vec<Run<i128>> 
 /// adjacent blocks pooled while the left mean is `≥` the right one. The
 /// sums must satisfy the width bound of `W` (the products of a sum and a
 /// block size fit `W`): the arithmetic wraps, it never checks. The
-/// columns are `i64` or `i128` ([`super::Columns`]).
-pub(crate) fn pava<T: Copy + Into<W>, W: Sum>(
+/// columns are `i64` or `i128` ([`super::Columns`]). The `U` sums are on
+/// their own words `V` (the 256-bit `Y` sums keep `i128` `U` sums: their
+/// bound does not depend on `t`), so the blocks come out in the words their
+/// users read, with no second pass over them.
+pub(crate) fn pava<T: Copy + Into<V>, W: Sum, V: Sum>(
     xs: &[T],
     us: &[T],
     y: impl Fn(T, T) -> W,
-) -> Vec<Run<W>> {
+) -> Vec<Run<W, V>> {
     debug_assert_eq!(xs.len(), us.len());
-    let mut stack: Vec<Run<W>> = Vec::with_capacity(1024);
+    let mut stack: Vec<Run<W, V>> = Vec::with_capacity(1024);
     // Iterators over the two columns: no bounds check per entry.
     let mut entries = xs.iter().zip(us).map(|(&x, &u)| (y(x, u), u.into()));
     let Some((sy, su)) = entries.next() else {

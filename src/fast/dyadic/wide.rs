@@ -101,7 +101,7 @@ impl Wide {
     /// The PAVA on `Y_i = A X̃_i + B U_i` in 256 bits; `None` when a bound
     /// of the module documentation fails. `x_bits`, `u_bits`: bits of the
     /// largest `|X̃_i|`, `|U_i|`; `two_r`: `R`.
-    pub(crate) fn new<T: Copy + Into<I256> + Sync>(
+    pub(crate) fn new<T: Copy + Into<I256> + Into<i128> + Sync>(
         xs: &[T],
         us: &[T],
         a: &Factor,
@@ -123,20 +123,11 @@ impl Wide {
         }
         let c = a.wide()?.wrapping_mul(I256::from_i128(two_r));
         let (ta, tb) = (Times::new(a)?, Times::new(b)?);
+        // `|ΣU| < 2^{u_bits + b_K} ≤ 2^127` (checked above): the `U` sums
+        // on `i128`, exact.
         let runs = halves::pava_in(xs, us, parallel_min, |x: T, u: T| {
             ta.apply(x.into()).plus(tb.apply(u.into()))
         });
-        let runs = runs
-            .into_iter()
-            .map(|r| {
-                Some(Run {
-                    k: r.k,
-                    sy: r.sy,
-                    // `|ΣU| < 2^{u_bits + b_K} ≤ 2^127`.
-                    su: r.su.to_i128()?,
-                })
-            })
-            .collect::<Option<Vec<_>>>()?;
         Some(Wide { runs, c })
     }
 
@@ -184,6 +175,11 @@ pub(crate) fn nearest(num: I256, den: u64, exp: i64) -> f64 {
 /// `s / k` as `⌊s/k⌋` and the fraction of [`Split`] (whose `floor` is not
 /// used by [`nearest_plus`]).
 fn split(s: I256, k: u64) -> (I256, Split) {
+    if k == 1 {
+        // A block of one entry (most of them when few particles collide):
+        // no division.
+        return (s, Split::of(0, Fraction64::ZERO));
+    }
     let (floor, rem) = s.div_rem_floor(k);
     let up = if rem == 0 {
         Fraction64::ZERO
