@@ -39,6 +39,7 @@ pub mod explore;
 pub mod json;
 pub mod lift;
 pub mod poly;
+#[cfg(feature = "json")]
 pub mod record;
 pub mod relax;
 pub mod smt;
@@ -99,7 +100,7 @@ pub trait Program {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(
     feature = "json",
-    derive(serde::Serialize),
+    derive(serde::Serialize, serde::Deserialize),
     serde(rename_all = "lowercase")
 )]
 #[cfg_attr(all(test, feature = "json"), derive(schemars::JsonSchema))]
