@@ -88,11 +88,7 @@ fn no_json_is_written_by_hand() {
         }
     }
     assert!(checked > 100, "{checked} files");
-    assert!(
-        found.is_empty(),
-        "JSON written by hand:\n{}",
-        found.join("\n")
-    );
+    common::assert_none("JSON written by hand", &found);
 }
 
 #[test]

@@ -92,7 +92,7 @@ fn no_layer_imports_a_layer_above_it() {
         checked += 1;
     }
     assert!(checked > 20, "only {checked} files read: is src/ there?");
-    assert!(violations.is_empty(), "{}", violations.join("\n"));
+    common::assert_none("upward or same-layer imports", &violations);
 }
 
 #[test]

@@ -147,10 +147,9 @@ fn no_function_under_prove_is_over_100_lines() {
         }
     }
     assert!(functions > 200, "only {functions} functions read");
-    assert!(
-        long.is_empty(),
-        "over {MAX_FUNCTION_LINES} lines (split them):\n{}",
-        long.join("\n")
+    common::assert_none(
+        &format!("over {MAX_FUNCTION_LINES} lines (split them)"),
+        &long,
     );
 }
 
@@ -200,11 +199,7 @@ fn the_architecture_page_names_every_folder() {
     let folders = folders();
     assert!(folders.len() > 30, "{folders:?}");
     let missing = unnamed(&page, &folders);
-    assert!(
-        missing.is_empty(),
-        "docs/guide/architecture.md does not name:\n{}",
-        missing.join("\n")
-    );
+    common::assert_none("docs/guide/architecture.md does not name", &missing);
 }
 
 #[test]
@@ -288,11 +283,7 @@ fn comments_cite_files_that_exist() {
         }
     }
     assert!(cited > 50, "only {cited} citations read");
-    assert!(
-        missing.is_empty(),
-        "comments cite files that do not exist:\n{}",
-        missing.join("\n")
-    );
+    common::assert_none("comments cite files that do not exist", &missing);
 }
 
 #[test]

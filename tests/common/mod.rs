@@ -99,3 +99,9 @@ fn walk(dir: &Path, folders: bool) -> Vec<PathBuf> {
 pub fn without_tests(code: &str) -> &str {
     code.split("#[cfg(test)]").next().unwrap_or(code)
 }
+
+/// Fails, listing every breach of a rule one per line, unless there is none.
+pub fn assert_none<S: AsRef<str>>(rule: &str, breaches: &[S]) {
+    let list: Vec<&str> = breaches.iter().map(AsRef::as_ref).collect();
+    assert!(list.is_empty(), "{rule}:\n{}", list.join("\n"));
+}
