@@ -2,7 +2,7 @@
 //! as documented (timings are reports, never asserted).
 
 use num_rational::BigRational;
-use sticky::report::bench::{json, run, scene, BenchOptions};
+use sticky::report::bench::{json, run, scene, BenchOptions, Metric};
 
 #[test]
 fn bench_reports_every_method() {
@@ -11,7 +11,7 @@ fn bench_reports_every_method() {
         reps: 1,
         peers: false,
         events: true,
-        memory: false,
+        metric: Metric::Time,
     };
     let t = BigRational::new(1.into(), 100.into());
     let scripts = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scripts");
@@ -194,7 +194,7 @@ fn bench_reports_progress_and_stops_when_cancelled() {
         reps: 2,
         peers: false,
         events: false,
-        memory: false,
+        metric: Metric::Time,
     };
     let t = BigRational::new(1.into(), 100.into());
     let scripts = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scripts");

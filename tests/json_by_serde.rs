@@ -5,21 +5,11 @@
 //! key (`\"key\": `) or opens an object (`{{\"`). Test modules
 //! (`#[cfg(test)]` to the end of a file) and comments are skipped.
 
-use std::fs;
-use std::path::{Path, PathBuf};
+mod common;
 
-/// Files allowed to, and why: pending ones go when their output is typed;
-/// the readers build a search key (`"key": `), they write nothing.
-const PENDING: [(&str, &str); 2] = [
-    (
-        "prove/record.rs",
-        "reader: finds a key in the committed proof record",
-    ),
-    (
-        "report/atlas/peers.rs",
-        "reader: finds a key in a peer solver's output",
-    ),
-];
+/// Files allowed to, and why (a pending writer goes when its output is
+/// typed); none today: the readers too parse with serde.
+const PENDING: &[(&str, &str)] = &[];
 
 const WRITERS: [&str; 7] = [
     "format!(",
@@ -30,17 +20,6 @@ const WRITERS: [&str; 7] = [
     "push_str(",
     "write_all(",
 ];
-
-fn visit(dir: &Path, files: &mut Vec<PathBuf>) {
-    for entry in fs::read_dir(dir).expect("src is readable") {
-        let path = entry.expect("directory entry").path();
-        if path.is_dir() {
-            visit(&path, files);
-        } else if path.extension().is_some_and(|e| e == "rs") {
-            files.push(path);
-        }
-    }
-}
 
 /// The first string literal of `code` (raw text, escapes kept).
 fn first_literal(code: &str) -> Option<&str> {
@@ -69,7 +48,7 @@ fn writes_json(literal: &str) -> bool {
 
 /// The hand-written JSON writers in `code`: (line, literal).
 fn hand_json(code: &str) -> Vec<(usize, String)> {
-    let code = code.split("#[cfg(test)]").next().unwrap_or(code);
+    let code = common::without_tests(code);
     let mut out = Vec::new();
     for writer in WRITERS {
         for (at, _) in code.match_indices(writer) {
@@ -96,29 +75,20 @@ fn hand_json(code: &str) -> Vec<(usize, String)> {
 
 #[test]
 fn no_json_is_written_by_hand() {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
-    let mut files = Vec::new();
-    visit(&src, &mut files);
     let mut found = Vec::new();
     let mut checked = 0;
-    for path in files {
-        let rel = path.strip_prefix(&src).expect("under src");
-        let rel = rel.to_string_lossy().replace('\\', "/");
-        if PENDING.iter().any(|(f, _)| *f == rel) {
+    for file in common::rust_files(&common::root().join("src")) {
+        let rel = &file.rel;
+        if PENDING.iter().any(|(f, _)| f == rel) {
             continue;
         }
-        let code = fs::read_to_string(&path).expect("readable");
         checked += 1;
-        for (line, lit) in hand_json(&code) {
+        for (line, lit) in hand_json(&file.text()) {
             found.push(format!("src/{rel}:{line}: {lit}"));
         }
     }
     assert!(checked > 100, "{checked} files");
-    assert!(
-        found.is_empty(),
-        "JSON written by hand:\n{}",
-        found.join("\n")
-    );
+    common::assert_none("JSON written by hand", &found);
 }
 
 #[test]

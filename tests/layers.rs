@@ -7,8 +7,7 @@
 //! Test modules (`#[cfg(test)]` to the end of a file) and comments are
 //! not imports and are skipped.
 
-use std::fs;
-use std::path::Path;
+mod common;
 
 /// Rank of a top-level module: the model core is 0, then the layers.
 fn rank(module: &str) -> Option<usize> {
@@ -65,54 +64,35 @@ fn imports(code: &str) -> Vec<String> {
     out
 }
 
-fn visit(dir: &Path, files: &mut Vec<std::path::PathBuf>) {
-    for entry in fs::read_dir(dir).expect("src is readable") {
-        let path = entry.expect("directory entry").path();
-        if path.is_dir() {
-            visit(&path, files);
-        } else if path.extension().is_some_and(|e| e == "rs") {
-            files.push(path);
-        }
-    }
-}
-
 #[test]
 fn no_layer_imports_a_layer_above_it() {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
-    let mut files = Vec::new();
-    visit(&src, &mut files);
     let mut violations = Vec::new();
     let mut checked = 0;
-    for path in files {
-        let rel = path.strip_prefix(&src).expect("under src");
-        let first = rel.components().next().expect("non-empty path");
-        let first = first.as_os_str().to_string_lossy();
+    for file in common::rust_files(&common::root().join("src")) {
+        let rel = &file.rel;
+        let first = rel.split('/').next().expect("non-empty path");
         if first == "bin" || first == "lib.rs" {
             continue; // the binary sits above every layer; lib.rs declares them
         }
         let module = first.trim_end_matches(".rs").to_string();
         let own = rank(&module).expect("a known module name");
-        let text = fs::read_to_string(&path).expect("readable source");
-        let code = text.split("#[cfg(test)]").next().unwrap_or("");
+        let text = file.text();
+        let code = common::without_tests(&text);
         for name in imports(code) {
             let Some(r) = rank(&name) else { continue };
             if name != module && r > own {
                 violations.push(format!(
-                    "{} (layer {own}) imports crate::{name} (layer {r})",
-                    rel.display()
+                    "{rel} (layer {own}) imports crate::{name} (layer {r})"
                 ));
             }
             if name != module && r == own && own > 0 {
-                violations.push(format!(
-                    "{} imports crate::{name} of the same layer",
-                    rel.display()
-                ));
+                violations.push(format!("{rel} imports crate::{name} of the same layer"));
             }
         }
         checked += 1;
     }
     assert!(checked > 20, "only {checked} files read: is src/ there?");
-    assert!(violations.is_empty(), "{}", violations.join("\n"));
+    common::assert_none("upward or same-layer imports", &violations);
 }
 
 #[test]

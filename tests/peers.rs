@@ -24,7 +24,7 @@ use sticky::reference::measure::Comparison;
 use sticky::report::peers::{
     default_scripts_dir, peer, peers, run_peer, run_peer_within, PeerOutcome, Source,
 };
-use sticky::report::solution::decimal;
+use sticky::report::solution::{decimal, Shown};
 use sticky::scene::{Scene, SceneKind};
 
 const SCENE: &str = "name = \"peers-small\"\n[particles]\nradius = \"1/16\"\npositions = [\"0\", \"1/4\", \"1\", \"5/4\", \"2\", \"3\"]\nvelocities = [\"1\", \"1/2\", \"0\", \"-1\", \"-1/2\", \"-1\"]\n";
@@ -90,8 +90,8 @@ fn every_installed_peer_lands_near_the_exact_answer() {
         println!(
             "{:<32} max |x − x(t)| {:<10} max |u − u(t)| {:<10} overlaps {overlaps} wrong clusters {wrong}  wall {:.2} s",
             p.name,
-            decimal(&worst_x, 3, false),
-            decimal(&worst_u, 3, false),
+            decimal(&worst_x, 3, Shown::Itself),
+            decimal(&worst_u, 3, Shown::Itself),
             run.wall_seconds
         );
         if worst_x >= BigRational::new(1.into(), 10.into()) {
@@ -258,7 +258,7 @@ fn interior_point_peers_land_within_a_tenth_of_a_diameter() {
             Some(Err(e)) => panic!("{e}"),
             Some(Ok(c)) => {
                 let e = c.position_max.value;
-                println!("{name}: max |x − x(t)| {}", decimal(&e, 3, false));
+                println!("{name}: max |x − x(t)| {}", decimal(&e, 3, Shown::Itself));
                 assert!(e < tenth, "{name}: position error {e} ≥ 2r/10");
             }
         }

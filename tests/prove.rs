@@ -21,7 +21,7 @@ use sticky::contact::multipliers;
 use sticky::initial::{unshift, InitialData};
 use sticky::projection::Block;
 use sticky::prove::explore::PathEnd;
-use sticky::prove::{self, Input, Program, ProofLimits, Status};
+use sticky::prove::{self, Input, Program, ProofLimits, Status, Times};
 use sticky::state::State;
 use sticky::trajectory::Trajectory;
 use sticky::Scalar;
@@ -265,7 +265,7 @@ fn mutants_are_refuted_with_a_witness() {
         let r = prove::prove_program(
             &format!("mutant {m:?}"),
             2,
-            false,
+            Times::One,
             &MutantCheck(m),
             limits(),
         );
@@ -302,7 +302,7 @@ fn the_unmutated_harness_is_proved() {
             PathEnd::Holds
         }
     }
-    let r = prove::prove_program("faithful", 3, true, &Faithful, limits());
+    let r = prove::prove_program("faithful", 3, Times::Two, &Faithful, limits());
     assert_eq!(r.status, Status::Proved, "{:?}", r.note);
 }
 
@@ -336,9 +336,9 @@ fn toy_programs() {
             }
         }
     }
-    let r = prove::prove_program("toy-false", 1, false, &Toy(true), limits());
+    let r = prove::prove_program("toy-false", 1, Times::One, &Toy(true), limits());
     assert_eq!(r.status, Status::Refuted, "{:?}", r.note);
-    let r = prove::prove_program("toy-true", 1, false, &Toy(false), limits());
+    let r = prove::prove_program("toy-true", 1, Times::One, &Toy(false), limits());
     assert_eq!(r.status, Status::Proved, "{:?}", r.note);
     let _ = BigRational::from_integer(1.into());
 }
@@ -376,7 +376,7 @@ fn only_implied_decisions_leave_the_query() {
             PathEnd::Holds
         }
     }
-    let r = prove::prove_program("nested", 1, false, &Nested, limits());
+    let r = prove::prove_program("nested", 1, Times::One, &Nested, limits());
     assert_eq!(r.status, Status::Proved, "{:?}", r.note);
     assert_eq!(r.paths, 2, "{r:?}");
 }

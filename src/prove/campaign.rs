@@ -175,27 +175,47 @@ pub fn table_row(r: &ProofResult, erratum: bool) -> String {
     text
 }
 
+/// How the report of `sticky prove` is written.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Layout {
+    /// A table for people: a head naming the solver, one row per claim and N.
+    Table,
+    /// One [`ProofRecord`](super::json::ProofRecord) per line (`--json`).
+    JsonLines,
+}
+
+impl Layout {
+    /// [`Layout::JsonLines`] when `json` (the `--json` flag), else the table.
+    pub fn of_flag(json: bool) -> Layout {
+        if json {
+            Layout::JsonLines
+        } else {
+            Layout::Table
+        }
+    }
+}
+
 /// One line of the report: JSON (`sticky prove --json`) or the table row.
-pub fn report_line(line: &ProofLine, as_json: bool) -> String {
+pub fn report_line(line: &ProofLine, layout: Layout) -> String {
     let r = line.result();
-    if as_json {
-        let mut text = super::json::line(&r, line.erratum);
-        text.push('\n');
-        text
-    } else {
-        table_row(&r, line.erratum)
+    match layout {
+        Layout::JsonLines => {
+            let mut text = super::json::line(&r, line.erratum);
+            text.push('\n');
+            text
+        }
+        Layout::Table => table_row(&r, line.erratum),
     }
 }
 
 /// The whole report of a single run, from every unit's line in unit order.
-pub fn render(setup: &ProveSetup, lines: &[ProofLine], as_json: bool) -> String {
-    let mut out = if as_json {
-        String::new()
-    } else {
-        table_head(&setup.solver)
+pub fn render(setup: &ProveSetup, lines: &[ProofLine], layout: Layout) -> String {
+    let mut out = match layout {
+        Layout::JsonLines => String::new(),
+        Layout::Table => table_head(&setup.solver),
     };
     for line in lines {
-        out.push_str(&report_line(line, as_json));
+        out.push_str(&report_line(line, layout));
     }
     out
 }

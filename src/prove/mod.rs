@@ -39,6 +39,7 @@ pub mod explore;
 pub mod json;
 pub mod lift;
 pub mod poly;
+#[cfg(feature = "json")]
 pub mod record;
 pub mod relax;
 pub mod smt;
@@ -99,7 +100,7 @@ pub trait Program {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(
     feature = "json",
-    derive(serde::Serialize),
+    derive(serde::Serialize, serde::Deserialize),
     serde(rename_all = "lowercase")
 )]
 #[cfg_attr(all(test, feature = "json"), derive(schemars::JsonSchema))]
@@ -147,12 +148,23 @@ pub struct ProofResult {
     pub note: Option<String>,
 }
 
+/// The times a claim is quantified over: section 2's statements hold at
+/// every `t ≥ 0`, the semigroup and contraction ones compare two times
+/// `0 ≤ s ≤ t`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Times {
+    /// Every real `t ≥ 0`.
+    One,
+    /// Every real `0 ≤ s ≤ t` (the checker gets the times `[s, t]`).
+    Two,
+}
+
 /// The variable names for N particles: `x1 … xN`, `u1 … uN`, `t`, `s`.
-pub fn variable_names(n: usize, two_times: bool) -> Vec<String> {
+pub fn variable_names(n: usize, times: Times) -> Vec<String> {
     let mut names: Vec<String> = (1..=n).map(|i| format!("x{i}")).collect();
     names.extend((1..=n).map(|i| format!("u{i}")));
     names.push("t".into());
-    if two_times {
+    if times == Times::Two {
         names.push("s".into());
     }
     names
@@ -164,7 +176,7 @@ fn var(i: usize) -> Var {
 
 /// The hypotheses of section 2 at N: `x⁰ ∈ K^N`, `u⁰ ∈ C_{x⁰}`, `2r = 1/N`,
 /// `t ≥ 0` (and `0 ≤ s ≤ t`).
-fn hypotheses(n: usize, two_times: bool) -> (Vec<Hypothesis>, String) {
+fn hypotheses(n: usize, times: Times) -> (Vec<Hypothesis>, String) {
     let two_r = BigRational::new(1.into(), (n as i64).into());
     let mut hs = Vec::new();
     for i in 0..n.saturating_sub(1) {
@@ -177,16 +189,15 @@ fn hypotheses(n: usize, two_times: bool) -> (Vec<Hypothesis>, String) {
         hs.push(Hypothesis::Any(vec![(gap, Rel::Gt), (closing, Rel::Le)]));
     }
     let t = Poly::var(var(2 * n));
-    if two_times {
+    if times == Times::Two {
         let s = Poly::var(var(2 * n + 1));
         hs.push(Hypothesis::Sign(s.clone(), Rel::Ge));
         hs.push(Hypothesis::Sign(t.sub(&s), Rel::Ge));
     }
     hs.push(Hypothesis::Sign(t, Rel::Ge));
-    let times = if two_times {
-        "all real 0 ≤ s ≤ t (checked at the times [s, t])"
-    } else {
-        "all real t ≥ 0"
+    let times = match times {
+        Times::Two => "all real 0 ≤ s ≤ t (checked at the times [s, t])",
+        Times::One => "all real t ≥ 0",
     };
     let text = format!(
         "N = {n}, 2r = 1/N; all real x⁰ ∈ K^N (x⁰_(i+1) − x⁰_i ≥ 2r) and u⁰ ∈ C_x⁰ (u⁰_i ≤ u⁰_(i+1) where x⁰_(i+1) − x⁰_i = 2r); {times}"
@@ -194,22 +205,21 @@ fn hypotheses(n: usize, two_times: bool) -> (Vec<Hypothesis>, String) {
     (hs, text)
 }
 
-fn symbolic_input(n: usize, two_times: bool) -> Input<Sym> {
+fn symbolic_input(n: usize, times: Times) -> Input<Sym> {
     let radius = Sym::constant(BigRational::new(1.into(), (2 * n as i64).into()));
     let t = Sym::var(var(2 * n));
     Input {
         positions: (0..n).map(|i| Sym::var(var(i))).collect(),
         velocities: (0..n).map(|i| Sym::var(var(n + i))).collect(),
         radius,
-        times: if two_times {
-            vec![Sym::var(var(2 * n + 1)), t]
-        } else {
-            vec![t]
+        times: match times {
+            Times::Two => vec![Sym::var(var(2 * n + 1)), t],
+            Times::One => vec![t],
         },
     }
 }
 
-fn concrete_input(n: usize, two_times: bool, point: &[BigRational]) -> Input<BigRational> {
+fn concrete_input(n: usize, times: Times, point: &[BigRational]) -> Input<BigRational> {
     let at = |i: usize| {
         point
             .get(i)
@@ -220,10 +230,9 @@ fn concrete_input(n: usize, two_times: bool, point: &[BigRational]) -> Input<Big
         positions: (0..n).map(at).collect(),
         velocities: (0..n).map(|i| at(n + i)).collect(),
         radius: <BigRational as One>::one() / BigRational::from_integer((2 * n as i64).into()),
-        times: if two_times {
-            vec![at(2 * n + 1), at(2 * n)]
-        } else {
-            vec![at(2 * n)]
+        times: match times {
+            Times::Two => vec![at(2 * n + 1), at(2 * n)],
+            Times::One => vec![at(2 * n)],
         },
     }
 }
@@ -250,11 +259,11 @@ fn witness_toml(id: &str, input: &Input<BigRational>) -> String {
 pub fn prove_program<P: Program>(
     id: &str,
     n: usize,
-    two_times: bool,
+    times: Times,
     program: &P,
     limits: Limits,
 ) -> ProofResult {
-    prove_program_observed(id, n, two_times, program, limits, &Silent)
+    prove_program_observed(id, n, times, program, limits, &Silent)
 }
 
 /// [`prove_program`], telling `progress` of every path explored (and
@@ -262,15 +271,15 @@ pub fn prove_program<P: Program>(
 pub fn prove_program_observed<P: Program>(
     id: &str,
     n: usize,
-    two_times: bool,
+    times: Times,
     program: &P,
     limits: Limits,
     progress: &dyn Progress,
 ) -> ProofResult {
     let start = std::time::Instant::now();
-    let names = variable_names(n, two_times);
-    let (hyps, hyp_text) = hypotheses(n, two_times);
-    let sym = symbolic_input(n, two_times);
+    let names = variable_names(n, times);
+    let (hyps, hyp_text) = hypotheses(n, times);
+    let sym = symbolic_input(n, times);
     let run = || program.run(&sym);
     let mut result = ProofResult {
         id: id.to_string(),
@@ -305,7 +314,7 @@ pub fn prove_program_observed<P: Program>(
         }
         Verdict::Unknown(why) => result.note = Some(why),
         Verdict::Counterexample { message, point } => {
-            let input = concrete_input(n, two_times, &point);
+            let input = concrete_input(n, times, &point);
             match program.run(&input) {
                 PathEnd::Violated(exact) => {
                     result.status = Status::Refuted;
@@ -346,8 +355,8 @@ pub struct Target {
     /// `true` when the ledger reports the printed claim false (so the
     /// prover is expected to refute it at some N).
     pub erratum: bool,
-    /// Checked at two times `0 ≤ s ≤ t` rather than one `t ≥ 0`.
-    pub two_times: bool,
+    /// The times the claim is quantified over.
+    pub times: Times,
 }
 
 impl Program for Target {
@@ -427,14 +436,18 @@ pub fn targets() -> Vec<Target> {
             continue;
         }
         let symbolic = !NOT_SYMBOLIC.iter().any(|(id, _)| *id == c.id);
-        let two_times = TWO_TIMES.contains(&c.id);
+        let times = if TWO_TIMES.contains(&c.id) {
+            Times::Two
+        } else {
+            Times::One
+        };
         match &c.correction {
             None => out.push(Target {
                 id: c.id.to_string(),
                 registry_id: c.id,
                 which: Which::Printed,
                 erratum: false,
-                two_times,
+                times,
             }),
             Some(corr) => {
                 out.push(Target {
@@ -442,7 +455,7 @@ pub fn targets() -> Vec<Target> {
                     registry_id: c.id,
                     which: Which::Printed,
                     erratum: true,
-                    two_times,
+                    times,
                 });
                 if symbolic && matches!(corr.check, Kind::Case(_)) {
                     out.push(Target {
@@ -450,7 +463,7 @@ pub fn targets() -> Vec<Target> {
                         registry_id: c.id,
                         which: Which::Corrected,
                         erratum: false,
-                        two_times,
+                        times,
                     });
                 }
             }
@@ -471,8 +484,7 @@ pub fn prove_target_observed(
     limits: Limits,
     progress: &dyn Progress,
 ) -> ProofResult {
-    let mut result =
-        prove_program_observed(&target.id, n, target.two_times, target, limits, progress);
+    let mut result = prove_program_observed(&target.id, n, target.times, target, limits, progress);
     if target.registry_id == IDENTITY_ARGUMENT
         && target.which == Which::Printed
         && result.status == Status::Proved

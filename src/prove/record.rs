@@ -7,8 +7,9 @@
 
 use std::collections::BTreeMap;
 
+use serde::Deserialize;
+
 use super::Status;
-use crate::text::unstring;
 
 /// The record files, embedded (N = 1 … 3 for every claim; N = 4 for the
 /// main section-2 claims, several attempts with growing time limits).
@@ -23,8 +24,10 @@ pub const COMMITTED: [(&str, &str); 2] = [
     ),
 ];
 
-/// One line of a record: a claim at one N.
-#[derive(Debug, Clone, PartialEq, Eq)]
+/// One line of a record: a claim at one N (the fields of a
+/// [`ProofRecord`](super::json::ProofRecord) the ledger reads; the others
+/// are ignored).
+#[derive(Debug, Clone, PartialEq, Eq, Deserialize)]
 pub struct Line {
     /// The claim id as `sticky prove` prints it (` (corrected)` suffix for
     /// a correction).
@@ -37,35 +40,10 @@ pub struct Line {
     pub hypotheses: String,
 }
 
-/// The value of the string field `key` in one JSON line.
-fn string_field(line: &str, key: &str) -> Option<String> {
-    let at = line.find(&format!("\"{key}\": "))? + key.len() + 4;
-    unstring(&line[at..]).map(|(v, _)| v)
-}
-
 /// Parses one line of `sticky prove --json`.
 pub fn parse_line(line: &str) -> Result<Line, String> {
-    let bad = |what: &str| format!("not a `sticky prove --json` line ({what}): {line}");
-    let id = string_field(line, "id").ok_or_else(|| bad("id"))?;
-    let n_at = line.find("\"n\": ").ok_or_else(|| bad("n"))? + 5;
-    let digits: String = line[n_at..]
-        .chars()
-        .take_while(char::is_ascii_digit)
-        .collect();
-    let n = digits.parse().map_err(|_| bad("n"))?;
-    let status = match string_field(line, "status").as_deref() {
-        Some("proved") => Status::Proved,
-        Some("refuted") => Status::Refuted,
-        Some("unknown") => Status::Unknown,
-        _ => return Err(bad("status")),
-    };
-    let hypotheses = string_field(line, "hypotheses").ok_or_else(|| bad("hypotheses"))?;
-    Ok(Line {
-        id,
-        n,
-        status,
-        hypotheses,
-    })
+    serde_json::from_str(line)
+        .map_err(|e| format!("not a `sticky prove --json` line ({e}): {line}"))
 }
 
 /// Every line of the committed record, in file order.

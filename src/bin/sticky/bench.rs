@@ -92,6 +92,15 @@ fn malloc_env(mode: Memory) -> Vec<(&'static str, &'static str)> {
     }
 }
 
+/// What `--memory` asks the benchmark to measure.
+fn metric(args: &Args) -> bench::Metric {
+    if args.memory {
+        bench::Metric::PeakMemory
+    } else {
+        bench::Metric::Time
+    }
+}
+
 /// Re-runs the current command with glibc's allocator set up for the mode
 /// `args` asks for and returns the child's exit code; `None` when this
 /// process is already that child (or not on Linux, where nothing is
@@ -140,7 +149,7 @@ pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
         reps: args.reps.unwrap_or(if args.quick { 2 } else { 3 }),
         peers: !args.no_peers,
         events: !args.quick,
-        memory: args.memory,
+        metric: metric(&args),
     };
     // The repetition and the method being timed, the count and the time
     // left, on a terminal only (hidden when stderr is piped).
@@ -201,7 +210,7 @@ fn scaling(args: Args, out: &mut impl Write) -> Result<(), Failure> {
         ns.push(n);
         n = n.saturating_mul(10);
     }
-    let memory = args.memory;
+    let metric = metric(&args);
     if let Some(csv) = &args.charts_from {
         let text = std::fs::read_to_string(csv)
             .map_err(|e| Failure(format!("cannot read {}: {e}", csv.display())))?;
@@ -209,14 +218,14 @@ fn scaling(args: Args, out: &mut impl Write) -> Result<(), Failure> {
             .map_err(|e| Failure(format!("{}: {e}", csv.display())))?;
         let dir = args.out.unwrap_or_else(|| PathBuf::from("out/bench"));
         let paths =
-            bench::scaling_charts(&rows, &dir, memory).map_err(|e| Failure(e.to_string()))?;
+            bench::scaling_charts(&rows, &dir, metric).map_err(|e| Failure(e.to_string()))?;
         return print_paths(out, &paths);
     }
     let opts = bench::ScalingOptions {
         ns,
         reps: args.reps.unwrap_or(3),
         peers: !args.no_peers,
-        memory,
+        metric,
         out: args.out.unwrap_or_else(|| PathBuf::from("out/bench")),
     };
     // The regime and N being measured (one step each), the count and the
@@ -238,7 +247,7 @@ fn scaling(args: Args, out: &mut impl Write) -> Result<(), Failure> {
     bar.finish();
     let (rows, paths) = measured.map_err(|e| Failure(e.to_string()))?;
     for &(regime, _, _) in &bench::REGIMES {
-        let line = bench::slopes(&rows, regime, memory)
+        let line = bench::slopes(&rows, regime, metric)
             .iter()
             .map(|(m, s)| format!("{m} {s:.2}"))
             .collect::<Vec<_>>()
@@ -246,7 +255,10 @@ fn scaling(args: Args, out: &mut impl Write) -> Result<(), Failure> {
         writeln!(
             out,
             "{regime}: log-log slope of the total {} against N: {line}",
-            if memory { "memory" } else { "time" }
+            match metric {
+                bench::Metric::PeakMemory => "memory",
+                bench::Metric::Time => "time",
+            }
         )
         .map_err(io_err)?;
     }

@@ -53,24 +53,51 @@ pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
     } else {
         ledger::run(budget, &bar)
     };
-    render(out, &entries, budget, args.json, args.markdown)
+    render(
+        out,
+        &entries,
+        budget,
+        Layout::of_flags(args.json, args.markdown),
+    )
 }
 
-/// Prints the ledger: a table, JSON or Markdown.
+/// How the ledger is printed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Layout {
+    /// A table for people.
+    Table,
+    /// The JSON contract (`--json`).
+    Json,
+    /// The Markdown of `CLAIMS.md`, with the proof record's column
+    /// (`--markdown`).
+    Markdown,
+}
+
+impl Layout {
+    /// The layout the flags ask for (`--json` wins, as it always has).
+    pub fn of_flags(json: bool, markdown: bool) -> Layout {
+        match (json, markdown) {
+            (true, _) => Layout::Json,
+            (false, true) => Layout::Markdown,
+            (false, false) => Layout::Table,
+        }
+    }
+}
+
+/// Prints the ledger in `layout`.
 pub fn render(
     out: &mut impl Write,
     entries: &[Entry],
     budget: Budget,
-    as_json: bool,
-    as_markdown: bool,
+    layout: Layout,
 ) -> Result<(), Failure> {
-    let text = if as_json {
-        ledger::json(entries)
-    } else if as_markdown {
-        let proofs = sticky::prove::record::ledger_proofs().map_err(Failure)?;
-        ledger::markdown(entries, budget, &proofs)
-    } else {
-        ledger::table(entries)
+    let text = match layout {
+        Layout::Json => ledger::json(entries),
+        Layout::Markdown => {
+            let proofs = sticky::prove::record::ledger_proofs().map_err(Failure)?;
+            ledger::markdown(entries, budget, &proofs)
+        }
+        Layout::Table => ledger::table(entries),
     };
     writeln!(out, "{}", text.trim_end()).map_err(io_err)
 }

@@ -77,14 +77,23 @@ pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
     match campaign.as_str() {
         "prove" => {
             let (setup, lines) = merged(&files)?;
-            let text = sticky::prove::campaign::render(&setup, &lines, how.json);
+            let text = sticky::prove::campaign::render(
+                &setup,
+                &lines,
+                sticky::prove::campaign::Layout::of_flag(how.json),
+            );
             out.write_all(text.as_bytes()).map_err(io_err)
         }
         "claims" => {
             let (setup, results) = merged::<ClaimsSetup, ledger::UnitResult>(&files)?;
             let entries = sticky::claims::campaign::entries(&setup, &results)
                 .map_err(|e| Failure(format!("the shards do not make one ledger: {e}")))?;
-            crate::claims::render(out, &entries, setup.into(), how.json, how.markdown)
+            crate::claims::render(
+                out,
+                &entries,
+                setup.into(),
+                crate::claims::Layout::of_flags(how.json, how.markdown),
+            )
         }
         "converge" => {
             let (setup, results) = merged::<ConvergeSetup, Result<UnitResult, String>>(&files)?;

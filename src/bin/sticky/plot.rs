@@ -8,6 +8,7 @@ use num_rational::BigRational;
 use sticky::progress::Progress;
 use sticky::report::progress::Bar;
 use sticky::scene::{Scene, SceneKind};
+use sticky::solver::Solver;
 use sticky::Scalar;
 
 use crate::{lib_err, load, parse_time, print_paths, Failure};
@@ -77,7 +78,9 @@ fn plot(
     };
     bar.stage(&stages.label, Some(1 + charts as u64));
     stages.start("the exact history")?;
-    let traj = sticky::fast::merge::trajectory(&scene.data);
+    let traj = Solver::from_data(scene.data.clone())
+        .trajectory(bar)
+        .map_err(lib_err)?;
     stages.done();
     let t_end = t_end.or_else(|| scene.t_end.clone()).unwrap_or_else(|| {
         traj.last_collision()

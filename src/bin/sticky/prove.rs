@@ -97,7 +97,7 @@ pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
         }
         None if args.split.jobs.get() > 1 => {
             let lines = run_units(&units, args.split.jobs, work);
-            let text = campaign::render(&setup, &lines, args.json);
+            let text = campaign::render(&setup, &lines, campaign::Layout::of_flag(args.json));
             out.write_all(text.as_bytes()).map_err(io_err)
         }
         None => {
@@ -106,7 +106,7 @@ pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
                     .map_err(io_err)?;
             }
             for u in &units {
-                let text = campaign::report_line(&work(u), args.json);
+                let text = campaign::report_line(&work(u), campaign::Layout::of_flag(args.json));
                 // The bar is lifted while the line is written, so that the
                 // two do not interleave on a terminal.
                 bar.indicatif()

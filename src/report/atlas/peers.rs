@@ -209,23 +209,22 @@ impl DriverTiming {
     }
 
     /// The fields are numbers (or `null`) that the driver writes with
-    /// Python's `json.dumps`; a line without them gives no timing.
+    /// Python's `json.dumps`; a line that is not a JSON object, or lacks
+    /// them, gives no timing.
     fn parse(line: &str) -> DriverTiming {
-        let field = |key: &str| -> Option<&str> {
-            let at = line.find(&format!("\"{key}\": "))? + key.len() + 4;
-            let rest = &line[at..];
-            let end = rest.find([',', '}']).unwrap_or(rest.len());
-            Some(rest[..end].trim())
-        };
+        let object: serde_json::Value =
+            serde_json::from_str(line).unwrap_or(serde_json::Value::Null);
+        let field = |key: &str| object.get(key);
         let seconds = field("solve_seconds")
-            .and_then(|v| v.parse::<f64>().ok())
+            .and_then(serde_json::Value::as_f64)
             .filter(|s| s.is_finite() && *s >= 0.0);
         let repetitions = field("solve_repetitions")
-            .and_then(|v| v.parse::<usize>().ok())
+            .and_then(serde_json::Value::as_u64)
+            .and_then(|k| usize::try_from(k).ok())
             .filter(|k| *k > 0);
         DriverTiming {
             solve: seconds.zip(repetitions),
-            setup_seconds: field("setup_seconds").and_then(|v| v.parse::<f64>().ok()),
+            setup_seconds: field("setup_seconds").and_then(serde_json::Value::as_f64),
         }
     }
 }

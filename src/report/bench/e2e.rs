@@ -130,7 +130,8 @@ pub struct E2eOptions {
     pub peers: bool,
     /// The `sticky` binary.
     pub sticky: PathBuf,
-    /// The folder holding `peers/e2e_scipy.py`.
+    /// The folder holding the peers' drivers (the repository's `scripts/`,
+    /// with `scripts/peers/e2e_scipy.py`).
     pub scripts: PathBuf,
 }
 

@@ -63,6 +63,15 @@ use crate::projection::{isotonic, pava_blocks, shifted_free_flight};
 use crate::scalar::Scalar;
 use crate::trajectory::Trajectory;
 
+/// What a benchmark measures of each method.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Metric {
+    /// Warm timings (the allocator keeps pages, one untimed warm-up).
+    Time,
+    /// Peak memory (cold allocator, no warm-up: [`Memory::Cold`]).
+    PeakMemory,
+}
+
 /// What to measure.
 #[derive(Debug, Clone)]
 pub struct BenchOptions {
@@ -74,8 +83,8 @@ pub struct BenchOptions {
     pub peers: bool,
     /// Time the full event-driven trajectory too.
     pub events: bool,
-    /// Measure peak memory (cold allocator, no warm-up: [`Memory::Cold`]).
-    pub memory: bool,
+    /// Timings or peak memory.
+    pub metric: Metric,
 }
 
 /// One measured method.
@@ -333,7 +342,7 @@ pub fn run_with_progress(
     let mut peer_inputs: Vec<Vec<f64>> = Vec::new();
     // One untimed warm-up repetition (on its own scene) unless measuring
     // memory: see [`Memory`].
-    let warmups = usize::from(!opts.memory);
+    let warmups = usize::from(opts.metric == Metric::Time);
     let rounds = opts.reps.max(1) + warmups;
     progress.stage(
         &format!("N = {n}: repetitions"),

@@ -6,7 +6,7 @@ use std::path::Path;
 use num_bigint::BigInt;
 use num_rational::BigRational;
 
-use super::{run, BenchOptions};
+use super::{run, BenchOptions, Metric};
 
 /// The two regimes of the scaling study: the bench scene at a small time
 /// (almost every particle its own block) and at a large one (few large
@@ -22,8 +22,8 @@ pub struct ScalingOptions {
     pub reps: usize,
     /// Run the Python peers.
     pub peers: bool,
-    /// Measure peak memory ([`super::Memory::Cold`]) instead of warm timings.
-    pub memory: bool,
+    /// Warm timings or peak memory ([`super::Memory::Cold`]).
+    pub metric: Metric,
     /// Output folder.
     pub out: std::path::PathBuf,
 }
@@ -65,7 +65,7 @@ pub fn scaling(
                     reps,
                     peers: opts.peers,
                     events: true,
-                    memory: opts.memory,
+                    metric: opts.metric,
                 },
                 &t,
                 scripts,
@@ -81,11 +81,7 @@ pub fn scaling(
             }
         }
     }
-    let stem = if opts.memory {
-        "scaling-memory"
-    } else {
-        "scaling"
-    };
+    let stem = stem(opts.metric);
     let mut csv = String::from("regime,n,method,ns_per_particle,peak_mib\n");
     let cell = |v: Option<f64>| v.map_or(String::new(), |x| format!("{x:.4}"));
     for r in &rows {
@@ -105,7 +101,7 @@ pub fn scaling(
     let csv_path = opts.out.join(format!("{stem}.csv"));
     crate::report::plot::write_whole(&csv_path, csv.as_bytes())?;
     let mut written = vec![csv_path];
-    written.extend(scaling_charts(&rows, &opts.out, opts.memory)?);
+    written.extend(scaling_charts(&rows, &opts.out, opts.metric)?);
     Ok((rows, written))
 }
 
@@ -158,18 +154,26 @@ pub fn read_scaling_csv(text: &str) -> Result<Vec<ScalingRow>, String> {
     Ok(rows)
 }
 
+/// The file stem of the study's CSV and charts.
+fn stem(metric: Metric) -> &'static str {
+    match metric {
+        Metric::Time => "scaling",
+        Metric::PeakMemory => "scaling-memory",
+    }
+}
+
 /// The charts of [`scaling`] redrawn from its rows (for example read back
 /// from a CSV with [`read_scaling_csv`]), one per regime, into `out` as
 /// `scaling-REGIME` (or `scaling-memory-REGIME`); returns the paths written.
 pub fn scaling_charts(
     rows: &[ScalingRow],
     out: &Path,
-    memory: bool,
+    metric: Metric,
 ) -> Result<Vec<std::path::PathBuf>, crate::report::plot::PlotError> {
-    let stem = if memory { "scaling-memory" } else { "scaling" };
+    let stem = stem(metric);
     let mut written = Vec::new();
     for &(regime, p, q) in &REGIMES {
-        let chart = scaling_chart(rows, regime, &format!("{p}/{q}"), memory);
+        let chart = scaling_chart(rows, regime, &format!("{p}/{q}"), metric);
         written.extend(
             crate::report::plot::write_chart(&chart, out, &format!("{stem}-{regime}"))?.paths(),
         );
@@ -179,7 +183,7 @@ pub fn scaling_charts(
 
 /// Per method: the least-squares slope of the total time (or memory)
 /// against N on log-log axes (1 = linear).
-pub fn slopes(rows: &[ScalingRow], regime: &str, memory: bool) -> Vec<(&'static str, f64)> {
+pub fn slopes(rows: &[ScalingRow], regime: &str, metric: Metric) -> Vec<(&'static str, f64)> {
     let mut methods: Vec<&'static str> = Vec::new();
     for r in rows.iter().filter(|r| r.regime == regime) {
         if !methods.contains(&r.method) {
@@ -193,10 +197,9 @@ pub fn slopes(rows: &[ScalingRow], regime: &str, memory: bool) -> Vec<(&'static 
                 .iter()
                 .filter(|r| r.regime == regime && r.method == m)
                 .filter_map(|r| {
-                    let v = if memory {
-                        r.peak_mib
-                    } else {
-                        r.ns_per_particle.map(|v| v * r.n as f64)
+                    let v = match metric {
+                        Metric::PeakMemory => r.peak_mib,
+                        Metric::Time => r.ns_per_particle.map(|v| v * r.n as f64),
                     };
                     v.filter(|v| *v > 0.0).map(|v| (r.n as f64, v))
                 })
@@ -210,16 +213,16 @@ fn scaling_chart(
     rows: &[ScalingRow],
     regime: &str,
     t: &str,
-    memory: bool,
+    metric: Metric,
 ) -> crate::report::plot::Chart {
     use crate::report::plot::{palette, series_style, Axis, Chart, Series};
-    let slopes = slopes(rows, regime, memory);
-    let title = if memory {
+    let slopes = slopes(rows, regime, metric);
+    let title = if metric == Metric::PeakMemory {
         format!("Peak memory against N — {regime} (t = {t})")
     } else {
         format!("Cost per particle against N — {regime} (t = {t}), warm, median of the repetitions")
     };
-    let y = if memory {
+    let y = if metric == Metric::PeakMemory {
         "peak resident-set growth (MiB)"
     } else {
         "ns per particle"
@@ -230,7 +233,7 @@ fn scaling_chart(
             .iter()
             .filter(|r| r.regime == regime && r.method == *method)
             .filter_map(|r| {
-                let v = if memory {
+                let v = if metric == Metric::PeakMemory {
                     r.peak_mib
                 } else {
                     r.ns_per_particle

@@ -286,17 +286,29 @@ pub fn sqrt_text(q: &BigRational, digits: u32) -> String {
     if &ra * &ra == *a && &rb * &rb == *b {
         return BigRational::new(ra, rb).render();
     }
-    format!("≈{}", decimal(q, digits, true))
+    format!("≈{}", decimal(q, digits, Shown::SquareRoot))
 }
 
-/// `q` (or `√q` when `sqrt`) in scientific notation with `digits`
-/// significant digits, truncated toward zero; integer arithmetic only.
-pub fn decimal(q: &BigRational, digits: u32, sqrt: bool) -> String {
+/// What [`decimal`] prints of its rational: the number, or the root of a
+/// squared figure (an `L²` norm kept squared to stay rational).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Shown {
+    /// `q` itself.
+    Itself,
+    /// `√q` (`q ≥ 0`).
+    SquareRoot,
+}
+
+/// `q` (or `√q` for [`Shown::SquareRoot`]) in scientific notation with
+/// `digits` significant digits, truncated toward zero; integer arithmetic
+/// only.
+pub fn decimal(q: &BigRational, digits: u32, shown: Shown) -> String {
     if Zero::is_zero(q) {
         return "0".into();
     }
     let neg = q.is_negative();
     let q = q.abs();
+    let sqrt = shown == Shown::SquareRoot;
     let ten = BigInt::from(10u32);
     // Find e with 10^e ≤ v < 10^(e+1), v = q or √q, then m = ⌊v·10^(d−1−e)⌋.
     let value_scaled = |k: i64| -> BigInt {
@@ -378,9 +390,9 @@ mod tests {
 
     #[test]
     fn decimals_are_truncated_not_rounded() {
-        assert_eq!(decimal(&q(2, 3), 3, false), "6.66e-1");
-        assert_eq!(decimal(&q(-12345, 1), 2, false), "-1.2e4");
-        assert_eq!(decimal(&q(1, 1000), 3, false), "1e-3");
+        assert_eq!(decimal(&q(2, 3), 3, Shown::Itself), "6.66e-1");
+        assert_eq!(decimal(&q(-12345, 1), 2, Shown::Itself), "-1.2e4");
+        assert_eq!(decimal(&q(1, 1000), 3, Shown::Itself), "1e-3");
         assert_eq!(sqrt_text(&q(2, 1), 4), "≈1.414e0");
         assert_eq!(sqrt_text(&q(9, 4), 4), "3/2");
     }
