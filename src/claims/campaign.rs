@@ -282,7 +282,7 @@ pub enum UnitResult {
         counterexample: Option<OutcomeLine>,
         /// The statement's last block, when every case of it holds: the
         /// tightness against the constant proved in Coq, per datum
-        /// ([`with_proved`]; empty for a statement without one).
+        /// (`ledger::with_proved`; empty for a statement without one).
         #[serde(default)]
         tightness: Vec<TightnessLine>,
     },

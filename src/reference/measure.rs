@@ -109,7 +109,7 @@ impl ErrorsF64 {
 
 /// [`Errors`] rounded to `f64` (for tables and charts only). In JSON (the
 /// atlas's shard files) each double is its bit pattern
-/// ([`crate::campaign::bits`]).
+/// (`campaign::bits`, with the `json` feature).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "json", derive(serde::Serialize, serde::Deserialize))]
 pub struct ErrorsF64 {
