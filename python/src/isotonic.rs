@@ -36,11 +36,9 @@ pub fn isotonic<'py>(
         if d.iter().all(|v| v.is_finite()) {
             let d = d.clone();
             let steps = d.len();
-            let fitted = interrupt::run_sized(py, steps, move |_| {
-                sticky::fast::dyadic::isotonic::isotonic_doubles(&d).unwrap_or_else(|| {
-                    convert::nearest(&sticky::projection::isotonic(&exact_of(&d)))
-                })
-            })?;
+            let fitted =
+                interrupt::run_sized(py, steps, move |_| sticky::solver::isotonic_doubles(&d))?
+                    .map_err(crate::errors::py_error)?;
             return Ok(PyArray1::from_vec(py, fitted).into_any());
         }
     }
@@ -48,11 +46,4 @@ pub fn isotonic<'py>(
     let steps = z.len();
     let fitted = interrupt::run_sized(py, steps, move |_| sticky::projection::isotonic(&z))?;
     output(py, &fitted, exact)
-}
-
-/// The exact values of finite doubles.
-fn exact_of(d: &[f64]) -> Vec<BigRational> {
-    d.iter()
-        .filter_map(|&v| BigRational::from_float(v))
-        .collect()
 }

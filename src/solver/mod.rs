@@ -371,15 +371,7 @@ impl Solver {
         if let Some(x) = crate::fast::dyadic::isotonic::project_doubles(z, r) {
             return Ok(x);
         }
-        let exact = z
-            .iter()
-            .map(|&d| {
-                BigRational::from_float(d).ok_or_else(|| Error::Unsupported {
-                    message: format!("z contains {d}: every value must be finite"),
-                })
-            })
-            .collect::<Result<Vec<_>, Error>>()?;
-        let x = self.project(&exact)?;
+        let x = self.project(&exact_doubles(z)?)?;
         Ok(x.iter().map(crate::Scalar::to_f64_lossy).collect())
     }
 
@@ -387,4 +379,31 @@ impl Solver {
     pub fn engine(&self) -> Result<&'static dyn ExactEngine, Error> {
         Ok(self.choice()?.engine)
     }
+}
+
+/// The isotonic regression (non-decreasing, equal weights) of doubles, each
+/// read exactly, rounded to the nearest doubles: on machine integers
+/// ([`crate::fast::dyadic::isotonic`]) when the values allow, else by the
+/// general pool-adjacent-violators on rationals
+/// ([`crate::projection::isotonic`]). A NaN or an infinity is
+/// [`Error::Unsupported`].
+pub fn isotonic_doubles(z: &[f64]) -> Result<Vec<f64>, Error> {
+    if let Some(x) = crate::fast::dyadic::isotonic::isotonic_doubles(z) {
+        return Ok(x);
+    }
+    let exact = exact_doubles(z)?;
+    let x = crate::projection::isotonic(&exact);
+    Ok(x.iter().map(crate::Scalar::to_f64_lossy).collect())
+}
+
+/// The exact values of finite doubles; a NaN or an infinity is
+/// [`Error::Unsupported`].
+fn exact_doubles(z: &[f64]) -> Result<Vec<BigRational>, Error> {
+    z.iter()
+        .map(|&d| {
+            BigRational::from_float(d).ok_or_else(|| Error::Unsupported {
+                message: format!("z contains {d}: every value must be finite"),
+            })
+        })
+        .collect()
 }

@@ -309,3 +309,31 @@ fn a_hostile_history_past_the_callers_cap_is_refused_up_front() {
     assert_eq!(answered, plain);
     assert!(stages.0.load(std::sync::atomic::Ordering::Relaxed) > 0);
 }
+
+/// Isotonic regression of doubles: the machine-integer path where it
+/// applies, the rational one where it does not (an exponent range no word
+/// holds), both the nearest doubles of the exact regression; a NaN is
+/// refused.
+#[test]
+fn isotonic_doubles_on_both_paths() {
+    let exact = |z: &[f64]| -> Vec<f64> {
+        let q: Vec<BigRational> = z
+            .iter()
+            .map(|&d| BigRational::from_float(d).unwrap())
+            .collect();
+        crate::projection::isotonic(&q)
+            .iter()
+            .map(crate::Scalar::to_f64_lossy)
+            .collect()
+    };
+    let easy = [3.0, 1.0, 2.0, 0.5, 4.0];
+    assert!(crate::fast::dyadic::isotonic::isotonic_doubles(&easy).is_some());
+    assert_eq!(isotonic_doubles(&easy).unwrap(), exact(&easy));
+    let wide = [1e300, 1e-300, 0.1, -1e300, 3.0];
+    assert!(crate::fast::dyadic::isotonic::isotonic_doubles(&wide).is_none());
+    assert_eq!(isotonic_doubles(&wide).unwrap(), exact(&wide));
+    assert!(matches!(
+        isotonic_doubles(&[1.0, f64::NAN]),
+        Err(Error::Unsupported { .. })
+    ));
+}
