@@ -157,6 +157,34 @@ Definition SolutionR (N : nat) (r T : R) (x0 u0 : nat -> R) (x : R -> nat -> R) 
       (forall i, (i < N)%nat -> is_derive (fun s => x s i) t (v t i)) /\
       InNormalConeR N r (x t) (fun i => u0 i - v t i).
 
+(** The step both uniqueness theorems share: at a time where two paths in
+    [K^N] are differentiable with [u⁰ − ẋ ∈ N_x K^N] and [u⁰ − ẏ ∈ N_y K^N],
+    [‖x − y‖²] has the derivative [2⟨ẋ − ẏ, x − y⟩], and it is [≤ 0]: the
+    normal cone is monotone ([⟨u⁰ − ẋ, y − x⟩ ≤ 0] and
+    [⟨u⁰ − ẏ, x − y⟩ ≤ 0] add up to [⟨ẋ − ẏ, x − y⟩ ≤ 0]). *)
+Lemma sqdist_derive_nonpos (N : nat) (r : R) (u0 : nat -> R) (x y v w : R -> nat -> R) (s : R) :
+  InKR N r (x s) -> InKR N r (y s) ->
+  (forall i, (i < N)%nat -> is_derive (fun s => x s i) s (v s i)) ->
+  InNormalConeR N r (x s) (fun i => u0 i - v s i) ->
+  (forall i, (i < N)%nat -> is_derive (fun s => y s i) s (w s i)) ->
+  InNormalConeR N r (y s) (fun i => u0 i - w s i) ->
+  is_derive (fun s => sumN N (fun i => (x s i - y s i) * (x s i - y s i))) s
+            (sumN N (fun i => 2 * (x s i - y s i) * (v s i - w s i))) /\
+  sumN N (fun i => 2 * (x s i - y s i) * (v s i - w s i)) <= 0.
+Proof.
+  intros HxK HyK Dx Nx Dy Ny. split.
+  - apply (is_derive_sumN N (fun i s => (x s i - y s i) * (x s i - y s i))
+             (fun i s => 2 * (x s i - y s i) * (v s i - w s i))).
+    intros i Hi. apply (is_derive_sqdiff (fun s => x s i) (fun s => y s i)); auto.
+  - pose proof (Nx (y s) HyK) as A. pose proof (Ny (x s) HxK) as B.
+    unfold dotR in A, B.
+    assert (E : sumN N (fun i => 2 * (x s i - y s i) * (v s i - w s i)) =
+                2 * (sumN N (fun i => (u0 i - v s i) * (y s i - x s i)) +
+                     sumN N (fun i => (u0 i - w s i) * (x s i - y s i)))).
+    { rewrite <- sumN_plus, <- sumN_scal. apply sumN_ext. intros i _. ring. }
+    rewrite E. lra.
+Qed.
+
 (** Paper, [prop:proj-micro]: "there exists a unique solution x to
     (eq:micro-f0-lagr)" — the uniqueness, by the monotonicity argument
     [d/dt ½‖x − y‖² = ⟨ẋ − ẏ, x − y⟩ ≤ 0]: two solutions of the class
@@ -186,19 +214,8 @@ Proof.
       assert (Hny : ~ In s Ey) by (intro H; apply Hn, in_or_app; right; exact H).
       destruct (Hxd s ltac:(lra) Hnx) as [Dx Nx].
       destruct (Hyd s ltac:(lra) Hny) as [Dy Ny].
-      split.
-      + unfold φ, dφ.
-        apply (is_derive_sumN N (fun i s => (x s i - y s i) * (x s i - y s i))
-                 (fun i s => 2 * (x s i - y s i) * (v s i - w s i))).
-        intros i Hi. apply (is_derive_sqdiff (fun s => x s i) (fun s => y s i)); auto.
-      + (* ⟨u⁰ − v, y − x⟩ ≤ 0 and ⟨u⁰ − w, x − y⟩ ≤ 0 add up to ⟨v − w, x − y⟩ ≤ 0 *)
-        pose proof (Nx (y s) (HyK s ltac:(lra))) as A.
-        pose proof (Ny (x s) (HxK s ltac:(lra))) as B.
-        unfold dotR in A, B.
-        assert (E : dφ s = 2 * (sumN N (fun i => (u0 i - v s i) * (y s i - x s i)) +
-                                 sumN N (fun i => (u0 i - w s i) * (x s i - y s i)))).
-        { unfold dφ. rewrite <- sumN_plus, <- sumN_scal. apply sumN_ext. intros i _. ring. }
-        rewrite E. lra. }
+      exact (sqdist_derive_nonpos N r u0 x y v w s
+               (HxK s ltac:(lra)) (HyK s ltac:(lra)) Dx Nx Dy Ny). }
   assert (Hz : forall i, (i < N)%nat -> (x t i - y t i) * (x t i - y t i) = 0).
   { apply sumN_zero; [intros i _; apply Rle_0_sqr|]. fold (φ t). lra. }
   intros i Hi. specialize (Hz i Hi). apply Rmult_integral in Hz. destruct Hz; lra.

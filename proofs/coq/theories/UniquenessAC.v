@@ -548,19 +548,8 @@ Proof.
       assert (Hny : ~ Ey s) by (intro H; apply Hn; right; exact H).
       destruct (Hxd s ltac:(lra) Hnx) as [Dx Nx].
       destruct (Hyd s ltac:(lra) Hny) as [Dy Ny].
-      split.
-      + unfold φ, dφ.
-        apply (is_derive_sumN N (fun i s => (x s i - y s i) * (x s i - y s i))
-                 (fun i s => 2 * (x s i - y s i) * (v s i - w s i))).
-        intros i Hi. apply (is_derive_sqdiff (fun s => x s i) (fun s => y s i)); auto.
-      + (* ⟨u⁰ − v, y − x⟩ ≤ 0 and ⟨u⁰ − w, x − y⟩ ≤ 0 add up to ⟨v − w, x − y⟩ ≤ 0 *)
-        pose proof (Nx (y s) (HyK s ltac:(lra))) as A.
-        pose proof (Ny (x s) (HxK s ltac:(lra))) as B.
-        unfold dotR in A, B.
-        assert (E : dφ s = 2 * (sumN N (fun i => (u0 i - v s i) * (y s i - x s i)) +
-                                 sumN N (fun i => (u0 i - w s i) * (x s i - y s i)))).
-        { unfold dφ. rewrite <- sumN_plus, <- sumN_scal. apply sumN_ext. intros i _. ring. }
-        rewrite E. lra. }
+      exact (sqdist_derive_nonpos N r u0 x y v w s
+               (HxK s ltac:(lra)) (HyK s ltac:(lra)) Dx Nx Dy Ny). }
   assert (Hz : forall i, (i < N)%nat -> (x t i - y t i) * (x t i - y t i) = 0).
   { apply sumN_zero; [intros i _; apply Rle_0_sqr|]. fold (φ t). lra. }
   intros i Hi. specialize (Hz i Hi). apply Rmult_integral in Hz. destruct Hz; lra.
