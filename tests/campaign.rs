@@ -276,6 +276,48 @@ fn converge_text(text: &str, dir: &Path) -> String {
         .collect()
 }
 
+/// A campaign that writes into a folder (`--out`): run once into
+/// `DIR/single`, then as the guide's Slurm array over four shards merged
+/// into `DIR/merged`; what each printed, and the two folders.
+struct FolderRuns {
+    single: String,
+    single_dir: PathBuf,
+    merged: String,
+    merged_dir: PathBuf,
+}
+
+impl FolderRuns {
+    fn of<S: AsRef<str>>(dir: &Path, args: &[S]) -> FolderRuns {
+        let args: Vec<&str> = args.iter().map(AsRef::as_ref).collect();
+        let single_dir = dir.join("single");
+        let single = stdout(sticky().args(&args).arg("--out").arg(&single_dir));
+        std::fs::create_dir_all(dir.join("work")).expect("work folder");
+        let merged_dir = dir.join("merged");
+        let merged = slurm_campaign(
+            &dir.join("work"),
+            &args.join(" "),
+            4,
+            &["--out", merged_dir.to_str().expect("UTF-8 path")],
+        );
+        FolderRuns {
+            single,
+            single_dir,
+            merged,
+            merged_dir,
+        }
+    }
+}
+
+/// The names of the files in `dir`, sorted.
+fn file_names(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .expect("the run's files")
+        .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
 /// `convergence.csv` without its `seconds` column (the fourth).
 fn without_seconds_column(csv: &str) -> Vec<String> {
     csv.lines()
@@ -292,25 +334,18 @@ fn without_seconds_column(csv: &str) -> Vec<String> {
 fn converge_shards_merge_to_the_single_run() {
     let dir = scratch("converge");
     let args = converge_args();
-    let single_dir = dir.join("single");
-    let single = stdout(sticky().args(&args).arg("--out").arg(&single_dir));
-    std::fs::create_dir_all(dir.join("work")).expect("work folder");
-    let merged_dir = dir.join("merged");
-    let merged = slurm_campaign(
-        &dir.join("work"),
-        &args.join(" "),
-        4,
-        &["--out", merged_dir.to_str().expect("UTF-8 path")],
-    );
+    let FolderRuns {
+        single,
+        single_dir,
+        merged,
+        merged_dir,
+    } = FolderRuns::of(&dir, &args);
     assert!(single.contains("engine check at N = 32"), "{single}");
     assert_eq!(
         converge_text(&merged, &merged_dir),
         converge_text(&single, &single_dir)
     );
-    let names: Vec<String> = std::fs::read_dir(&single_dir)
-        .expect("single run's files")
-        .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
-        .collect();
+    let names = file_names(&single_dir);
     assert!(names.len() >= 6, "{names:?}");
     for name in &names {
         let a = std::fs::read(single_dir.join(name)).expect("single file");
@@ -409,26 +444,18 @@ fn atlas_rows_without_clock(csv: &str) -> Vec<Vec<String>> {
 /// charts drawn against the wall time (`pareto-*`, `cost-vs-n`).
 fn atlas_shards_merge_to_the_single_run(name: &str, args: &[&str]) {
     let dir = scratch(name);
-    let single_dir = dir.join("single");
-    let single = stdout(sticky().args(args).arg("--out").arg(&single_dir));
-    std::fs::create_dir_all(dir.join("work")).expect("work folder");
-    let merged_dir = dir.join("merged");
-    let merged = slurm_campaign(
-        &dir.join("work"),
-        &args.join(" "),
-        4,
-        &["--out", merged_dir.to_str().expect("UTF-8 path")],
-    );
+    let FolderRuns {
+        single,
+        single_dir,
+        merged,
+        merged_dir,
+    } = FolderRuns::of(&dir, args);
     let relative = |text: &str, d: &Path| text.replace(&format!("{}/", d.display()), "");
     assert_eq!(
         relative(&merged, &merged_dir),
         relative(&single, &single_dir)
     );
-    let mut names: Vec<String> = std::fs::read_dir(&single_dir)
-        .expect("single run's files")
-        .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
-        .collect();
-    names.sort();
+    let names = file_names(&single_dir);
     assert!(names.contains(&"stability.md".to_string()), "{names:?}");
     let mut equal = 0;
     for name in &names {
