@@ -20,8 +20,9 @@ use serde::{Deserialize, Serialize};
 
 use super::domain::Domain;
 use super::ledger::CORRECTION_DOMAIN;
-use super::ledger::{engines, run_case_range, run_kind, shipped_cases, with_proved};
+use super::ledger::{engines, run_case_range, run_kind, shipped_cases};
 use super::ledger::{Budget, Entry, Outcome, Status};
+use super::proved::with_proved;
 use super::proved::Tightness;
 use super::witness::WitnessData;
 use super::{registry, Case, Claim, Kind};
@@ -282,7 +283,7 @@ pub enum UnitResult {
         counterexample: Option<OutcomeLine>,
         /// The statement's last block, when every case of it holds: the
         /// tightness against the constant proved in Coq, per datum
-        /// (`ledger::with_proved`; empty for a statement without one).
+        /// (`proved::with_proved`; empty for a statement without one).
         #[serde(default)]
         tightness: Vec<TightnessLine>,
     },

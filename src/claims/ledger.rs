@@ -15,7 +15,7 @@ use num_rational::BigRational;
 
 use super::coq::Statement;
 use super::domain::{open_intervals, Domain, InTime};
-use super::proved::{self, proved};
+use super::proved::with_proved;
 use super::witness::{self, Failure, WitnessData, WitnessScene};
 use super::{scaling, Case, Claim, Kind, Violation};
 use crate::fast::kernel;
@@ -437,7 +437,7 @@ fn run_case_check(
 /// The witness data of a claim checked without a particle datum (a
 /// formula, or a scaling check on a shipped scene named first in the
 /// witness text).
-fn timeless(v: &Violation, domain: &Domain) -> WitnessData {
+pub(crate) fn timeless(v: &Violation, domain: &Domain) -> WitnessData {
     let name = v.witness.split(':').next().unwrap_or("");
     let scene = if scene::shipped(name).is_some() {
         WitnessScene::Shipped {
@@ -585,41 +585,6 @@ fn entry(
         engines,
         outcome,
         correction,
-    }
-}
-
-/// A statement checked case by case that holds, and whose quantity has a
-/// constant proved in Coq with a measurement (`claims::proved`): the
-/// measurement on the scaling table (`budget.scaling_max_n`) is compared
-/// with the constant; the outcome gains the tightness, or becomes the
-/// counterexample of a measurement above the constant (the code against
-/// the proof). Every other outcome is returned as it is.
-pub(crate) fn with_proved(
-    kind: &Kind<BigRational>,
-    domain: &Domain,
-    id: &str,
-    statement: Statement,
-    outcome: Outcome,
-    budget: Budget,
-) -> Outcome {
-    let (Kind::Case(_), Status::Holds, Some(p)) = (kind, &outcome.status, proved(id, statement))
-    else {
-        return outcome;
-    };
-    match scaling::proved_tightness(p, budget.scaling_max_n) {
-        Ok(tightness) => Outcome {
-            note: outcome.note.or_else(|| proved::note(&tightness)),
-            tightness,
-            ..outcome
-        },
-        Err(v) => Outcome {
-            status: Status::Counterexample,
-            cases: outcome.cases,
-            witness_data: Some(timeless(&v, domain)),
-            witness: Some(v.witness),
-            tightness: Vec::new(),
-            note: None,
-        },
     }
 }
 

@@ -1,6 +1,8 @@
 //! The section-3 constants proved in Coq for every N
 //! (`proofs/coq/theories/S3*.v`), as exact functions of one sampled datum,
-//! and the comparison of the ledger's measurements with them.
+//! and the comparison of the ledger's measurements with them (by the
+//! scaling checkers, and by `with_proved` for a statement checked case
+//! by case).
 //!
 //! Each [`Proved`] row names a claim (printed or corrected statement), the
 //! Coq theorem, the quantity it bounds, and the constant in words and as a
@@ -15,7 +17,10 @@ use num_rational::BigRational;
 use num_traits::Signed;
 
 use super::coq::Statement;
+use super::domain::Domain;
+use super::ledger::{timeless, Budget, Outcome, Status};
 use super::macro_data::{Row, Series};
+use super::Kind;
 use super::Violation;
 use crate::scalar::Scalar;
 
@@ -299,6 +304,41 @@ pub fn note(tightness: &[Tightness]) -> Option<String> {
         "on the scaling data, against the constant proved in Coq: {}",
         each.join("; ")
     ))
+}
+
+/// A statement checked case by case that holds, and whose quantity has a
+/// constant proved in Coq with a measurement (`claims::proved`): the
+/// measurement on the scaling table (`budget.scaling_max_n`) is compared
+/// with the constant; the outcome gains the tightness, or becomes the
+/// counterexample of a measurement above the constant (the code against
+/// the proof). Every other outcome is returned as it is.
+pub(crate) fn with_proved(
+    kind: &Kind<BigRational>,
+    domain: &Domain,
+    id: &str,
+    statement: Statement,
+    outcome: Outcome,
+    budget: Budget,
+) -> Outcome {
+    let (Kind::Case(_), Status::Holds, Some(p)) = (kind, &outcome.status, proved(id, statement))
+    else {
+        return outcome;
+    };
+    match super::scaling::proved_tightness(p, budget.scaling_max_n) {
+        Ok(tightness) => Outcome {
+            note: outcome.note.or_else(|| note(&tightness)),
+            tightness,
+            ..outcome
+        },
+        Err(v) => Outcome {
+            status: Status::Counterexample,
+            cases: outcome.cases,
+            witness_data: Some(timeless(&v, domain)),
+            witness: Some(v.witness),
+            tightness: Vec::new(),
+            note: None,
+        },
+    }
 }
 
 /// `q ≥ 0` truncated to four decimals (integer arithmetic only).
