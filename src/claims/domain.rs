@@ -99,7 +99,8 @@ pub enum Refusal {
     },
     /// The datum breaks the statement's hypothesis (`u⁰ ∉ H_{x⁰}`).
     DatumOutside,
-    /// An a.e.-in-`t` statement's witness time is not positive.
+    /// A witness time of an a.e.-in-`t` or a `t > 0` statement is not
+    /// positive.
     NotPositive(String),
     /// An a.e.-in-`t` statement's witness time is a collision instant.
     AtCollision(String),
@@ -174,22 +175,33 @@ impl Domain {
         traj: &Trajectory<S>,
         times: &[S],
     ) -> Result<(), Refusal> {
+        for t in times {
+            self.admits_time(traj, t)?;
+        }
         if self.time != InTime::AlmostEvery {
             return Ok(());
-        }
-        for t in times {
-            if t.total_cmp(&S::zero()).is_le() {
-                return Err(Refusal::NotPositive(t.render()));
-            }
-            if traj.impulses().iter().any(|imp| imp.t == *t) {
-                return Err(Refusal::AtCollision(t.render()));
-            }
         }
         let [a, b] = times else {
             return Err(Refusal::NotTwoTimesOfOneInterval);
         };
         if a == b || interval_of(traj, a) != interval_of(traj, b) {
             return Err(Refusal::NotTwoTimesOfOneInterval);
+        }
+        Ok(())
+    }
+
+    /// Whether one time is admissible for this domain on `traj`: `t > 0`
+    /// for a statement "for t > 0" or "for a.e. t", and not a collision
+    /// instant for the latter; otherwise any.
+    pub fn admits_time<S: Scalar>(&self, traj: &Trajectory<S>, t: &S) -> Result<(), Refusal> {
+        if !matches!(self.time, InTime::AlmostEvery | InTime::Positive) {
+            return Ok(());
+        }
+        if t.total_cmp(&S::zero()).is_le() {
+            return Err(Refusal::NotPositive(t.render()));
+        }
+        if self.time == InTime::AlmostEvery && traj.impulses().iter().any(|imp| imp.t == *t) {
+            return Err(Refusal::AtCollision(t.render()));
         }
         Ok(())
     }

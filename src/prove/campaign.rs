@@ -66,10 +66,15 @@ pub fn units(setup: &ProveSetup) -> Option<Vec<ProveUnit>> {
     Some(
         (setup.from.max(1)..=setup.n)
             .flat_map(|n| {
-                chosen.iter().map(move |t| ProveUnit {
-                    n,
-                    target: t.clone(),
-                })
+                // Below the statement's least N (`N > 1` in the paper) there
+                // is nothing to prove or refute.
+                chosen
+                    .iter()
+                    .filter(move |t| n >= t.domain.min_n)
+                    .map(move |t| ProveUnit {
+                        n,
+                        target: t.clone(),
+                    })
             })
             .collect(),
     )

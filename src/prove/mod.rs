@@ -49,6 +49,8 @@ pub mod telescope;
 use num_rational::BigRational;
 use num_traits::{One, Zero};
 
+use crate::claims::domain::{Domain, InTime};
+use crate::claims::ledger::CORRECTION_DOMAIN;
 use crate::claims::{registry, Case, Claim, Kind};
 use crate::initial::InitialData;
 use crate::progress::{Progress, Silent};
@@ -94,6 +96,15 @@ impl<S: Scalar> Input<S> {
 pub trait Program {
     /// Runs the program on `input`.
     fn run<S: Scalar>(&self, input: &Input<S>) -> PathEnd;
+
+    /// The times a counterexample is shown at, given the solver's
+    /// replayed `input` (violated at `input.times`): the same times by
+    /// default; a statement quantified "for a.e. t" asks for a second time
+    /// of the same open interval between collisions ([`Target`]). `Err`
+    /// says why no admissible witness was found (the attempt ends unknown).
+    fn witness_times(&self, input: &Input<BigRational>) -> Result<Vec<BigRational>, String> {
+        Ok(input.times.clone())
+    }
 }
 
 /// The status of a claim at one N.
@@ -307,20 +318,24 @@ pub fn prove_program_observed<P: Program>(
             result.status = Status::Proved;
             if exploration.excluded > 0 {
                 result.note = Some(format!(
-                    "{} paths refused by the input validation",
+                    "{} paths refused by the input validation or outside the statement's domain",
                     exploration.excluded
                 ));
             }
         }
         Verdict::Unknown(why) => result.note = Some(why),
         Verdict::Counterexample { message, point } => {
-            let input = concrete_input(n, times, &point);
+            let mut input = concrete_input(n, times, &point);
             match program.run(&input) {
-                PathEnd::Violated(exact) => {
-                    result.status = Status::Refuted;
-                    result.witness = Some(witness_toml(id, &input));
-                    result.note = Some(exact);
-                }
+                PathEnd::Violated(exact) => match program.witness_times(&input) {
+                    Ok(shown_at) => {
+                        input.times = shown_at;
+                        result.status = Status::Refuted;
+                        result.witness = Some(witness_toml(id, &input));
+                        result.note = Some(exact);
+                    }
+                    Err(why) => result.note = Some(why),
+                },
                 other => {
                     result.note = Some(format!(
                         "the solver's point did not reproduce the violation exactly ({other:?}); symbolic message: {message}"
@@ -357,6 +372,12 @@ pub struct Target {
     pub erratum: bool,
     /// The times the claim is quantified over.
     pub times: Times,
+    /// What the statement quantifies over (`\\label` and words): a path
+    /// outside it (`N` below the least `N`, a datum outside the
+    /// hypothesis, a collision instant or `t = 0` for an a.e.-in-`t`
+    /// statement) is excluded, and a refutation is shown where the ledger's
+    /// shrinker would accept it ([`Domain::admits`]).
+    pub domain: Domain,
 }
 
 impl Program for Target {
@@ -366,6 +387,14 @@ impl Program for Target {
             Err(e) => return PathEnd::Excluded(e.to_string()),
         };
         let case = Case::with_times(Trajectory::new(data), input.times.clone());
+        if let Err(outside) = self.domain.admits_datum(&case.traj) {
+            return PathEnd::Excluded(outside.to_string());
+        }
+        for t in &input.times {
+            if let Err(outside) = self.domain.admits_time(&case.traj, t) {
+                return PathEnd::Excluded(outside.to_string());
+            }
+        }
         let claims: Vec<Claim<S>> = registry();
         let Some(claim) = claims.iter().find(|c| c.id == self.registry_id) else {
             return PathEnd::Excluded(format!("no claim {}", self.registry_id));
@@ -393,7 +422,66 @@ impl Program for Target {
             _ => PathEnd::Excluded("not a per-case claim".into()),
         }
     }
+
+    fn witness_times(&self, input: &Input<BigRational>) -> Result<Vec<BigRational>, String> {
+        if self.domain.time == InTime::AlmostEvery {
+            self.second_failing_time(input)
+        } else {
+            Ok(input.times.clone())
+        }
+    }
 }
+
+impl Target {
+    /// A second failing time for an a.e.-in-`t` statement: the solver's
+    /// time `t` lies strictly inside an open interval between collision
+    /// instants (the collision instants themselves are excluded paths);
+    /// times are tried toward each end of that interval, halving the step,
+    /// until the checker fails there too. The two times are returned in
+    /// increasing order and pass [`Domain::admits_times`].
+    fn second_failing_time(&self, input: &Input<BigRational>) -> Result<Vec<BigRational>, String> {
+        let [t] = input.times.as_slice() else {
+            return Ok(input.times.clone());
+        };
+        let data = input.data().map_err(|e| e.to_string())?;
+        let traj = Trajectory::new(data);
+        let (lo, hi) = crate::claims::domain::interval_of(&traj, t);
+        let two = BigRational::from_integer(2.into());
+        let right = match hi {
+            Some(h) => h - t,
+            None => <BigRational as One>::one(),
+        };
+        let left = t - &lo;
+        let at = |c: &BigRational| {
+            let probe = Input {
+                times: vec![c.clone()],
+                ..input.clone()
+            };
+            matches!(self.run(&probe), PathEnd::Violated(_))
+        };
+        for k in 1..=SECOND_TIME_HALVINGS {
+            let scale = num_traits::pow(two.clone(), k);
+            for candidate in [t + &(right.clone() / &scale), t - &(left.clone() / &scale)] {
+                if candidate != *t && at(&candidate) {
+                    let mut times = vec![t.clone(), candidate];
+                    times.sort();
+                    self.domain
+                        .admits_times(&traj, &times)
+                        .map_err(|why| format!("second witness time refused: {why}"))?;
+                    return Ok(times);
+                }
+            }
+        }
+        Err(format!(
+            "the checker fails at t = {} but at no other time tried in its interval between collisions ({SECOND_TIME_HALVINGS} halvings each way): not shown on a set of positive measure",
+            crate::rational::render_exact(t)
+        ))
+    }
+}
+
+/// How many times the step toward each end of the interval is halved in
+/// the search for a second failing time.
+const SECOND_TIME_HALVINGS: usize = 24;
 
 /// The claim decided by its identity argument ([`telescope`]) on every
 /// path where the argument's condition holds (the checker's residual is
@@ -448,6 +536,7 @@ pub fn targets() -> Vec<Target> {
                 which: Which::Printed,
                 erratum: false,
                 times,
+                domain: c.domain,
             }),
             Some(corr) => {
                 out.push(Target {
@@ -456,6 +545,7 @@ pub fn targets() -> Vec<Target> {
                     which: Which::Printed,
                     erratum: true,
                     times,
+                    domain: c.domain,
                 });
                 if symbolic && matches!(corr.check, Kind::Case(_)) {
                     out.push(Target {
@@ -464,6 +554,7 @@ pub fn targets() -> Vec<Target> {
                         which: Which::Corrected,
                         erratum: false,
                         times,
+                        domain: CORRECTION_DOMAIN,
                     });
                 }
             }

@@ -62,8 +62,11 @@ pub fn committed() -> Result<Vec<Line>, String> {
 /// What the record says of one claim.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Summary {
-    /// The largest n such that the claim is proved at every N = 1 … n
-    /// (0 when not proved at N = 1).
+    /// The least N recorded: the statement's least N (2 where the paper
+    /// says `N > 1`; nothing is recorded below it).
+    pub from: usize,
+    /// The largest n such that the claim is proved at every N = `from` …
+    /// n (`from − 1` when not proved at `from`).
     pub proved_up_to: usize,
     /// The smallest N at which it is refuted.
     pub refuted_at: Option<usize>,
@@ -80,7 +83,7 @@ impl Summary {
         if let Some(n) = self.refuted_at {
             return format!("refuted at N = {n}");
         }
-        let mut s = if self.proved_up_to == 0 {
+        let mut s = if self.proved_up_to < self.from {
             "not proved".to_string()
         } else {
             format!("N ≤ {}", self.proved_up_to)
@@ -120,8 +123,10 @@ pub fn summarise(lines: &[Line]) -> Result<BTreeMap<String, Summary>, String> {
     }
     let mut out: BTreeMap<String, Summary> = BTreeMap::new();
     for ((id, n), l) in &best {
+        // The lines come in increasing N: the first one of an id is its least N.
         let s = out.entry(id.clone()).or_insert(Summary {
-            proved_up_to: 0,
+            from: *n,
+            proved_up_to: n - 1,
             refuted_at: None,
             unknown_at: None,
             hypotheses: None,
