@@ -62,7 +62,7 @@ fn sampled<S>(id: &str, kind: &Kind<S>) -> String {
 fn table(proofs: &Proofs) -> String {
     let cell = |key: &str| proofs.get(key).map_or("—".to_string(), |p| p.cell.clone());
     let mut out = String::from(
-        "| claim | statement | Coq, every N, over Q | `sticky prove`, all real data | sampled by the ledger |\n|---|---|---|---|---|\n",
+        "| claim | statement | Coq, every N (over Q; R where the note says so) | `sticky prove`, all real data | sampled by the ledger |\n|---|---|---|---|---|\n",
     );
     for c in registry::<BigRational>() {
         out.push_str(&format!(

@@ -8,7 +8,7 @@
 set -euo pipefail
 cd "$(dirname "$0")"
 
-REAL_MODULES="Sticky.Uniqueness Sticky.UniquenessAC Sticky.NormalConeR"
+REAL_MODULES="Sticky.Uniqueness Sticky.UniquenessAC Sticky.NormalConeR Sticky.DynamicsR Sticky.ProjMicroR Sticky.ProjMicroQ"
 REAL_AXIOMS="ClassicalDedekindReals.sig_not_dec ClassicalDedekindReals.sig_forall_dec
 FunctionalExtensionality.functional_extensionality_dep Classical_Prop.classic"
 is_real() { local m; for m in $REAL_MODULES; do [[ "$1" == "$m".* ]] && return 0; done; return 1; }

@@ -36,8 +36,8 @@ pub enum Statement {
 )]
 #[cfg_attr(all(test, feature = "json"), derive(schemars::JsonSchema))]
 pub enum CoqKind {
-    /// With the claim's other `Proves` rows, it is the statement, for every N
-    /// over Q.
+    /// With the claim's other `Proves` rows, it is the statement, for every N,
+    /// over Q (over R where the note says so).
     Proves,
     /// It proves part of the statement (the note says which part).
     Part,
@@ -175,7 +175,8 @@ pub struct CoqRow {
     /// The theorem's fully qualified name (`Sticky.Module.name`).
     pub theorem: String,
     /// `proves` (with the claim's other `proves` rows, the statement for
-    /// every N over Q), `part` (part of it, the note says which) or
+    /// every N, over Q or, where the note says so, over R), `part` (part of
+    /// it, the note says which) or
     /// `refutes` (the negation of the statement, machine-checked).
     pub kind: CoqKind,
     /// Whether it is about the `printed` statement or the ledger's
@@ -217,7 +218,10 @@ pub fn markdown_line(claim_id: &str) -> String {
             format!("{} `{}` ({which}{})", t.kind.label(), t.qualified(), t.note)
         })
         .collect();
-    format!("Coq (every N, over Q): {}.\n\n", items.join("; "))
+    format!(
+        "Coq (every N; over Q, or over R where the note says so): {}.\n\n",
+        items.join("; ")
+    )
 }
 
 #[cfg(test)]
@@ -337,7 +341,9 @@ mod tests {
         assert_eq!(oleinik[0].file, "Oleinik.v");
         assert!(markdown_line("no-such-claim").is_empty());
         assert!(markdown_line("prop:Oleinik")
-            .starts_with("Coq (every N, over Q): proves `Sticky.Oleinik.oleinik` (t > 0"));
+            .starts_with(
+                "Coq (every N; over Q, or over R where the note says so): proves `Sticky.Oleinik.oleinik` (t > 0"
+            ));
         assert!(markdown_line("eq:w-Hs-perp")
             .contains("proves `Sticky.InclHSN.incl_HSN` (corrected statement, "));
     }

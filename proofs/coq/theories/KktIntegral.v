@@ -302,10 +302,6 @@ Proof.
     pose proof (IH b (S m) k ltac:(lia)). lra.
 Qed.
 
-Lemma free_flight_length (x0 u0 : list Q) (t : Q) :
-  length u0 = length x0 -> length (free_flight x0 u0 t) = length x0.
-Proof. intro L. unfold free_flight. rewrite map_length, combine_length. lia. Qed.
-
 (** [N μ_k(t) = D_k(t)]: the translation cancels in the difference. *)
 Lemma kkt_gap_sum (x0 u0 : list Q) (r t : Q) (k : nat) :
   0 <= t -> InK r x0 -> length u0 = length x0 ->

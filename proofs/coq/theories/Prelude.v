@@ -181,3 +181,11 @@ Lemma vsub_length (a b : list Q) : length a = length b -> length (vsub a b) = le
 Proof.
   revert b. induction a as [|x a IH]; intros [|y b] L; simpl in *; try discriminate; auto.
 Qed.
+
+(** Entry [k] of [a − b]. *)
+Lemma nth_vsub (a b : list Q) (k : nat) :
+  length a = length b -> (k < length a)%nat -> nth k (vsub a b) 0 = nth k a 0 - nth k b 0.
+Proof.
+  revert b k. induction a as [|x a IH]; intros [|y b] k L Hk; simpl in *; try lia.
+  destruct k; [reflexivity|]. apply IH; lia.
+Qed.

@@ -85,13 +85,6 @@ Qed.
 
 (** ** The inclusion [u⁰ − u ∈ N_x K^N] *)
 
-Lemma nth_vsub (a : list Q) : forall b i,
-  length b = length a -> (i < length a)%nat -> nth i (vsub a b) 0 == nth i a 0 - nth i b 0.
-Proof.
-  induction a as [|x a IH]; intros [|y b] i L Hi; simpl in *; try discriminate; [lia|].
-  destruct i as [|i]; [reflexivity|]. apply IH; lia.
-Qed.
-
 (** Summation by parts, as an inequality: with [c] the partial sum so far
     and [wp] the previous entry of [w], [c·wp + ⟨d, w⟩ ≤ 0] when every
     partial sum is non-negative, vanishes at the end, and is zero unless

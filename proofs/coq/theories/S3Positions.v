@@ -37,19 +37,6 @@ Proof.
   apply sqnorm_zero_qeq; [apply proj_K_length|lra].
 Qed.
 
-Lemma free_flight_length (x0 u0 : list Q) (t : Q) :
-  length u0 = length x0 -> length (free_flight x0 u0 t) = length x0.
-Proof. intro L. unfold free_flight. rewrite map_length, combine_length. lia. Qed.
-
-Lemma free_flight_nth (x0 u0 : list Q) (t : Q) (i : nat) :
-  length u0 = length x0 -> (i < length x0)%nat ->
-  nth i (free_flight x0 u0 t) 0 == nth i x0 0 + t * nth i u0 0.
-Proof.
-  unfold free_flight. revert u0 i.
-  induction x0 as [|a x0 IH]; intros [|b u0] i L Hi; simpl in *; try lia.
-  destruct i as [|i]; [reflexivity|]. apply IH; lia.
-Qed.
-
 (** ** The positions stay in [K^N] and move at speed at most [sup |u⁰|] *)
 
 Lemma positions_length (x0 u0 : list Q) (r t : Q) :

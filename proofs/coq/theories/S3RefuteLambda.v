@@ -14,13 +14,6 @@ From Sticky Require Import Prelude Kkt Projection RightDerivative Dynamics Multi
 Import ListNotations.
 Open Scope Q_scope.
 
-Lemma nth_vsub (a b : list Q) (k : nat) :
-  length a = length b -> (k < length a)%nat -> nth k (vsub a b) 0 = nth k a 0 - nth k b 0.
-Proof.
-  revert b k. induction a as [|x a IH]; intros [|y b] k L Hk; simpl in *; try lia.
-  destruct k; [reflexivity|]. apply IH; lia.
-Qed.
-
 Lemma dot_vsub_swap (a x p : list Q) :
   length x = length p -> dot a (vsub x p) == - dot a (vsub p x).
 Proof.

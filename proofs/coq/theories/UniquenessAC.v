@@ -188,23 +188,19 @@ Proof.
   rewrite sumN_plus in H1. lra.
 Qed.
 
+(** [−f] has the same increments in absolute value. *)
+Lemma AbsCont_opp (a b : R) (f : R -> R) : AbsCont a b f -> AbsCont a b (fun s => - f s).
+Proof.
+  intros Hf eps Heps. destruct (Hf eps Heps) as (δ & Hδ & H). exists δ. split; [exact Hδ|].
+  intros n p q Hc Hs.
+  rewrite (sumN_ext n _ (fun i => Rabs (f (q i) - f (p i)))); [apply H; assumption|].
+  intros i _. rewrite <- Rabs_Ropp. f_equal. ring.
+Qed.
+
+(** [f − g] is [f + (−g)] ([Rminus] unfolds to it). *)
 Lemma AbsCont_minus (a b : R) (f g : R -> R) :
   AbsCont a b f -> AbsCont a b g -> AbsCont a b (fun s => f s - g s).
-Proof.
-  intros Hf Hg eps Heps.
-  destruct (Hf (eps / 2) ltac:(lra)) as (δf & Hδf & Hf').
-  destruct (Hg (eps / 2) ltac:(lra)) as (δg & Hδg & Hg').
-  exists (Rmin δf δg). split; [apply Rmin_glb_lt; assumption|]. intros n p q Hc Hs.
-  pose proof (Hf' n p q Hc ltac:(pose proof (Rmin_l δf δg); lra)).
-  pose proof (Hg' n p q Hc ltac:(pose proof (Rmin_r δf δg); lra)).
-  assert (sumN n (fun i => Rabs (f (q i) - g (q i) - (f (p i) - g (p i)))) <=
-          sumN n (fun i => Rabs (f (q i) - f (p i)) + Rabs (g (q i) - g (p i)))).
-  { apply sumN_le. intros i _.
-    replace (f (q i) - g (q i) - (f (p i) - g (p i)))
-      with ((f (q i) - f (p i)) + - (g (q i) - g (p i))) by ring.
-    rewrite <- (Rabs_Ropp (g (q i) - g (p i))). apply Rabs_triang. }
-  rewrite sumN_plus in H1. lra.
-Qed.
+Proof. intros Hf Hg. exact (AbsCont_plus a b f (fun s => - g s) Hf (AbsCont_opp a b g Hg)). Qed.
 
 Lemma AbsCont_sumN (a b : R) (N : nat) (g : nat -> R -> R) :
   (forall i, (i < N)%nat -> AbsCont a b (g i)) ->
