@@ -102,6 +102,12 @@ impl States {
             ));
         }
         let Ok(index) = index.extract::<isize>() else {
+            if index.is_instance_of::<pyo3::types::PyInt>() {
+                return Err(PyIndexError::new_err(format!(
+                    "index {index} is out of range for {} states",
+                    self.times.len()
+                )));
+            }
             return Err(PyTypeError::new_err(format!(
                 "States indices are integers or slices, not {}",
                 index.get_type().name()?

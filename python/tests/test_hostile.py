@@ -121,6 +121,16 @@ def test_states_project_isotonic(z):
 
 
 @quick
+@given(st.one_of(scalars, st.slices(5)))
+def test_states_index(index):
+    states = SCENE.states([0, "1/2", 1])
+    try:
+        states[index]
+    except (IndexError, *ACCEPTED):  # IndexError: as a list's
+        pass
+
+
+@quick
 @given(
     scalars,
     columns,

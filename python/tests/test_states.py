@@ -51,7 +51,7 @@ def test_indexing_as_a_sequence():
     assert [x.t for x in states[1:4:2]] == [F(1, 2), F(7, 4)]
     assert [x.t for x in states[::-1]] == [F(7, 4), F(3), F(1, 2), F(0)]
     assert states[5:] == []
-    for bad in (4, -5):
+    for bad in (4, -5, 2**64, -(2**70)):
         with pytest.raises(IndexError, match="out of range for 4 states"):
             states[bad]
     for bad in (True, 1.0, "1"):
