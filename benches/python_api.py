@@ -84,6 +84,7 @@ def entries(x0, u0):
         ("state(t), 3 arrays", lambda: _three(scene.state(T)), 1.5, "<= 1.5x (with Scene)"),
         ("state(Fraction(1,100)).positions", lambda: scene.state(Fraction(1, 100)).positions, None, ""),
         ("states(20 times), positions", lambda: [s.positions for s in scene.states(ts20)], None, ""),
+        ("states(20 times)[7].positions", lambda: scene.states(ts20)[7].positions, None, ""),
         ("isotonic(z)", lambda: sticky.isotonic(z), 1.0, "<= 1x"),
         ("project(z)", lambda: scene.project(z + 2 * RADIUS * np.arange(n)), 1.0, "<= 1x"),
         ("compare(scene, t, own answer)", report, None, "<= 1 s"),

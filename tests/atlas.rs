@@ -16,7 +16,9 @@ use std::fs;
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
-use sticky::report::atlas::{run, AtlasError, AtlasOptions, CSV_COLUMNS, EXACT_METHODS, METHODS};
+use sticky::report::atlas::{
+    run, AtlasError, AtlasOptions, Feedback, Size, CSV_COLUMNS, EXACT_METHODS, METHODS,
+};
 use sticky::report::plot::{png_support, PngSupport};
 
 /// The quick atlas, run once for all tests of this file.
@@ -26,11 +28,11 @@ fn atlas() -> &'static (PathBuf, Vec<PathBuf>) {
         let dir = std::env::temp_dir().join(format!("sticky-atlas-test-{}", std::process::id()));
         let _ = fs::remove_dir_all(&dir);
         let opts = AtlasOptions {
-            quick: true,
+            size: Size::Quick,
             out: dir.clone(),
             ..AtlasOptions::default()
         };
-        let written = run(&opts, false).unwrap_or_else(|e| panic!("atlas --quick: {e}"));
+        let written = run(&opts, Feedback::Quiet).unwrap_or_else(|e| panic!("atlas --quick: {e}"));
         (dir, written)
     })
 }
@@ -292,11 +294,11 @@ fn unwritable_output_is_an_error() {
     let file = std::env::temp_dir().join(format!("sticky-atlas-not-a-dir-{}", std::process::id()));
     fs::write(&file, b"x").expect("temp file");
     let opts = AtlasOptions {
-        quick: true,
+        size: Size::Quick,
         out: file.join("sub"),
         ..AtlasOptions::default()
     };
-    let res = run(&opts, false);
+    let res = run(&opts, Feedback::Quiet);
     let _ = fs::remove_file(&file);
     assert!(matches!(res, Err(AtlasError::Io { .. })), "{res:?}");
 }

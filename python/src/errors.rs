@@ -159,6 +159,7 @@ fn error(py: Python<'_>, e: Error) -> PyErr {
         }
         Error::Mass { .. } => raise(py, "MacroError", message, vec![]),
         Error::NegativeTime { t } => {
+            let message = format!("time {} is negative", shown(&t));
             let field = Field::exact(py, "t", &t);
             raise(py, "NegativeTimeError", message, vec![field])
         }

@@ -4,6 +4,7 @@
 //!
 //! * [`scene`] — `Scene`: input, validation, the state at t, events, P_K;
 //! * [`state`] — `State`: nearest doubles at once, exact values on demand;
+//! * [`states`] — `States`: the states at several times, each computed on first read;
 //! * [`events`] — `Event`;
 //! * [`isotonic`] — exact isotonic regression;
 //! * [`macro_scene`] — `Scene.from_macro`, through the library's `[macro]` checks;
@@ -21,6 +22,7 @@ mod isotonic;
 mod macro_scene;
 mod scene;
 mod state;
+mod states;
 
 use pyo3::prelude::*;
 use sticky::claims::ledger::{self, Budget};
@@ -77,6 +79,7 @@ fn _sticky(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add_class::<scene::Scene>()?;
     m.add_class::<state::State>()?;
+    m.add_class::<states::States>()?;
     m.add_class::<events::Event>()?;
     m.add_class::<compare::CompareReport>()?;
     m.add_class::<compare::FrameFigures>()?;

@@ -25,6 +25,7 @@ use crate::convert::{self, Column};
 use crate::events::Event;
 use crate::interrupt;
 use crate::state::{Answer, State};
+use crate::states::States;
 
 pub use crate::errors::py_error;
 
@@ -251,10 +252,12 @@ impl Scene {
             .ok_or_else(|| PyValueError::new_err("no state"))
     }
 
-    /// states(ts) -> list[State]: state(t) for every t of ts.
-    fn states(&self, py: Python<'_>, ts: &Bound<'_, PyAny>) -> PyResult<Vec<State>> {
+    /// states(ts) -> States: state(t) for every t of ts, as a sequence
+    /// computed lazily (each state on first read, then kept); the times
+    /// are read and checked now.
+    fn states(&self, ts: &Bound<'_, PyAny>) -> PyResult<States> {
         let times = convert::column(ts, "ts")?.into_exact("ts")?;
-        self.answers(py, times)
+        States::new(Arc::clone(&self.inner), times)
     }
 
     /// events() -> list[Event]: every cluster formed by a collision, sorted
@@ -323,22 +326,35 @@ impl Scene {
 impl Scene {
     /// The states at `times`, on a worker thread (GIL released, Ctrl-C).
     fn answers(&self, py: Python<'_>, times: Vec<BigRational>) -> PyResult<Vec<State>> {
-        let steps = self.n(py)?.saturating_mul(times.len());
-        let inner = Arc::clone(&self.inner);
-        let answers = interrupt::run_sized(py, steps, move |stop| -> Result<Vec<Answer>, Error> {
-            let mut out = Vec::with_capacity(times.len());
-            for t in &times {
-                if stop.cancelled() {
-                    break;
-                }
-                out.push(inner.answer(t, stop)?);
-            }
-            Ok(out)
-        })?
-        .map_err(py_error)?;
-        answers
-            .into_iter()
-            .map(|a| State::new(py, Arc::clone(&self.inner), a))
-            .collect()
+        states_at(py, &self.inner, times)
     }
+}
+
+/// The states of `scene` at `times`, on a worker thread (GIL released,
+/// Ctrl-C).
+pub(crate) fn states_at(
+    py: Python<'_>,
+    scene: &Arc<Inner>,
+    times: Vec<BigRational>,
+) -> PyResult<Vec<State>> {
+    let steps = py
+        .detach(|| scene.n())
+        .map_err(py_error)?
+        .saturating_mul(times.len());
+    let inner = Arc::clone(scene);
+    let answers = interrupt::run_sized(py, steps, move |stop| -> Result<Vec<Answer>, Error> {
+        let mut out = Vec::with_capacity(times.len());
+        for t in &times {
+            if stop.cancelled() {
+                break;
+            }
+            out.push(inner.answer(t, stop)?);
+        }
+        Ok(out)
+    })?
+    .map_err(py_error)?;
+    answers
+        .into_iter()
+        .map(|a| State::new(py, Arc::clone(scene), a))
+        .collect()
 }

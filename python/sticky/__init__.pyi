@@ -2,7 +2,7 @@
 
 from fractions import Fraction
 from os import PathLike
-from typing import Any, Iterable, List, Literal, Mapping, Optional, Sequence, Tuple, Union, final
+from typing import Any, Iterable, Iterator, List, Literal, Mapping, Optional, Sequence, Tuple, Union, final, overload
 
 
 import numpy as np
@@ -52,6 +52,7 @@ __all__ = [
     "Scene",
     "SceneKindName",
     "State",
+    "States",
     "Verdict",
     "claims",
     "compare",
@@ -106,6 +107,23 @@ class State:
     def to_dict(self) -> dict[str, Any]:
         """The state as `sticky run --json` prints it (exact strings)."""
     def _repr_html_(self) -> str: ...
+
+@final
+class States:
+    """The states of a scene at several times, each computed on first read."""
+
+    def __len__(self) -> int: ...
+    @overload
+    def __getitem__(self, index: int, /) -> State: ...
+    @overload
+    def __getitem__(self, index: slice, /) -> List[State]: ...
+    def __iter__(self) -> Iterator[State]: ...
+    @property
+    def times(self) -> List[Fraction]:
+        """The times, exact, in order."""
+    @property
+    def scene(self) -> Scene:
+        """The scene these are states of."""
 
 @final
 class Event:
@@ -186,8 +204,9 @@ class Scene:
         """u⁰, exact."""
     def state(self, t: _Number) -> State:
         """The exact state at t ≥ 0."""
-    def states(self, ts: _Numbers) -> List[State]:
-        """The exact state at every t of ts."""
+    def states(self, ts: _Numbers) -> States:
+        """The exact state at every t of ts: a sequence computed lazily (each
+        state on first read, then kept); the times are checked now."""
     def explain(self) -> str:
         """The engine the library chooses for this scene and why: the line `sticky run --explain` prints."""
         ...

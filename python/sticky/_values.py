@@ -1,5 +1,5 @@
 """Value behaviour of the native classes: equality of scenes, pickling and
-deep copies of Scene, State and CompareReport, and ``dir()`` of a report
+deep copies of Scene, State, States and CompareReport, and ``dir()`` of a report
 listing its figures."""
 
 from . import _sticky  # type: ignore[attr-defined]  # the native module has no stub of its own
@@ -38,6 +38,11 @@ def _state(scene, t):
 
 def state_reduce(state):
     return (_state, (state.scene, state.t))
+
+
+def states_again(scene, times):
+    """The states of a scene at these times again, none computed (pickling)."""
+    return scene.states(times)
 
 
 def report_dir(report):

@@ -111,11 +111,23 @@ def test_state(t):
 @quick
 @given(columns)
 def test_states_project_isotonic(z):
-    calls(SCENE.states, z)
+    states = calls(SCENE.states, z)
+    if states is not None:
+        calls(list, states)  # each state is computed when read
     calls(SCENE.project, z)
     calls(SCENE.project, z, exact=True)
     calls(sticky.isotonic, z)
     calls(sticky.isotonic, z, True)
+
+
+@quick
+@given(st.one_of(scalars, st.slices(5)))
+def test_states_index(index):
+    states = SCENE.states([0, "1/2", 1])
+    try:
+        states[index]
+    except (IndexError, *ACCEPTED):  # IndexError: as a list's
+        pass
 
 
 @quick

@@ -151,6 +151,11 @@ def test_friendly_values():
     assert sticky.__version__.count(".") == 2
     s = sticky.Scene([0, 1], [0, 0]).state(0.3)
     assert "(≈ 0.3)" in repr(s)
+    # Messages too: a long fraction has its decimal beside it.
+    with pytest.raises(sticky.NegativeTimeError) as caught:
+        sticky.Scene([0, 1], [0, 0]).state(-0.1)
+    assert str(caught.value) == "time -3602879701896397/36028797018963968 (≈ -0.1) is negative"
+    assert caught.value.t == Fraction(-0.1)
     assert "contact_tol=0" in str(inspect.signature(sticky.compare))
     report = sticky.compare(sticky.Scene([0, 1], [0, 0]), 1, [0, 1])
     assert {"position_max", "overlaps", "oleinik", "verdict"} <= set(dir(report))

@@ -17,6 +17,7 @@
 //! and the corrected one `c = u_N − u_0` (the `∂_t φ` of the proof).
 
 use super::bump::Bump;
+use super::coq::Statement;
 use super::discrete::{abs, augmented, augmented_jumps, Augmented};
 use super::{Case, Violation};
 use crate::scalar::Scalar;
@@ -62,13 +63,13 @@ impl<S: Scalar> Integrals<S> {
 }
 
 /// Both sides of the tested identity for the bump `ϕ`, with the printed
-/// (`printed = true`) or the corrected coefficient of `w`; and the bound
+/// or the corrected coefficient of `w` (`statement`); and the bound
 /// `2‖ϕ‖_{L¹} sup‖U_N‖²_∞ + ‖ϕ'‖_{L¹} sup_t ‖U_N‖_∞ ((x_N − x_0) + max(|x_0|, |x_N|))`
 /// that the corrected right side gives.
 fn sides<S: Scalar>(
     case: &Case<S>,
     bump: &Bump<S>,
-    printed: bool,
+    statement: Statement,
     id: &'static str,
 ) -> Result<(S, S, S), Violation> {
     let n = case.n();
@@ -114,10 +115,9 @@ fn sides<S: Scalar>(
             lhs = lhs + &(bump.phi(alpha) * &sum);
         }
         let true_c = s.u[n].clone() - &s.u[0];
-        let c = if printed {
-            -true_c.clone()
-        } else {
-            true_c.clone()
+        let c = match statement {
+            Statement::Printed => -true_c.clone(),
+            Statement::Corrected => true_c.clone(),
         };
         let integrals = Integrals::of(&s);
         let (a_true, b_alpha) = (integrals.a(&true_c), integrals.b.clone());
@@ -181,15 +181,15 @@ fn bumps<S: Scalar>(case: &Case<S>) -> Vec<Bump<S>> {
     ]
 }
 
-fn identity<S: Scalar>(case: &Case<S>, printed: bool, id: &'static str) -> R {
+fn identity<S: Scalar>(case: &Case<S>, statement: Statement, id: &'static str) -> R {
     for bump in bumps(case) {
-        let (lhs, rhs, bound) = sides(case, &bump, printed, id)?;
+        let (lhs, rhs, bound) = sides(case, &bump, statement, id)?;
         let sup = if abs(lhs.clone()) > bound {
             Some(&bound)
         } else {
             None
         };
-        if lhs != rhs || (!printed && sup.is_some()) {
+        if lhs != rhs || (statement == Statement::Corrected && sup.is_some()) {
             return Err(Violation::new(
                 id,
                 format!(
@@ -209,13 +209,17 @@ fn identity<S: Scalar>(case: &Case<S>, printed: bool, id: &'static str) -> R {
 /// `eq:test-pressure-bound` as printed: the identity obtained "using
 /// eq:PDE-Lagr-N-2", with `(U_N(t,0) − U_N(t,1))w`.
 pub fn test_identity_printed<S: Scalar>(case: &Case<S>) -> R {
-    identity(case, true, "eq:test-pressure-bound")
+    identity(case, Statement::Printed, "eq:test-pressure-bound")
 }
 
 /// Corrected: the identity with `(u_N − u_0)w` (`∂_t φ` of the proof),
 /// exactly, and the bound it gives.
 pub fn test_identity_corrected<S: Scalar>(case: &Case<S>) -> R {
-    identity(case, false, "eq:test-pressure-bound (corrected)")
+    identity(
+        case,
+        Statement::Corrected,
+        "eq:test-pressure-bound (corrected)",
+    )
 }
 
 /// `prop:pressure-bound#test-function`: "at the boundaries φ(t,0) = φ(t,1)
@@ -288,7 +292,7 @@ mod tests {
         assert!(test_identity_printed(&case).is_err());
         assert!(test_function_boundary(&case).is_err());
         let bump = &bumps(&case)[0];
-        let (lhs, rhs, _) = sides(&case, bump, false, "test").unwrap();
+        let (lhs, rhs, _) = sides(&case, bump, Statement::Corrected, "test").unwrap();
         assert_eq!(lhs, rhs);
         assert!(lhs > q(0, 1), "the pressure is seen");
     }

@@ -1,11 +1,12 @@
 //! `sticky atlas [--quick] [--peers] [--scene NAME]… [--shard I/N] [--jobs K]`:
 //! the speed-vs-accuracy atlas.
 
-use std::io::{self, Write};
+use std::io::Write;
 use std::path::PathBuf;
 
 use sticky::campaign::jobs::run_units;
 use sticky::report::atlas::campaign::{AtlasSetup, Campaign, UnitRow};
+use sticky::report::atlas::{Feedback, Size};
 
 use crate::campaign::{setup_value, Split};
 use crate::{print_paths, Failure};
@@ -31,6 +32,15 @@ pub struct Args {
     split: Split,
 }
 
+/// The atlas's size from `--quick`.
+fn size(quick: bool) -> Size {
+    if quick {
+        Size::Quick
+    } else {
+        Size::Full
+    }
+}
+
 /// The output folder when none is given.
 pub const DEFAULT_OUT: &str = "out/atlas";
 
@@ -39,13 +49,12 @@ pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
     let dir = args.out.unwrap_or_else(|| PathBuf::from(DEFAULT_OUT));
     if args.split.shard.is_none() && args.split.jobs.get() == 1 {
         let opts = sticky::report::atlas::AtlasOptions {
-            quick: args.quick,
+            size: size(args.quick),
             out: dir,
             peers: args.peers,
             scenes: args.scenes,
         };
-        let tty = io::IsTerminal::is_terminal(&io::stderr());
-        return sticky::report::atlas::run(&opts, tty)
+        return sticky::report::atlas::run(&opts, Feedback::Bar)
             .map_err(|e| Failure(e.to_string()))
             .and_then(|paths| print_paths(out, &paths));
     }
@@ -55,7 +64,7 @@ pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
         ));
     }
     let setup = AtlasSetup {
-        quick: args.quick,
+        size: size(args.quick),
         scenes: args.scenes,
     };
     let campaign = Campaign::new(&setup).map_err(|e| Failure(e.to_string()))?;

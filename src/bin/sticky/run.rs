@@ -70,6 +70,15 @@ enum Format {
     Npy,
 }
 
+/// How `--model continuum` prints each profile.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Layout {
+    /// A table of the segments for people.
+    Table,
+    /// One JSON object per time (`--json`).
+    Json,
+}
+
 #[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
 enum Model {
     /// The N particles (exact).
@@ -122,7 +131,12 @@ pub fn exec(mut args: Args, out: &mut impl Write) -> Result<(), Failure> {
         Model::Particles => run(out, &args),
         Model::Continuum => {
             let scene = load(&args.scene)?;
-            run_continuum(out, &scene, &args.scene, &args.at, args.json)
+            let layout = if args.json {
+                Layout::Json
+            } else {
+                Layout::Table
+            };
+            run_continuum(out, &scene, &args.scene, &args.at, layout)
         }
     }
 }
@@ -258,7 +272,7 @@ fn run_continuum(
     scene: &Scene,
     path: &std::path::Path,
     times: &[BigRational],
-    as_json: bool,
+    layout: Layout,
 ) -> Result<(), Failure> {
     let SceneKind::Macro { datum, particles } = &scene.kind else {
         return Err(Failure(format!(
@@ -269,7 +283,7 @@ fn run_continuum(
     let c = sticky::limit::continuum::Continuum::new(datum);
     for t in times {
         let p = c.profile(t).map_err(|e| Failure(e.to_string()))?;
-        if as_json {
+        if layout == Layout::Json {
             writeln!(out, "{}", json::continuum_profile(&p)).map_err(io_err)?;
             continue;
         }

@@ -3,6 +3,7 @@
 //! (`prop:proj-micro#uniqueness-identity`).
 
 use super::{dot, lambda_integral, render_vec, state, sub, R};
+use crate::claims::coq::Statement;
 use crate::claims::{Case, Violation};
 use crate::contact::kkt_multipliers;
 use crate::initial::InitialData;
@@ -87,7 +88,11 @@ pub fn kkt_corrected<S: Scalar>(case: &Case<S>) -> R {
 /// starts from `x⁰ + (0, r, 2r, …)` (still in `K`); derivatives are right
 /// derivatives at the probe times.
 pub fn uniqueness_identity_printed<S: Scalar>(case: &Case<S>) -> R {
-    uniqueness(case, "prop:proj-micro#uniqueness-identity", false)
+    uniqueness(
+        case,
+        "prop:proj-micro#uniqueness-identity",
+        Statement::Printed,
+    )
 }
 
 /// Corrected: `(N/2) d/dt ‖x¹ − x²‖² = −⟨ξ¹ − ξ², x¹ − x²⟩ ≤ 0`
@@ -96,11 +101,12 @@ pub fn uniqueness_identity_corrected<S: Scalar>(case: &Case<S>) -> R {
     uniqueness(
         case,
         "prop:proj-micro#uniqueness-identity (corrected)",
-        true,
+        Statement::Corrected,
     )
 }
 
-fn uniqueness<S: Scalar>(case: &Case<S>, id: &'static str, corrected: bool) -> R {
+fn uniqueness<S: Scalar>(case: &Case<S>, id: &'static str, statement: Statement) -> R {
+    let corrected = statement == Statement::Corrected;
     let data = case.data();
     let r = data.radius().clone();
     let mut off = S::zero();

@@ -3,6 +3,7 @@
 //! increments `ΔL`.
 
 use super::{norm2, state, sub, R};
+use crate::claims::coq::Statement;
 use crate::claims::{Case, FromPaper, Violation};
 use crate::initial::InitialData;
 use crate::scalar::Scalar;
@@ -229,7 +230,11 @@ pub fn lambda_cs<S: Scalar>(case: &Case<S>) -> R {
 /// `prop:bound-micro#multiplier-relation`: the proofs of `prop:bound-micro`
 /// and `prop:Linf-micro` use `N(λ_i(t) − λ_{i−1}(t)) = u_i(t) − u⁰_i`.
 pub fn multiplier_relation_printed<S: Scalar>(case: &Case<S>) -> R {
-    multiplier_relation(case, "prop:bound-micro#multiplier-relation", true)
+    multiplier_relation(
+        case,
+        "prop:bound-micro#multiplier-relation",
+        Statement::Printed,
+    )
 }
 
 /// The relation with the sign of `eq:dyn-micro`:
@@ -238,12 +243,13 @@ pub fn multiplier_relation_corrected<S: Scalar>(case: &Case<S>) -> R {
     multiplier_relation(
         case,
         "prop:bound-micro#multiplier-relation (corrected)",
-        false,
+        Statement::Corrected,
     )
 }
 
-/// `N(λ_i − λ_{i−1})` against `u_i − u⁰_i` (`as_printed`) or `u⁰_i − u_i`.
-fn multiplier_relation<S: Scalar>(case: &Case<S>, id: &'static str, as_printed: bool) -> R {
+/// `N(λ_i − λ_{i−1})` against `u_i − u⁰_i` (printed) or `u⁰_i − u_i`
+/// (corrected).
+fn multiplier_relation<S: Scalar>(case: &Case<S>, id: &'static str, statement: Statement) -> R {
     let n = S::from_usize(case.n());
     for t in &case.times {
         let s = state(case, t, id)?;
@@ -251,10 +257,9 @@ fn multiplier_relation<S: Scalar>(case: &Case<S>, id: &'static str, as_printed: 
         for i in 0..case.n() {
             let lhs = n.clone() * &dl[i];
             let (u, u0) = (&s.velocities[i], &case.data().velocities()[i]);
-            let (rhs, name) = if as_printed {
-                (u.clone() - u0, "u_i − u⁰_i")
-            } else {
-                (u0.clone() - u, "u⁰_i − u_i")
+            let (rhs, name) = match statement {
+                Statement::Printed => (u.clone() - u0, "u_i − u⁰_i"),
+                Statement::Corrected => (u0.clone() - u, "u⁰_i − u_i"),
             };
             if lhs != rhs {
                 return Err(Violation::new(

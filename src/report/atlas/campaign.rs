@@ -21,14 +21,14 @@ use serde::{Deserialize, Serialize};
 use super::jobs::{jobs, stability_jobs};
 use super::solve::{exact_states, solve_unit, ExactStates, Row};
 use super::suite::{stability_suite, suite, Case};
-use super::{min_time, write_files, AtlasError};
+use super::{min_time, write_files, AtlasError, Size};
 
 /// What a shard's file records of the run: what every shard and the merge
 /// build the same scenes and jobs from.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
 pub struct AtlasSetup {
-    /// The small suite ([`super::AtlasOptions::quick`]).
-    pub quick: bool,
+    /// How much of the atlas ([`super::AtlasOptions::size`]).
+    pub size: Size,
     /// Only these scenes; empty: every scene
     /// ([`super::AtlasOptions::scenes`]).
     pub scenes: Vec<String>,
@@ -69,9 +69,9 @@ impl Campaign {
     /// The scenes of `setup` (as [`super::run`] builds them).
     pub fn new(setup: &AtlasSetup) -> Result<Campaign, AtlasError> {
         let keep = |c: &Case| setup.scenes.is_empty() || setup.scenes.contains(&c.name);
-        let mut main = suite(setup.quick)?;
+        let mut main = suite(setup.size)?;
         main.retain(keep);
-        let mut stability = stability_suite(setup.quick)?;
+        let mut stability = stability_suite(setup.size)?;
         stability.retain(keep);
         Ok(Campaign {
             setup: setup.clone(),
@@ -89,7 +89,7 @@ impl Campaign {
                 .enumerate()
                 .flat_map(|(case, c)| {
                     let count = match section {
-                        Section::Suite => jobs(c, self.setup.quick).len(),
+                        Section::Suite => jobs(c, self.setup.size).len(),
                         Section::Stability => stability_jobs(c).len(),
                     };
                     (0..count).map(move |job| Unit { section, case, job })
@@ -104,7 +104,7 @@ impl Campaign {
     /// Solves (timed) and measures one unit. The jobs are built again for
     /// the unit (cheap: solver settings), so units run on any thread.
     pub fn run_unit(&self, unit: Unit) -> Result<UnitRow, String> {
-        let min = min_time(self.setup.quick);
+        let min = min_time(self.setup.size);
         let row = match unit.section {
             Section::Suite => {
                 let case = &self.suite[unit.case];
@@ -112,7 +112,7 @@ impl Campaign {
                     .get_or_init(|| exact_states(case))
                     .as_ref()
                     .map_err(|e| e.to_string())?;
-                let job = &jobs(case, self.setup.quick)[unit.job];
+                let job = &jobs(case, self.setup.size)[unit.job];
                 solve_unit(case, Some(exact), job, min)
             }
             Section::Stability => {

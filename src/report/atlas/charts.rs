@@ -59,15 +59,38 @@ pub(super) fn methods_with_peers(rows: &[&Row]) -> Vec<String> {
     out
 }
 
-pub(super) fn pareto_chart(case: &str, rows: &[&Row], velocity: bool) -> Option<Chart> {
-    let err = |r: &Row| -> Option<f64> {
-        let e = r.errors?;
-        if velocity {
-            e.velocity
-        } else {
-            Some(e.position)
+/// Which unknown a chart draws the error of.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Unknown {
+    /// The positions x(t).
+    Position,
+    /// The velocities u(t).
+    Velocity,
+}
+
+impl Unknown {
+    /// Both, in the order the charts are written.
+    pub(super) const BOTH: [Unknown; 2] = [Unknown::Position, Unknown::Velocity];
+
+    /// `"position"` or `"velocity"` (file names and labels).
+    pub(super) fn name(self) -> &'static str {
+        match self {
+            Unknown::Position => "position",
+            Unknown::Velocity => "velocity",
         }
-    };
+    }
+
+    /// The row's error on this unknown (`None`: not measured).
+    fn error(self, e: &ErrorsF64) -> Option<f64> {
+        match self {
+            Unknown::Position => Some(e.position),
+            Unknown::Velocity => e.velocity,
+        }
+    }
+}
+
+pub(super) fn pareto_chart(case: &str, rows: &[&Row], of: Unknown) -> Option<Chart> {
+    let err = |r: &Row| -> Option<f64> { of.error(&r.errors?) };
     let usable: Vec<&Row> = rows
         .iter()
         .copied()
@@ -78,21 +101,16 @@ pub(super) fn pareto_chart(case: &str, rows: &[&Row], velocity: bool) -> Option<
     }
     let floor = floor_for(usable.iter().filter_map(|r| err(r)));
     let first = usable[0];
-    let what = if velocity {
-        "max velocity error |u − u(t)|"
-    } else {
-        "max position error |x − x(t)|"
+    let what = match of {
+        Unknown::Position => "max position error |x − x(t)|",
+        Unknown::Velocity => "max velocity error |u − u(t)|",
     };
     let mut chart = Chart::new(
         format!(
-            "{case}, N = {}, t = {}: {} vs solve time (error 0 drawn at {floor:.0e})",
+            "{case}, N = {}, t = {}: {} error vs solve time (error 0 drawn at {floor:.0e})",
             first.n,
             short(first.t),
-            if velocity {
-                "velocity error"
-            } else {
-                "position error"
-            }
+            of.name()
         ),
         Axis::log("solve time [s] (peers: the solver call alone, median)"),
         Axis::log(what),
@@ -168,13 +186,13 @@ pub(super) fn dt_chart(case: &str, rows: &[&Row]) -> Option<Chart> {
         Axis::log("max error"),
     );
     for (i, m) in steppers.iter().enumerate() {
-        for velocity in [false, true] {
+        for of in Unknown::BOTH {
             let mut pts: Vec<(f64, f64)> = sel
                 .iter()
                 .filter(|r| r.setting.method == *m)
                 .filter_map(|r| {
                     let e = r.errors?;
-                    let v = if velocity { e.velocity? } else { e.position };
+                    let v = of.error(&e)?;
                     Some((r.setting.dt?, if v > 0.0 { v } else { floor }))
                 })
                 .collect();
@@ -183,11 +201,10 @@ pub(super) fn dt_chart(case: &str, rows: &[&Row]) -> Option<Chart> {
             }
             pts.sort_by(|a, b| a.0.total_cmp(&b.0));
             let color = palette(2 + i);
-            let label = format!("{m}: {}", if velocity { "velocity" } else { "position" });
-            let marker = if velocity {
-                Marker::Ring
-            } else {
-                Marker::Circle
+            let label = format!("{m}: {}", of.name());
+            let marker = match of {
+                Unknown::Position => Marker::Circle,
+                Unknown::Velocity => Marker::Ring,
             };
             chart
                 .series

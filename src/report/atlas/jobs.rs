@@ -7,6 +7,7 @@ use crate::reference::{CatchingUp, EventsF64, IterativeProjection, MoreauJean, P
 use serde::{Deserialize, Serialize};
 
 use super::suite::Case;
+use super::Size;
 
 pub(super) enum Engine {
     ExactPava,
@@ -68,21 +69,22 @@ pub(super) struct Job {
 }
 
 impl Job {
-    fn exact(pava: bool) -> Job {
+    fn exact(engine: Engine) -> Job {
+        debug_assert!(matches!(engine, Engine::ExactPava | Engine::ExactEvents));
         Job {
             setting: Setting {
-                method: if pava { "exact-pava" } else { "exact-events" }.to_string(),
+                method: match engine {
+                    Engine::ExactPava => "exact-pava",
+                    _ => "exact-events",
+                }
+                .to_string(),
                 parameter: String::new(),
                 sweep: Sweep::Single,
                 dt: None,
                 tol: None,
                 cap: None,
             },
-            engine: if pava {
-                Engine::ExactPava
-            } else {
-                Engine::ExactEvents
-            },
+            engine,
         }
     }
 
@@ -134,10 +136,13 @@ pub(super) const EVENTS_TOL: f64 = 1e-12;
 pub(super) const ITERATIVE_TOL: f64 = 1e-9;
 
 /// The parameter grid of one suite scene.
-pub(super) fn jobs(case: &Case, quick: bool) -> Vec<Job> {
+pub(super) fn jobs(case: &Case, size: Size) -> Vec<Job> {
     let n = case.n as f64;
-    let budget: f64 = if quick { 2e7 } else { 5e8 };
-    let mut out = vec![Job::exact(true), Job::exact(false)];
+    let budget: f64 = size.pick(2e7, 5e8);
+    let mut out = vec![
+        Job::exact(Engine::ExactPava),
+        Job::exact(Engine::ExactEvents),
+    ];
     out.push(Job::float(
         Box::new(PavaF64),
         Sweep::Single,
@@ -145,11 +150,10 @@ pub(super) fn jobs(case: &Case, quick: bool) -> Vec<Job> {
         None,
         None,
     ));
-    let event_tols: &[f64] = if quick {
-        &[1e-6, 1e-12, 1e-16]
-    } else {
-        &[1e-4, 1e-6, 1e-8, 1e-10, 1e-12, 1e-14, 1e-16]
-    };
+    let event_tols: &[f64] = size.pick(
+        &[1e-6, 1e-12, 1e-16],
+        &[1e-4, 1e-6, 1e-8, 1e-10, 1e-12, 1e-14, 1e-16],
+    );
     for &tol in event_tols {
         out.push(Job::float(
             Box::new(EventsF64 { tol }),
@@ -159,21 +163,9 @@ pub(super) fn jobs(case: &Case, quick: bool) -> Vec<Job> {
             None,
         ));
     }
-    let ks: &[i32] = if quick {
-        &[4, 6, 8]
-    } else {
-        &[2, 4, 6, 8, 10, 12, 14]
-    };
-    let step_tols: &[f64] = if quick {
-        &[1e-2, 1e-5, 1e-8]
-    } else {
-        &[1e-1, 1e-3, 1e-6, 1e-9]
-    };
-    let step_caps: &[usize] = if quick {
-        &[1, 10, 100]
-    } else {
-        &[1, 4, 16, 64, 256]
-    };
+    let ks: &[i32] = size.pick(&[4, 6, 8], &[2, 4, 6, 8, 10, 12, 14]);
+    let step_tols: &[f64] = size.pick(&[1e-2, 1e-5, 1e-8], &[1e-1, 1e-3, 1e-6, 1e-9]);
+    let step_caps: &[usize] = size.pick(&[1, 10, 100], &[1, 4, 16, 64, 256]);
     let steps = |dt: f64| (case.t / dt).ceil().max(1.0);
     type Make = fn(f64, f64, usize) -> Box<dyn Solver>;
     for make in [moreau_jean as Make, catching_up as Make] {
@@ -210,11 +202,7 @@ pub(super) fn jobs(case: &Case, quick: bool) -> Vec<Job> {
             }
         }
     }
-    let sweeps: &[usize] = if quick {
-        &[1, 16, 256]
-    } else {
-        &[1, 4, 16, 64, 256, 1024, 4096, 16384]
-    };
+    let sweeps: &[usize] = size.pick(&[1, 16, 256], &[1, 4, 16, 64, 256, 1024, 4096, 16384]);
     for &cap in sweeps {
         if n * cap as f64 <= budget {
             out.push(Job::float(
@@ -229,11 +217,7 @@ pub(super) fn jobs(case: &Case, quick: bool) -> Vec<Job> {
             ));
         }
     }
-    let iter_tols: &[f64] = if quick {
-        &[1e-3, 1e-6, 1e-9]
-    } else {
-        &[1e-2, 1e-4, 1e-6, 1e-9, 1e-12]
-    };
+    let iter_tols: &[f64] = size.pick(&[1e-3, 1e-6, 1e-9], &[1e-2, 1e-4, 1e-6, 1e-9, 1e-12]);
     let cap = ((budget * 4.0 / n) as usize).clamp(1000, 1_000_000);
     for &tol in iter_tols {
         out.push(Job::float(

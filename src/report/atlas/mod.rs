@@ -104,6 +104,7 @@ use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 use indicatif::{ProgressBar, ProgressStyle};
+use serde::{Deserialize, Serialize};
 
 use crate::report::peers::STARTUP_SECONDS;
 use crate::report::plot::{
@@ -124,21 +125,51 @@ pub use failure::{Failure, LARGE_ERROR, OVERLAP_TOLERANCE, SIGN_TOLERANCE, VELOC
 pub use jobs::STABILITY_STEP_CAP;
 pub use peers::{PEER_BUDGET, PEER_BUDGET_QUICK, PEER_MAX_N};
 
-use charts::{cost_chart, dt_chart, pareto_chart};
+use charts::{cost_chart, dt_chart, pareto_chart, Unknown};
 use csv::write_csv;
 use failure::classify;
 use jobs::{jobs, stability_jobs, Job};
 use peers::PeerRunner;
-use solve::{run_case, Row};
+use solve::{run_case, Reference, Row};
 use stability::{stability_grid, stability_markdown};
 use suite::{stability_suite, suite};
+
+/// How much of the atlas runs: the scenes' sizes, the parameter grids,
+/// the time budgets.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Size {
+    /// The small suite (`--quick`: N ≤ 1000, three values per parameter,
+    /// small stability scenes): well under a minute.
+    Quick,
+    /// The whole suite (N up to 10⁵, the full grids).
+    Full,
+}
+
+impl Size {
+    /// `quick` for the small suite, `full` for the whole one.
+    fn pick<T>(self, quick: T, full: T) -> T {
+        match self {
+            Size::Quick => quick,
+            Size::Full => full,
+        }
+    }
+}
+
+/// Whether [`run`] draws a progress bar.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Feedback {
+    /// A bar on standard error when it is a terminal.
+    Bar,
+    /// Nothing drawn.
+    Quiet,
+}
 
 /// What to run and where to write it.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct AtlasOptions {
-    /// The small suite (N ≤ 1000, three values per parameter, small
-    /// stability scenes): well under a minute.
-    pub quick: bool,
+    /// How much of the atlas runs.
+    pub size: Size,
     /// The output folder (created if needed).
     pub out: PathBuf,
     /// Also run the real peer solvers ([`crate::report::peers`]) on every
@@ -154,7 +185,7 @@ impl Default for AtlasOptions {
     /// The full atlas into `./out/atlas/`.
     fn default() -> Self {
         AtlasOptions {
-            quick: false,
+            size: Size::Full,
             out: PathBuf::from("out/atlas"),
             peers: false,
             scenes: Vec::new(),
@@ -276,17 +307,13 @@ pub const METHODS: [&str; 5] = [
 pub const EXACT_METHODS: [&str; 2] = ["exact-pava", "exact-events"];
 
 /// The wall-time budget of one peer run.
-fn peer_budget(quick: bool) -> f64 {
-    if quick {
-        PEER_BUDGET_QUICK
-    } else {
-        PEER_BUDGET
-    }
+fn peer_budget(size: Size) -> f64 {
+    size.pick(PEER_BUDGET_QUICK, PEER_BUDGET)
 }
 
 /// The least time each job is timed for (repeated solves until then).
-fn min_time(quick: bool) -> Duration {
-    Duration::from_millis(if quick { 2 } else { 20 })
+fn min_time(size: Size) -> Duration {
+    Duration::from_millis(size.pick(2, 20))
 }
 
 fn file_stem(scene: &str) -> String {
@@ -303,18 +330,19 @@ fn file_stem(scene: &str) -> String {
 }
 
 /// Runs the atlas and writes its files under `opts.out`; returns the paths
-/// written (CSV and Markdown files first, then the charts). With `progress`
-/// a progress bar is drawn on standard error when it is a terminal.
+/// written (CSV and Markdown files first, then the charts). With
+/// [`Feedback::Bar`] a progress bar is drawn on standard error when it is a
+/// terminal.
 ///
 /// The PNG files are skipped (SVG only) when no TrueType font is found on
 /// the machine ([`crate::report::plot::png_support`]).
-pub fn run(opts: &AtlasOptions, progress: bool) -> Result<Vec<PathBuf>, AtlasError> {
+pub fn run(opts: &AtlasOptions, feedback: Feedback) -> Result<Vec<PathBuf>, AtlasError> {
     let out_dir = &opts.out;
     fs::create_dir_all(out_dir).map_err(|e| AtlasError::Io {
         path: out_dir.clone(),
         message: e.to_string(),
     })?;
-    let bar = if progress && std::io::stderr().is_terminal() {
+    let bar = if feedback == Feedback::Bar && std::io::stderr().is_terminal() {
         let bar = ProgressBar::new(0);
         let style = ProgressStyle::with_template("atlas {bar:30} {pos}/{len} [{elapsed}] {msg}")
             .unwrap_or_else(|_| ProgressStyle::default_bar());
@@ -325,27 +353,27 @@ pub fn run(opts: &AtlasOptions, progress: bool) -> Result<Vec<PathBuf>, AtlasErr
     };
     bar.set_message("building scenes");
     let keep = |c: &suite::Case| opts.scenes.is_empty() || opts.scenes.contains(&c.name);
-    let mut suite = suite(opts.quick)?;
+    let mut suite = suite(opts.size)?;
     suite.retain(keep);
-    let mut stability = stability_suite(opts.quick)?;
+    let mut stability = stability_suite(opts.size)?;
     stability.retain(keep);
-    let main_jobs: Vec<Vec<Job>> = suite.iter().map(|c| jobs(c, opts.quick)).collect();
+    let main_jobs: Vec<Vec<Job>> = suite.iter().map(|c| jobs(c, opts.size)).collect();
     let stab_jobs: Vec<Vec<Job>> = stability.iter().map(stability_jobs).collect();
     // Each job counts twice: solved, then measured.
     let total: usize = main_jobs.iter().chain(&stab_jobs).map(Vec::len).sum();
     bar.set_length(2 * total as u64);
-    let min_time = min_time(opts.quick);
+    let min_time = min_time(opts.size);
 
     let mut rows = Vec::new();
     for (case, jobs) in suite.iter().zip(&main_jobs) {
-        rows.extend(run_case(case, jobs, true, min_time, &bar)?);
+        rows.extend(run_case(case, jobs, Reference::Exact, min_time, &bar)?);
     }
     let mut stab_rows = Vec::new();
     for (case, jobs) in stability.iter().zip(&stab_jobs) {
-        stab_rows.extend(run_case(case, jobs, false, min_time, &bar)?);
+        stab_rows.extend(run_case(case, jobs, Reference::None, min_time, &bar)?);
     }
     if opts.peers {
-        let mut runner = PeerRunner::new(peer_budget(opts.quick));
+        let mut runner = PeerRunner::new(peer_budget(opts.size));
         let work = out_dir.join("peers");
         for case in &suite {
             bar.set_message(format!("{}: peers", case.name));
@@ -357,7 +385,7 @@ pub fn run(opts: &AtlasOptions, progress: bool) -> Result<Vec<PathBuf>, AtlasErr
         }
     }
     bar.set_message("writing files");
-    let budget = opts.peers.then(|| peer_budget(opts.quick));
+    let budget = opts.peers.then(|| peer_budget(opts.size));
     let written = write_files(out_dir, &suite, &stability, &rows, &stab_rows, budget)?;
     bar.finish_and_clear();
     Ok(written)
@@ -407,9 +435,9 @@ fn write_files(
     for case in suite {
         let case_rows: Vec<&Row> = rows.iter().filter(|r| r.scene == case.name).collect();
         let stem = file_stem(&case.name);
-        for velocity in [false, true] {
-            if let Some(chart) = pareto_chart(&case.name, &case_rows, velocity) {
-                let kind = if velocity { "velocity" } else { "position" };
+        for of in Unknown::BOTH {
+            if let Some(chart) = pareto_chart(&case.name, &case_rows, of) {
+                let kind = of.name();
                 let w = write_chart(&chart, out_dir, &format!("pareto-{kind}-{stem}"))?;
                 written.extend(w.paths());
             }

@@ -262,18 +262,29 @@ pub(super) fn solve_unit(
 }
 
 /// Solves every job of one scene (timed, one at a time), then measures.
+/// What a case's rows are measured against.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Reference {
+    /// The exact states, computed first (the suite).
+    Exact,
+    /// Nothing exact ahead: each row is measured on its own (the
+    /// stability section).
+    None,
+}
+
 pub(super) fn run_case(
     case: &Case,
     jobs: &[Job],
-    with_exact: bool,
+    reference: Reference,
     min_time: Duration,
     bar: &ProgressBar,
 ) -> Result<Vec<Row>, AtlasError> {
-    let exact = if with_exact {
-        bar.set_message(format!("{}: exact reference", case.name));
-        Some(exact_states(case)?)
-    } else {
-        None
+    let exact = match reference {
+        Reference::Exact => {
+            bar.set_message(format!("{}: exact reference", case.name));
+            Some(exact_states(case)?)
+        }
+        Reference::None => None,
     };
     let mut solved = Vec::with_capacity(jobs.len());
     for job in jobs {

@@ -13,7 +13,7 @@ use crate::scalar::Scalar;
 use crate::scene;
 
 use super::jobs::{STABILITY_STEP_CAP, STEP_CAP};
-use super::AtlasError;
+use super::{AtlasError, Size};
 
 /// One scene at one time, exact and rounded.
 pub(super) struct Case {
@@ -122,8 +122,8 @@ const SHIPPED_SCENES: [&str; 3] = [
 ];
 
 /// The speed-vs-accuracy suite.
-pub(super) fn suite(quick: bool) -> Result<Vec<Case>, AtlasError> {
-    let sizes: &[usize] = if quick {
+pub(super) fn suite(size: Size) -> Result<Vec<Case>, AtlasError> {
+    let sizes: &[usize] = if size == Size::Quick {
         &[10, 100, 1000]
     } else {
         &[10, 100, 1000, 10_000, 100_000]
@@ -250,7 +250,7 @@ fn tiny_gaps(n: usize) -> Result<Case, AtlasError> {
 }
 
 /// A random scene of 20 particles measured at `t = 10⁶`.
-fn long_horizon(quick: bool) -> Result<Case, AtlasError> {
+fn long_horizon(size: Size) -> Result<Case, AtlasError> {
     let mut rng = SplitMix64::new(0x10C6);
     let bytes = rng.bytes(1000);
     let exact = initial_data(
@@ -266,7 +266,7 @@ fn long_horizon(quick: bool) -> Result<Case, AtlasError> {
         exact,
         1e6,
     )?;
-    case.step = if quick { 4.0 } else { 0.25 };
+    case.step = size.pick(4.0, 0.25);
     Ok(case)
 }
 
@@ -299,19 +299,19 @@ fn velocity_decades() -> Result<Case, AtlasError> {
 }
 
 /// The stability scenes.
-pub(super) fn stability_suite(quick: bool) -> Result<Vec<Case>, AtlasError> {
+pub(super) fn stability_suite(size: Size) -> Result<Vec<Case>, AtlasError> {
     let mut out = vec![
         near_simultaneous()?,
         multi_cluster_instant()?,
-        offset_1e9(if quick { 1000 } else { 10_000 })?,
-        tiny_gaps(if quick { 10_000 } else { 1_000_000 })?,
-        long_horizon(quick)?,
+        offset_1e9(size.pick(1000, 10_000))?,
+        tiny_gaps(size.pick(10_000, 1_000_000))?,
+        long_horizon(size)?,
         velocity_decades()?,
     ];
     // Time-steppers: a power of two of steps, at most `max_steps` and about
     // `steps_budget` particle-steps (at least 4 steps); inner sweep caps of
     // about `sweeps_budget / N` (between 100 and STABILITY_STEP_CAP).
-    let (max_steps, steps_budget, sweeps_budget, budget) = if quick {
+    let (max_steps, steps_budget, sweeps_budget, budget) = if size == Size::Quick {
         (256usize, 256_000usize, 2_500_000usize, 200_000_000usize)
     } else {
         (1024, 4_000_000, 100_000_000, 2_000_000_000)
