@@ -103,12 +103,21 @@ def test_claims_stop_on_ctrl_c():
 
 def test_state_on_the_general_path_stops_on_ctrl_c():
     # The hostile scene takes neither the dyadic nor the streaming path:
-    # `blockwise::state_at`, ~2 s at this size. The signal comes early,
-    # where the work guard's lcm and the free flight's shift once ran
-    # unpolled for ~0.5 s.
-    scene = hostile(300_000)
+    # `blockwise::state_at`, a few seconds at this size. The signal comes
+    # early, where the work guard's lcm and the free flight's shift once ran
+    # unpolled. "Stopped, not finished" is judged against the whole call
+    # timed on this machine just before (a load-independent bound: a fixed
+    # wall-time limit fails on a busy machine).
+    timed, scene = hostile(300_000), hostile(300_000)
+    start = time.monotonic()
+    timed.state(1)
+    whole = time.monotonic() - start
     delay, busy = interrupt_during(lambda: scene.state(1), after=0.1)
     assert busy == 1, "state() had ended before the signal: the test proves nothing"
-    assert delay < 1.0, f"KeyboardInterrupt came {delay:.2f} s after SIGINT"
-    left = wait_until_no_worker(5.0)
-    assert left < 0.3, f"the worker still ran {left:.2f} s after Ctrl-C"
+    left = wait_until_no_worker(whole)
+    assert workers() == 0, f"the worker still runs {left:.2f} s after Ctrl-C"
+    stopped = 0.1 + delay + left
+    assert stopped < whole / 2, (
+        f"the worker ended {stopped:.2f} s after the call began, "
+        f"against {whole:.2f} s for the whole call: it ran on instead of stopping"
+    )
