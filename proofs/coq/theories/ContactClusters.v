@@ -3,7 +3,9 @@
     A cluster, as [sticky run --json] prints it, is a maximal run of
     consecutive particles each touching the next: [x_{i+1} − x_i = 2r]
     ([Contacts.Contact]). [contact_clusters r x] lists them as
-    [(first, size)], particles indexed from 0, left to right.
+    [(first, size)], particles indexed from 0, left to right;
+    [contact_clusters_spec] proves they are exactly that: the spans tile the
+    particles in order, and two neighbours share a span iff they touch.
 
     [Oracle.state_at] computes its clusters differently, as the runs of equal
     translated positions [x̃_i = x_i − 2r·i] before translating back
@@ -97,6 +99,96 @@ Lemma contact_clusters_qeq (r : Q) (x y : list Q) :
 Proof.
   intro E. unfold contact_clusters. rewrite (in_contact_qeq r x y E).
   destruct E; reflexivity.
+Qed.
+
+(** ** The spans are the maximal runs of contacts
+
+    [contact_clusters_spec]: the spans tile the particles [0 … N−1] in
+    order, and two neighbours [j], [j + 1] lie in one span iff they touch.
+    So the spans are the maximal runs of particles in contact, whatever
+    [spans_from] looks like inside. *)
+
+(** Particle [i] and its right neighbour lie in one span. *)
+Definition SameSpan (spans : list (nat * nat)) (i : nat) : Prop :=
+  exists f s, In (f, s) spans /\ (f <= i)%nat /\ (S i < f + s)%nat.
+
+(** The particles a list of spans covers, in order. *)
+Definition covered (spans : list (nat * nat)) : list nat :=
+  flat_map (fun p => seq (fst p) (snd p)) spans.
+
+Lemma spans_from_covered (joined : list bool) : forall first size,
+  covered (spans_from first size joined) = seq first (size + length joined).
+Proof.
+  induction joined as [|[|] joined IH]; intros first size; cbn [spans_from length].
+  - unfold covered. simpl. rewrite app_nil_r, Nat.add_0_r. reflexivity.
+  - rewrite IH. f_equal. lia.
+  - unfold covered in *. cbn [flat_map fst snd]. rewrite IH.
+    replace (size + S (length joined))%nat with (size + (1 + length joined))%nat by lia.
+    rewrite (seq_app size (1 + length joined) first). reflexivity.
+Qed.
+
+Lemma spans_from_first (joined : list bool) : forall first size f s,
+  In (f, s) (spans_from first size joined) -> (first <= f)%nat.
+Proof.
+  induction joined as [|[|] joined IH]; intros first size f s H; cbn [spans_from] in H.
+  - destruct H as [H|[]]. inversion H. lia.
+  - exact (IH _ _ _ _ H).
+  - destruct H as [H|H]; [inversion H; lia|]. apply IH in H. lia.
+Qed.
+
+Lemma spans_from_head (joined : list bool) : forall first size,
+  exists s rest, spans_from first size joined = (first, s) :: rest /\ (size <= s)%nat.
+Proof.
+  induction joined as [|[|] joined IH]; intros first size; cbn [spans_from].
+  - exists size, []. split; [reflexivity|lia].
+  - destruct (IH first (S size)) as (s & rest & E & L). exists s, rest. split; [exact E|lia].
+  - exists size, (spans_from (first + size) 1 joined). split; [reflexivity|lia].
+Qed.
+
+Lemma spans_from_same (joined : list bool) : forall first size k,
+  (1 <= size)%nat -> (k < length joined)%nat ->
+  (nth k joined false = true <-> SameSpan (spans_from first size joined) (first + size - 1 + k)).
+Proof.
+  induction joined as [|b joined IH]; intros first size k Hs Hk; [simpl in Hk; lia|].
+  destruct b; cbn [spans_from].
+  - destruct k as [|k].
+    + split; [intros _|reflexivity].
+      destruct (spans_from_head joined first (S size)) as (s & rest & E & L).
+      exists first, s. rewrite E. split; [left; reflexivity|lia].
+    + cbn [nth]. simpl in Hk.
+      replace (first + size - 1 + S k)%nat with (first + S size - 1 + k)%nat by lia.
+      apply IH; lia.
+  - assert (Head : forall i rest, (first + size <= i)%nat ->
+              (SameSpan ((first, size) :: rest) i <-> SameSpan rest i)).
+    { intros i rest Hi. split.
+      - intros (f & s & [E|H] & L1 & L2); [inversion E; subst; lia|].
+        exists f, s. auto.
+      - intros (f & s & H & L1 & L2). exists f, s. split; [right; exact H|auto]. }
+    destruct k as [|k].
+    + cbn [nth]. split; [discriminate|].
+      intros (f & s & [E|H] & L1 & L2); [inversion E; subst; lia|].
+      apply spans_from_first in H. lia.
+    + cbn [nth]. simpl in Hk. rewrite Head by lia.
+      replace (first + size - 1 + S k)%nat with (first + size + 1 - 1 + k)%nat by lia.
+      apply IH; lia.
+Qed.
+
+(** For every [N ≥ 1]: the contact clusters cover [0 … N−1] in order, and
+    [j], [j + 1] are in one of them iff they are in contact. *)
+Theorem contact_clusters_spec (r : Q) (x : list Q) :
+  x <> [] ->
+  covered (contact_clusters r x) = seq 0 (length x) /\
+  forall j, (S j < length x)%nat -> (Contact r x j <-> SameSpan (contact_clusters r x) j).
+Proof.
+  intro Hx. assert (Lc : length (in_contact r x) = (length x - 1)%nat)
+    by (unfold in_contact; rewrite map_length; apply gaps_length).
+  destruct x as [|a x']; [contradiction|]. set (x := a :: x') in *.
+  assert (Hc : contact_clusters r x = spans_from 0 1 (in_contact r x)) by reflexivity.
+  rewrite Hc. split.
+  - rewrite spans_from_covered, Lc. f_equal. simpl. lia.
+  - intros j Hj. rewrite <- in_contact_spec by exact Hj.
+    replace j with (0 + 1 - 1 + j)%nat at 2 by lia.
+    apply spans_from_same; lia.
 Qed.
 
 (** ** The oracle's clusters are the contact clusters of its positions *)
