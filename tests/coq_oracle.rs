@@ -4,9 +4,11 @@
 //! The oracle's positions are the extracted lexicographic PAVA, proved in
 //! Coq to equal `P_K(x⁰ + t u⁰)` for every N (`Sticky.Oracle.
 //! state_positions_spec`, `prop:proj-micro`), its velocities proved to be
-//! the right derivative (`Sticky.RightDerivative.state_velocities_spec`);
-//! its multipliers and clusters are Coq definitions extracted with it
-//! (proofs/coq/README.md).
+//! the right derivative (`Sticky.RightDerivative.state_velocities_spec`),
+//! its multipliers `Multipliers.multiplier`
+//! (`Sticky.OracleMultipliers.oracle_multipliers_are_multiplier`), its
+//! clusters the contact clusters of its positions
+//! (`Sticky.ContactClusters.state_clusters_spec`; proofs/coq/README.md).
 //!
 //! Scenes: [`sticky::generate::initial_data`] — contacts, separating
 //! contacts, simultaneous collisions — many small ones (N ≤ 60) and a few
@@ -14,10 +16,12 @@
 //! generic event history (all of them for small scenes, a sample for big
 //! ones), midpoints, random rationals, one after the last collision.
 //!
-//! The oracle has a second extracted path, the event-driven dynamics
-//! (`--dynamics`, `Sticky.Dynamics.dynamics`, proved equal to `P_K(x⁰ + t u⁰)`
-//! by `Sticky.DynamicsIsProjK.dynamics_is_proj_K`); it is quadratic in N or
-//! worse, so the engines are compared with it on the small scenes only.
+//! The oracle has a second extracted path, the event-driven dynamics with its
+//! multipliers and contact clusters (`--dynamics`,
+//! `Sticky.DynamicsState.dynamics_state`, proved equal to the first path for
+//! `t > 0` by `Sticky.DynamicsState.dynamics_state_is_state_at`); it is
+//! quadratic in N or worse, so the engines are compared with it on the small
+//! scenes only.
 //!
 //! Without the oracle built the test prints how to build it and passes,
 //! except under `CI=true`, where that is a failure.

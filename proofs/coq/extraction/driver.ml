@@ -1,4 +1,4 @@
-(* The oracle's driver: reads a scene, calls the extracted [state_at] for
+(* The oracle's driver: reads a scene, calls an extracted state function for
    each time, prints one JSON line per time in the conventions of
    `sticky run --json` (numbers as strings in lowest terms, clusters as
    [first, size] with particles indexed from 0).
@@ -8,25 +8,27 @@
    rationals, >= 0), optionally preceded by `--dynamics`. A bad input is one
    line on stderr and exit code 1.
 
-   Two extracted computations of the same state:
+   Two extracted computations of the same state, both returning the whole
+   state (positions, velocities, multipliers, clusters) in one record:
    - by default the proved PAVA (Sticky.Oracle.state_at: positions proved
-     = P_K(x0 + t u0), velocities proved = the right derivative), which is
-     O(N) per time; for N <= cross_check_max_n the event-driven dynamics
-     (Sticky.Dynamics.dynamics, proved = P_K(x0 + t u0) by
-     DynamicsIsProjK.dynamics_is_proj_K) is run too and the two must agree
-     on positions and velocities, else exit code 2;
-   - with `--dynamics`, the event-driven dynamics' positions and
-     velocities, for any N (it is quadratic in N or worse); the multipliers
-     and contact clusters are then computed from them by the same extracted
-     formulas.
+     = P_K(x0 + t u0), velocities proved = the right derivative, multipliers
+     proved = Multipliers.multiplier, clusters proved = the contact clusters
+     of the positions), which is O(N) per time; for N <= cross_check_max_n
+     the event-driven path (below) is run too and the two states must be
+     equal field by field, else exit code 2;
+   - with `--dynamics`, Sticky.DynamicsState.dynamics_state: the
+     event-driven dynamics (Sticky.Dynamics.dynamics) with its multipliers
+     (proved = Multipliers.multiplier) and its contact clusters, for any N
+     (it is quadratic in N or worse). DynamicsState.dynamics_state_is_state_at
+     proves the two paths equal for t > 0.
 
    This file is the only unproved part besides the extraction itself: it
    parses, checks admissibility (r > 0, gaps >= 2r, no approaching contact,
-   as the crate's InitialData::new), and prints. All arithmetic on the state
-   is the extracted Coq code (Sticky.Oracle.state_at). *)
+   as the crate's InitialData::new), chooses the path, compares the two
+   states of the cross-check, and prints. It does no arithmetic on the
+   state; the comparisons are the extracted Qle_bool/Qeq_bool. *)
 
 module Zr = Z (* zarith's integers, before the extracted module shadows Z *)
-module D = Sticky_dynamics
 
 open Sticky_oracle
 
@@ -115,30 +117,15 @@ let json_strings l = "[" ^ String.concat ", " (List.map (fun v -> "\"" ^ render 
 let json_clusters l =
   "[" ^ String.concat ", " (List.map (fun (f, s) -> Printf.sprintf "[%d, %d]" f s) l) ^ "]"
 
-(* The two extracted modules have their own (equal) record types for Q. *)
-let to_d (x : q) : D.q = { D.qnum = x.qnum; D.qden = x.qden }
-let of_d (x : D.q) : q = { qnum = x.D.qnum; qden = x.D.qden }
-
-(* The state by the event-driven dynamics, in the oracle's record. The
-   clusters printed are the contact clusters of its positions, the runs of
-   equal translated positions (Sticky.Oracle.runs), as `sticky run` prints
-   them: the dynamics' own groups (Sticky.Dynamics.cluster_spans) are the
-   clusters formed by collisions, which keep apart particles that touch at
-   t = 0 and move at equal speeds, or separate. *)
-let dynamics_state n r t x u =
-  let xd = List.map to_d x and ud = List.map to_d u in
-  let s = D.dynamics xd ud (to_d r) (to_d t) in
-  let positions = List.map (fun v -> qred (of_d v)) s.D.positions in
-  let velocities = List.map (fun v -> qred (of_d v)) s.D.velocities in
-  let two_r = qplus r r in
-  let clusters = runs (shifted_free zero two_r zero positions positions) in
-  { st_positions = positions;
-    st_velocities = velocities;
-    st_multipliers =
-      multipliers_from zero { qnum = Zr.of_int n; qden = Zr.one } u velocities;
-    st_clusters = clusters }
-
 let same_values a b = List.length a = List.length b && List.for_all2 qeq_bool a b
+
+(* The first field in which two states differ, if any. *)
+let differing_field s d =
+  if not (same_values s.st_positions d.st_positions) then Some "positions"
+  else if not (same_values s.st_velocities d.st_velocities) then Some "velocities"
+  else if not (same_values s.st_multipliers d.st_multipliers) then Some "multipliers"
+  else if s.st_clusters <> d.st_clusters then Some "clusters"
+  else None
 
 let print_state n r t s =
   Printf.printf
@@ -160,19 +147,14 @@ let () =
                            t) times in
     let n, r, x, u = read_scene () in
     List.iter (fun t ->
-        if use_dynamics then print_state n r t (dynamics_state n r t x u)
+        if use_dynamics then print_state n r t (dynamics_state r t x u)
         else begin
           let s = state_at r t x u in
-          if n <= cross_check_max_n then begin
-            let d = dynamics_state n r t x u in
-            let check what ok =
-              if not ok then
+          if n <= cross_check_max_n then
+            Option.iter (fun what ->
                 raise (Disagree (Printf.sprintf
-                  "PAVA and the event-driven dynamics differ in %s at t = %s" what (render t)))
-            in
-            check "positions" (same_values s.st_positions d.st_positions);
-            check "velocities" (same_values s.st_velocities d.st_velocities)
-          end;
+                  "PAVA and the event-driven dynamics differ in %s at t = %s" what (render t))))
+              (differing_field s (dynamics_state r t x u));
           print_state n r t s
         end)
       times

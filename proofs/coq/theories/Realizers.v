@@ -1,11 +1,11 @@
-(** * The realizers shared by the two extractions ([Extract.v],
-    [ExtractDynamics.v]).
+(** * The realizers of the extraction ([Extract.v]).
 
     Integers are zarith's ([ExtrOcamlZBigInt]) and [nat] is OCaml's [int]
     ([ExtrOcamlNatInt]; indices and sizes are below [2^62]). [Z.ggcd] is
     realized by zarith's gcd and exact divisions: Coq's own [Z.ggcd] walks
     the binary digits one match at a time, quadratic on big integers.
-    Extraction directives are kept by [Require], so both files get these. *)
+    Extraction directives are kept by [Require], so [Extract.v] gets
+    these. *)
 
 From Coq Require Import Extraction ExtrOcamlBasic ExtrOcamlNatInt ExtrOcamlZBigInt.
 From Coq Require Import ZArith.
