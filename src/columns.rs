@@ -335,7 +335,7 @@ fn gcd_u64(mut a: u64, mut b: u64) -> u64 {
 }
 
 /// `negative · num / den` in lowest terms, when it fits [`Small`].
-fn small_of(negative: bool, num: u64, den: u64) -> Option<Small> {
+pub(crate) fn small_of(negative: bool, num: u64, den: u64) -> Option<Small> {
     if num == 0 {
         return Some((0, 1));
     }
