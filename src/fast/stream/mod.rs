@@ -41,6 +41,7 @@ use crate::fast::scaling::{scale_pairs, small_word, Range};
 use crate::scene::{column_scene, inline_scene, ColumnScene, MAX_NUMBER_BITS, MAX_SCENE_BYTES};
 
 mod csv;
+mod digits;
 pub mod memory;
 mod read;
 mod scale;
