@@ -90,13 +90,20 @@ pub enum Exact {
 impl Exact {
     /// `num / den` (`den > 0`) in lowest terms.
     pub(crate) fn ratio(num: i128, den: i128) -> Exact {
-        let g = gcd(num.unsigned_abs(), den.unsigned_abs());
+        let (a, b) = (num.unsigned_abs(), den.unsigned_abs());
+        let g = gcd(a, b);
         if g <= 1 {
             return if num == 0 {
                 Exact::Small(0, 1)
             } else {
                 Exact::Small(num, den)
             };
+        }
+        // The divisions on 64-bit words when both terms fit them (most
+        // values): the same quotients.
+        if let (Ok(a), Ok(b), Ok(g)) = (u64::try_from(a), u64::try_from(b), u64::try_from(g)) {
+            let (p, q) = (i128::from(a / g), i128::from(b / g));
+            return Exact::Small(if num < 0 { -p } else { p }, if den < 0 { -q } else { q });
         }
         let g = g as i128;
         Exact::Small(num / g, den / g)
