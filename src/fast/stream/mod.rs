@@ -167,7 +167,7 @@ impl Lean {
     /// as [`Error::Memory`], before anything is read. A column file is
     /// read in segments on every core, twice (the denominators, then the
     /// values): the peak is the `i64` columns and the segments in memory
-    /// ([`read::CHUNK_BYTES`] together), and the general path's
+    /// (4 MiB together), and the general path's
     /// budget on the size of the numbers ([`MAX_NUMBER_BITS`], meant for
     /// `BigRational` data) does not apply to it.
     pub fn open(path: &Path) -> Result<Option<Lean>, Error> {
