@@ -335,11 +335,17 @@ fn gcd_u64(mut a: u64, mut b: u64) -> u64 {
 }
 
 /// `negative · num / den` in lowest terms, when it fits [`Small`].
-fn small_of(negative: bool, num: u64, den: u64) -> Option<Small> {
+pub(crate) fn small_of(negative: bool, num: u64, den: u64) -> Option<Small> {
     if num == 0 {
         return Some((0, 1));
     }
-    let g = gcd_u64(num, den);
+    // A power of two (every double's denominator, and many files'): the
+    // gcd is the common power of two, no division needed.
+    let g = if den.is_power_of_two() {
+        1 << num.trailing_zeros().min(den.trailing_zeros())
+    } else {
+        gcd_u64(num, den)
+    };
     let (num, den) = (num / g, den / g);
     let num = i64::try_from(num).ok()?;
     Some((if negative { -num } else { num }, den))

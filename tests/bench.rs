@@ -2,15 +2,15 @@
 //! as documented (timings are reports, never asserted).
 
 use num_rational::BigRational;
-use sticky::report::bench::{json, run, scene, BenchOptions, Metric};
+use sticky::report::bench::{json, run, scene, BenchOptions, Events, Metric, Peers};
 
 #[test]
 fn bench_reports_every_method() {
     let opts = BenchOptions {
         n: 2000,
         reps: 1,
-        peers: false,
-        events: true,
+        peers: Peers::Skip,
+        events: Events::Time,
         metric: Metric::Time,
     };
     let t = BigRational::new(1.into(), 100.into());
@@ -62,7 +62,7 @@ fn e2e_rows_measure_every_sticky_pipeline() {
     use sticky::report::bench::e2e::{self, E2eOptions, Tool, PIPELINES};
     let empty = std::env::temp_dir().join(format!("sticky-e2e-noscripts-{}", std::process::id()));
     std::fs::create_dir_all(&empty).unwrap();
-    for (peers, scripts) in [(false, empty.clone()), (true, empty.clone())] {
+    for (peers, scripts) in [(Peers::Skip, empty.clone()), (Peers::Run, empty.clone())] {
         let opts = E2eOptions {
             n: 500,
             reps: 2,
@@ -78,7 +78,7 @@ fn e2e_rows_measure_every_sticky_pipeline() {
                 assert!(r.vs_scipy(row).is_none());
                 // Skipped; or the helper missing (python3 fails on it, or
                 // python3 itself is absent).
-                let why: &[&str] = if peers {
+                let why: &[&str] = if peers == Peers::Run {
                     &["failed", "cannot start"]
                 } else {
                     &["skipped"]
@@ -192,8 +192,8 @@ fn bench_reports_progress_and_stops_when_cancelled() {
     let opts = BenchOptions {
         n: 200,
         reps: 2,
-        peers: false,
-        events: false,
+        peers: Peers::Skip,
+        events: Events::Skip,
         metric: Metric::Time,
     };
     let t = BigRational::new(1.into(), 100.into());

@@ -106,6 +106,7 @@ pub(crate) fn div_rem(a: u128, b: u128) -> (u128, u128) {
 /// denominators seen, with a small direct-mapped memo of `lcm / d` (random
 /// data have few distinct denominators, and a division per particle would
 /// cost more than the rest of the scaling).
+#[derive(Clone)]
 pub(crate) struct Denominators {
     pub(crate) lcm: u128,
     memo: [(u128, u128); 64],

@@ -163,16 +163,14 @@ struct Formatted {
 
 impl LeanColumn<'_> {
     /// The values of `piece` in this column, formatted as `Exact`'s
-    /// `Display` writes them.
+    /// `Display` writes them ([`Exact::push_text`]: digits straight into
+    /// one buffer per piece).
     fn format(&self, piece: &Piece) -> io::Result<Formatted> {
-        use std::fmt::Write as _;
-        let mut out = Formatted {
-            text: String::new(),
-            ends: Vec::new(),
-        };
+        let mut text = Vec::new();
+        let mut ends = Vec::new();
         let each = |v: &Exact| {
-            write!(out.text, "{v}").map_err(io::Error::other)?;
-            out.ends.push(out.text.len());
+            v.push_text(&mut text);
+            ends.push(text.len());
             Ok(())
         };
         match self.column {
@@ -180,7 +178,10 @@ impl LeanColumn<'_> {
             Column::Velocities => self.blocks.velocities_of(piece, each),
             Column::Multipliers => self.blocks.multipliers_of(piece, each),
         }?;
-        Ok(out)
+        Ok(Formatted {
+            text: String::from_utf8(text).map_err(io::Error::other)?,
+            ends,
+        })
     }
 }
 

@@ -92,6 +92,15 @@ fn malloc_env(mode: Memory) -> Vec<(&'static str, &'static str)> {
     }
 }
 
+/// Whether `--no-peers` leaves the Python peers out.
+fn peers(args: &Args) -> bench::Peers {
+    if args.no_peers {
+        bench::Peers::Skip
+    } else {
+        bench::Peers::Run
+    }
+}
+
 /// What `--memory` asks the benchmark to measure.
 fn metric(args: &Args) -> bench::Metric {
     if args.memory {
@@ -147,8 +156,12 @@ pub fn exec(args: Args, out: &mut impl Write) -> Result<(), Failure> {
     let opts = bench::BenchOptions {
         n: args.n,
         reps: args.reps.unwrap_or(if args.quick { 2 } else { 3 }),
-        peers: !args.no_peers,
-        events: !args.quick,
+        peers: peers(&args),
+        events: if args.quick {
+            bench::Events::Skip
+        } else {
+            bench::Events::Time
+        },
         metric: metric(&args),
     };
     // The repetition and the method being timed, the count and the time
@@ -172,7 +185,7 @@ fn e2e(args: Args, out: &mut impl Write) -> Result<(), Failure> {
     let opts = bench::e2e::E2eOptions {
         n: args.n,
         reps: args.reps.unwrap_or(if args.quick { 1 } else { 3 }),
-        peers: !args.no_peers,
+        peers: peers(&args),
         sticky: std::env::current_exe()
             .map_err(|e| Failure(format!("cannot find the sticky binary: {e}")))?,
         scripts: scripts(),
@@ -224,7 +237,7 @@ fn scaling(args: Args, out: &mut impl Write) -> Result<(), Failure> {
     let opts = bench::ScalingOptions {
         ns,
         reps: args.reps.unwrap_or(3),
-        peers: !args.no_peers,
+        peers: peers(&args),
         metric,
         out: args.out.unwrap_or_else(|| PathBuf::from("out/bench")),
     };

@@ -2,8 +2,9 @@
 //! data: from the particle count (the NPY header) or a bound on it (a CSV
 //! file's size), and the limit it is held to.
 //!
-//! The path keeps two `i64` columns (16 bytes per particle), one read
-//! buffer (`CHUNK_BYTES` of the reader) and the PAVA stack: one
+//! The path keeps two `i64` columns (16 bytes per particle), the segments
+//! of the file being read on every core (`CHUNK_BYTES` together) and the
+//! PAVA stack: one
 //! run (`ΣY`, `ΣU`, size) per block, at most one per particle, touched only as blocks
 //! form. The projection charges the stack its worst case, so a file whose
 //! projection passes the limit cannot exhaust the memory on this path.

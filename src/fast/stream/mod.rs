@@ -40,12 +40,22 @@ use crate::fast::kernel::{i128_clusters, pava_words, size_bits, Run};
 use crate::fast::scaling::{scale_pairs, small_word, Range};
 use crate::scene::{column_scene, inline_scene, ColumnScene, MAX_NUMBER_BITS, MAX_SCENE_BYTES};
 
+mod csv;
+mod digits;
 pub mod memory;
 mod read;
 mod scale;
 
 use memory::Footprint;
-use read::ColumnFile;
+use read::{ColumnFile, Segment};
+
+/// A segment of a column file and the rows it holds, from its first one
+/// (known after the first pass).
+struct SegmentAt {
+    segment: Segment,
+    first: usize,
+    rows: usize,
+}
 use scale::ScaledColumn;
 
 /// Bits of `|v|` (0 for 0).
@@ -80,13 +90,20 @@ pub enum Exact {
 impl Exact {
     /// `num / den` (`den > 0`) in lowest terms.
     pub(crate) fn ratio(num: i128, den: i128) -> Exact {
-        let g = gcd(num.unsigned_abs(), den.unsigned_abs());
+        let (a, b) = (num.unsigned_abs(), den.unsigned_abs());
+        let g = gcd(a, b);
         if g <= 1 {
             return if num == 0 {
                 Exact::Small(0, 1)
             } else {
                 Exact::Small(num, den)
             };
+        }
+        // The divisions on 64-bit words when both terms fit them (most
+        // values): the same quotients.
+        if let (Ok(a), Ok(b), Ok(g)) = (u64::try_from(a), u64::try_from(b), u64::try_from(g)) {
+            let (p, q) = (i128::from(a / g), i128::from(b / g));
+            return Exact::Small(if num < 0 { -p } else { p }, if den < 0 { -q } else { q });
         }
         let g = g as i128;
         Exact::Small(num / g, den / g)
@@ -148,8 +165,9 @@ impl Lean {
     /// [`Lean::load`], with the refusal of a column file whose projected
     /// memory ([`Lean::footprint`]) exceeds the limit ([`memory::limit`])
     /// as [`Error::Memory`], before anything is read. A column file is
-    /// read in chunks, twice (the denominators, then the values): the peak
-    /// is the `i64` columns and one read buffer, and the general path's
+    /// read in segments on every core, twice (the denominators, then the
+    /// values): the peak is the `i64` columns and the segments in memory
+    /// (4 MiB together), and the general path's
     /// budget on the size of the numbers ([`MAX_NUMBER_BITS`], meant for
     /// `BigRational` data) does not apply to it.
     pub fn open(path: &Path) -> Result<Option<Lean>, Error> {
@@ -223,27 +241,72 @@ impl Lean {
     }
 
     /// The scene of radius `radius` (`None`: `1/(2N)`) whose columns are in
-    /// `file`, read in two passes ([`scale`]).
+    /// `file`, read in two passes ([`scale`]), each on every core: the
+    /// file's segments read on worker threads ([`crate::parallel::in_order`])
+    /// and their results taken back in order.
     fn from_file(radius: Option<BigRational>, file: &ColumnFile) -> Option<Lean> {
+        let segments = file.segments()?;
+        let workers = crate::parallel::workers();
+        // The first pass: each segment's rows and denominators.
         let (mut lx, mut lu) = (scale::Lcm::new(), scale::Lcm::new());
-        let n = file.rows(|(_, dx), (_, du)| {
-            lx.add(dx)?;
-            lu.add(du)
-        })?;
+        let mut counts = Vec::with_capacity(segments.len());
+        let denominators = |s: &Segment| {
+            let (mut lx, mut lu) = (scale::Lcm::new(), scale::Lcm::new());
+            let rows = file.rows_of(s, |(_, dx), (_, du)| {
+                lx.add(dx)?;
+                lu.add(du)
+            })?;
+            Some((rows, lx, lu))
+        };
+        crate::parallel::in_order(&segments, workers, denominators, |part| {
+            let (rows, x, u) = part.ok_or(())?;
+            lx.merge(&x).ok_or(())?;
+            lu.merge(&u).ok_or(())?;
+            counts.push(rows);
+            Ok::<(), ()>(())
+        })
+        .ok()?;
+        let n: usize = counts.iter().sum();
         if n == 0 {
             return None;
         }
         let (radius, two_r) = Lean::radius_of(radius, n)?;
-        let mut sx = lx.scaler(Some((two_r.0, u128::try_from(two_r.1).ok()?)), n)?;
-        let mut su = lu.scaler(None, n)?;
-        let again = file.rows(|(px, dx), (pu, du)| {
-            sx.push(px, dx)?;
-            su.push(pu, du)
-        })?;
-        if again != n {
-            return None;
-        }
-        let (x, u) = (sx.finish()?, su.finish()?);
+        let sx = lx.scale(Some((two_r.0, u128::try_from(two_r.1).ok()?)))?;
+        let su = lu.scale(None)?;
+        // The second pass: each segment scaled from its first row on.
+        let mut first = 0usize;
+        let starts: Vec<SegmentAt> = segments
+            .iter()
+            .zip(&counts)
+            .map(|(&segment, &rows)| {
+                let at = SegmentAt {
+                    segment,
+                    first,
+                    rows,
+                };
+                first += rows;
+                at
+            })
+            .collect();
+        let (mut jx, mut ju) = (sx.joined(n), su.joined(n));
+        let values = |s: &SegmentAt| {
+            let mut px = sx.part(s.first, s.rows)?;
+            let mut pu = su.part(s.first, s.rows)?;
+            let rows = file.rows_of(&s.segment, |(p, d), (q, e)| {
+                px.push(p, d)?;
+                pu.push(q, e)
+            })?;
+            (rows == s.rows).then_some((px, pu))
+        };
+        crate::parallel::in_order(&starts, workers, values, |part| {
+            let (x, u) = part.ok_or(())?;
+            jx.take(x);
+            ju.take(u);
+            Ok::<(), ()>(())
+        })
+        .ok()?;
+        let (x, u) = (jx.finish()?, ju.finish()?);
+        debug_assert_eq!((x.values.len(), u.values.len()), (n, n));
         Lean::valid(radius, two_r, x, u)
     }
 

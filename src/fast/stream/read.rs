@@ -1,18 +1,33 @@
-//! Column files read in chunks: the rows of a CSV or NPY particle file
-//! ([`crate::columns`]) handed over one by one as [`Small`] pairs, with at
-//! most [`CHUNK_BYTES`] of the file in memory at a time. A file can be read
-//! as many times as a caller needs passes ([`ColumnFile::rows`]), so the
-//! streaming path keeps only what it computes from the values, never the
-//! file or the values themselves.
+//! Column files read in segments: the rows of a CSV or NPY particle file
+//! ([`crate::columns`]) cut into [`Segment`]s of whole rows, each read on
+//! its own ([`ColumnFile::rows_of`], on any thread) and its rows handed
+//! over one by one as [`Small`] pairs. A file can be read as many times as
+//! a caller needs passes, so the streaming path keeps only what it
+//! computes from the values, never the file or the values themselves; the
+//! segments in memory at once hold at most [`CHUNK_BYTES`] together
+//! ([`segment_bytes`]).
 
 use std::fs::File;
 use std::io::{BufRead, BufReader, Read, Seek, SeekFrom};
 use std::path::{Path, PathBuf};
 
-use crate::columns::{csv_header_small, csv_line_small, f64_small, npy_layout_of, CsvLine, Small};
+use crate::columns::{csv_header_small, f64_small, npy_layout_of, Small};
 
-/// The bytes of the file read at once (the reader's buffer).
+/// The bytes of the file in memory at once, over every thread: the read
+/// buffers and what the segments being read give (at most 16 bytes per
+/// row, a CSV row taking at least 4).
 pub(crate) const CHUNK_BYTES: usize = 4 << 20;
+
+/// The bytes of one segment, with `workers` threads reading: each of them
+/// holds one segment being read and at most [`crate::parallel`]'s two
+/// results ahead (16 bytes per row of at least 4 bytes): `16 · workers`
+/// segments within [`CHUNK_BYTES`].
+pub(crate) fn segment_bytes(workers: usize) -> usize {
+    (CHUNK_BYTES / (16 * workers.max(1))).max(1 << 12) / 16 * 16
+}
+
+/// The bytes read at once when looking for the end of a line.
+const LINE_PROBE: usize = 4096;
 
 /// Longest `.npy` header read (NumPy writes less than a hundred bytes; a
 /// longer one is left to the general path, which names what is wrong).
@@ -32,6 +47,16 @@ enum Layout {
     },
 }
 
+/// A stretch of whole rows of a column file, read apart from the others
+/// ([`ColumnFile::segments`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Segment {
+    /// CSV: the whole lines in bytes `start..end` (after the header).
+    Lines { start: u64, end: u64 },
+    /// NPY: the rows `first..end`.
+    Rows { first: usize, end: usize },
+}
+
 /// A particle file of a known kind, its layout checked (the NPY header) but
 /// its values not yet read.
 #[derive(Debug, Clone)]
@@ -39,8 +64,8 @@ pub(crate) struct ColumnFile {
     path: PathBuf,
     len: u64,
     layout: Layout,
-    /// The bytes read at once ([`CHUNK_BYTES`]; smaller in the tests, to
-    /// cross chunk boundaries).
+    /// The bytes of a segment ([`segment_bytes`]; smaller in the tests,
+    /// to cut the file at many places).
     chunk: usize,
 }
 
@@ -81,7 +106,7 @@ impl ColumnFile {
             path: path.to_path_buf(),
             len,
             layout,
-            chunk: CHUNK_BYTES,
+            chunk: segment_bytes(crate::parallel::workers()),
         })
     }
 
@@ -112,125 +137,137 @@ impl ColumnFile {
         }
     }
 
-    /// Calls `f(x, u)` on every row in order, reading the file once in
-    /// chunks; the number of rows, or `None` when the file cannot be read,
-    /// a value is not [`Small`], the CSV text is not a valid particle file,
-    /// or `f` answers `None`.
-    pub(crate) fn rows(&self, mut f: impl FnMut(Small, Small) -> Option<()>) -> Option<usize> {
+    /// The file cut into segments of about `chunk` bytes, in order:
+    /// together they hold every row once. `None` when the file cannot be
+    /// read or (CSV) has no valid header line.
+    pub(crate) fn segments(&self) -> Option<Vec<Segment>> {
         match self.layout {
-            Layout::Csv => self.csv_rows(&mut f),
-            Layout::Npy { n, fortran, offset } => {
-                self.npy_rows(n, fortran, offset, &mut f)?;
-                Some(n)
+            Layout::Csv => self.csv_segments(),
+            Layout::Npy { n, .. } => {
+                let rows = (self.chunk / 16).max(1);
+                let cut = |first| Segment::Rows {
+                    first,
+                    end: (first + rows).min(n),
+                };
+                Some((0..n).step_by(rows).map(cut).collect())
             }
         }
     }
 
-    fn csv_rows(&self, f: &mut dyn FnMut(Small, Small) -> Option<()>) -> Option<usize> {
-        let mut reader = BufReader::with_capacity(self.chunk, File::open(&self.path).ok()?);
+    /// The CSV body after its header line, cut after a `'\n'` every
+    /// `chunk` bytes or so.
+    fn csv_segments(&self) -> Option<Vec<Segment>> {
+        let mut file = File::open(&self.path).ok()?;
+        let mut at = self.csv_body(&mut file)?;
+        let mut segments = Vec::new();
+        while at < self.len {
+            let nominal = at.saturating_add(self.chunk as u64);
+            let end = if nominal >= self.len {
+                self.len
+            } else {
+                // After the first '\n' at `nominal - 1` or later.
+                line_end(&mut file, nominal - 1, self.len)?
+            };
+            debug_assert!(end > at);
+            segments.push(Segment::Lines { start: at, end });
+            at = end;
+        }
+        Some(segments)
+    }
+
+    /// Where the rows of a CSV file start: after its header line (blank
+    /// lines before it allowed); `None` when there is none or the text
+    /// before it is not ASCII.
+    fn csv_body(&self, file: &mut File) -> Option<u64> {
+        let mut reader = BufReader::with_capacity(LINE_PROBE, file);
         let mut line = Vec::new();
-        let mut header = false;
-        let mut count = 0usize;
+        let mut at = 0u64;
         loop {
             line.clear();
-            if reader.read_until(b'\n', &mut line).ok()? == 0 {
-                break;
+            let got = reader.read_until(b'\n', &mut line).ok()?;
+            if got == 0 {
+                return None;
             }
+            at += got as u64;
             // `str::lines`: drop the '\n' and one '\r' before it.
             let mut text = line.strip_suffix(b"\n").unwrap_or(&line);
             text = text.strip_suffix(b"\r").unwrap_or(text);
-            if !header {
-                if !text.is_ascii() {
-                    return None;
-                }
-                if crate::columns::trim_ascii(text).is_empty() {
-                    continue;
-                }
-                if !csv_header_small(text) {
-                    return None;
-                }
-                header = true;
+            if !text.is_ascii() {
+                return None;
+            }
+            if crate::columns::trim_ascii(text).is_empty() {
                 continue;
             }
-            if let CsvLine::Row(x, u) = csv_line_small(text)? {
-                f(x, u)?;
-                count += 1;
-            }
+            return csv_header_small(text).then_some(at);
         }
-        header.then_some(count)
     }
 
-    fn npy_rows(
+    /// Calls `f(x, u)` on every row of `segment` in order; the number of
+    /// rows, or `None` when the file cannot be read, a value is not
+    /// [`Small`], the CSV text is not a valid particle file, or `f`
+    /// answers `None`.
+    pub(crate) fn rows_of(
         &self,
-        n: usize,
-        fortran: bool,
-        offset: u64,
-        f: &mut dyn FnMut(Small, Small) -> Option<()>,
-    ) -> Option<()> {
-        let value = |b: &[u8]| f64_small(f64::from_le_bytes(b.try_into().ok()?));
-        if !fortran {
-            let mut doubles = Doubles::at(&self.path, offset, 2 * n, self.chunk)?;
-            while let Some(chunk) = doubles.next_chunk()? {
-                for row in chunk.chunks_exact(16) {
-                    f(value(&row[..8])?, value(&row[8..])?)?;
+        segment: &Segment,
+        mut f: impl FnMut(Small, Small) -> Option<()>,
+    ) -> Option<usize> {
+        match (*segment, self.layout) {
+            (Segment::Lines { start, end }, Layout::Csv) => {
+                let mut file = File::open(&self.path).ok()?;
+                let text = read_at(&mut file, start, usize::try_from(end - start).ok()?)?;
+                super::csv::rows(&text, &mut f)
+            }
+            (Segment::Rows { first, end }, Layout::Npy { fortran, offset, n }) => {
+                let value = |b: &[u8]| f64_small(f64::from_le_bytes(b.try_into().ok()?));
+                let mut file = File::open(&self.path).ok()?;
+                let rows = end.checked_sub(first)?;
+                if !fortran {
+                    let at = offset + 16 * first as u64;
+                    let bytes = read_at(&mut file, at, rows.checked_mul(16)?)?;
+                    for row in bytes.chunks_exact(16) {
+                        f(value(&row[..8])?, value(&row[8..])?)?;
+                    }
+                } else {
+                    // All the positions, then all the velocities.
+                    let xs = read_at(&mut file, offset + 8 * first as u64, rows * 8)?;
+                    let at = offset + 8 * (n + first) as u64;
+                    let us = read_at(&mut file, at, rows * 8)?;
+                    for (x, u) in xs.chunks_exact(8).zip(us.chunks_exact(8)) {
+                        f(value(x)?, value(u)?)?;
+                    }
                 }
+                Some(rows)
             }
-            return Some(());
+            _ => None,
         }
-        // All the positions, then all the velocities: two cursors in step.
-        let mut xs = Doubles::at(&self.path, offset, n, self.chunk)?;
-        let mut us = Doubles::at(&self.path, offset + 8 * n as u64, n, self.chunk)?;
-        let (mut xc, mut uc) = (Vec::new(), Vec::new());
-        let (mut xi, mut ui) = (0usize, 0usize);
-        for _ in 0..n {
-            if xi == xc.len() {
-                xc = xs.next_chunk()?.map(<[u8]>::to_vec)?;
-                xi = 0;
-            }
-            if ui == uc.len() {
-                uc = us.next_chunk()?.map(<[u8]>::to_vec)?;
-                ui = 0;
-            }
-            f(value(&xc[xi..xi + 8])?, value(&uc[ui..ui + 8])?)?;
-            xi += 8;
-            ui += 8;
-        }
-        Some(())
     }
 }
 
-/// `count` doubles from byte `offset` of a file, in chunks of whole doubles.
-struct Doubles {
-    file: File,
-    left: usize,
-    buf: Vec<u8>,
+/// The `len` bytes of `file` from byte `at`; `None` on a read error or a
+/// file shorter than that.
+fn read_at(file: &mut File, at: u64, len: usize) -> Option<Vec<u8>> {
+    file.seek(SeekFrom::Start(at)).ok()?;
+    let mut buf = vec![0u8; len];
+    (read_full(file, &mut buf).ok()? == len).then_some(buf)
 }
 
-impl Doubles {
-    fn at(path: &Path, offset: u64, count: usize, chunk: usize) -> Option<Doubles> {
-        let mut file = File::open(path).ok()?;
-        file.seek(SeekFrom::Start(offset)).ok()?;
-        Some(Doubles {
-            file,
-            left: count.checked_mul(8)?,
-            buf: vec![0u8; chunk.min(count.saturating_mul(8))],
-        })
-    }
-
-    /// The next chunk (`Some(None)` at the end; `None` on a read error or a
-    /// file shorter than its header said).
-    fn next_chunk(&mut self) -> Option<Option<&[u8]>> {
-        if self.left == 0 {
-            return Some(None);
-        }
-        let want = self.left.min(self.buf.len());
-        let got = read_full(&mut self.file, &mut self.buf[..want]).ok()?;
-        if got != want {
+/// The position just after the first `'\n'` of `file` at `from` or later
+/// (`len`, the file's length, when there is none).
+fn line_end(file: &mut File, from: u64, len: u64) -> Option<u64> {
+    let mut at = from;
+    let mut buf = vec![0u8; LINE_PROBE];
+    file.seek(SeekFrom::Start(at)).ok()?;
+    while at < len {
+        let got = read_full(file, &mut buf).ok()?;
+        if got == 0 {
             return None;
         }
-        self.left -= want;
-        Some(Some(&self.buf[..want]))
+        if let Some(k) = buf[..got].iter().position(|&b| b == b'\n') {
+            return Some(at + k as u64 + 1);
+        }
+        at += got as u64;
     }
+    Some(len)
 }
 
 /// Reads until `buf` is full or the file ends; the bytes read.

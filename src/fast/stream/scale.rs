@@ -1,7 +1,10 @@
 //! The scaling of [`crate::fast::scaling`] (`df:translat-x`: `x̃⁰_i = X_i / D_x`,
 //! `u⁰_i = U_i / D_u`) on values that arrive one at a time, kept straight
 //! as `i64`: the column file is read twice (the denominators, then the
-//! values), and nothing wider than the final column is ever held.
+//! values), and nothing wider than the final column is ever held. Each
+//! pass may take the file in stretches on several threads: the lcms of the
+//! stretches merge ([`Lcm::merge`]), and the scaled stretches join in
+//! order ([`Joined`]) under the gcd of their `g`s.
 //!
 //! The least common denominator of the translated positions is `D / g`,
 //! with `D` the lcm of the denominators and `g` the gcd of `D` and every
@@ -15,11 +18,20 @@
 use crate::fast::int::{gcd, MulSmall};
 use crate::fast::scaling::{div_rem, divided_range, Denominators, Divisibility, ExactDiv, Range};
 
-/// One column being scaled: its common denominator known (first pass), its
-/// values arriving in order (second pass).
-pub(crate) struct ColumnScaler {
+/// The common denominator of one column and the step of its translation,
+/// known after the first pass: what every [`ColumnScaler`] of the second
+/// pass starts from.
+#[derive(Clone)]
+pub(crate) struct ColumnScale {
     den: Denominators,
     /// `2r D` per particle (positions), 0 (velocities).
+    step: i128,
+}
+
+/// One stretch of a column being scaled (the second pass): its values
+/// arriving in order from its first row on.
+pub(crate) struct ColumnScaler {
+    den: Denominators,
     step: i128,
     offset: i128,
     g: u128,
@@ -28,6 +40,16 @@ pub(crate) struct ColumnScaler {
     range: Range,
     values: Vec<i64>,
     /// `(first index, g)` of each stretch of values stored under one `g`.
+    stretches: Vec<(usize, u128)>,
+}
+
+/// The stretches of one column put back in order ([`Joined::take`]), to be
+/// brought under the column's final `g` ([`Joined::finish`]).
+pub(crate) struct Joined {
+    lcm: u128,
+    g: u128,
+    range: Range,
+    values: Vec<i64>,
     stretches: Vec<(usize, u128)>,
 }
 
@@ -53,14 +75,17 @@ impl Lcm {
         self.0.add(u128::from(d))
     }
 
-    /// The scaler of the second pass, for `capacity` values; `two_r`, the
-    /// pair `(p, d)` of `2r`, for the positions (its denominator taken into
-    /// the lcm), `None` for the velocities.
-    pub(crate) fn scaler(
-        mut self,
-        two_r: Option<(i128, u128)>,
-        capacity: usize,
-    ) -> Option<ColumnScaler> {
+    /// Takes in the denominators `other` took (the lcm of both); `None`
+    /// when it overflows 128 bits. The lcm of a set does not depend on the
+    /// order its members came in, nor on how they were grouped.
+    pub(crate) fn merge(&mut self, other: &Lcm) -> Option<()> {
+        self.0.add(other.0.lcm)
+    }
+
+    /// The column's scale for the second pass; `two_r`, the pair `(p, d)`
+    /// of `2r`, for the positions (its denominator taken into the lcm),
+    /// `None` for the velocities.
+    pub(crate) fn scale(mut self, two_r: Option<(i128, u128)>) -> Option<ColumnScale> {
         if let Some((_, rd)) = two_r {
             self.0.add(rd)?;
         }
@@ -70,11 +95,30 @@ impl Lcm {
             Some((rn, rd)) => rn.checked_mul(i128::try_from(den.factor(rd)).ok()?)?,
             None => 0,
         };
-        let g = den.lcm;
+        Some(ColumnScale { den, step })
+    }
+
+    /// The scaler of a whole column read in one stretch, for `capacity`
+    /// values ([`Lcm::scale`], then [`ColumnScale::part`] from row 0).
+    #[cfg(test)]
+    pub(crate) fn scaler(
+        self,
+        two_r: Option<(i128, u128)>,
+        capacity: usize,
+    ) -> Option<ColumnScaler> {
+        self.scale(two_r)?.part(0, capacity)
+    }
+}
+
+impl ColumnScale {
+    /// The scaler of the stretch of the column that starts at row `first`,
+    /// for `capacity` values; `None` when `first · 2r D` overflows.
+    pub(crate) fn part(&self, first: usize, capacity: usize) -> Option<ColumnScaler> {
+        let g = self.den.lcm;
         Some(ColumnScaler {
-            den,
-            step,
-            offset: 0,
+            den: self.den.clone(),
+            step: self.step,
+            offset: self.step.checked_mul(i128::try_from(first).ok()?)?,
             g,
             test: Divisibility::new(g),
             div: ExactDiv::new(g),
@@ -82,6 +126,18 @@ impl Lcm {
             values: Vec::with_capacity(capacity),
             stretches: vec![(0, g)],
         })
+    }
+
+    /// An empty column of `capacity` values, its stretches to come in
+    /// order.
+    pub(crate) fn joined(&self, capacity: usize) -> Joined {
+        Joined {
+            lcm: self.den.lcm,
+            g: self.den.lcm,
+            range: Range::EMPTY,
+            values: Vec::with_capacity(capacity),
+            stretches: Vec::new(),
+        }
     }
 }
 
@@ -102,6 +158,39 @@ impl ColumnScaler {
         self.range.take(v);
         self.values.push(i64::try_from(self.div.apply(v)).ok()?);
         Some(())
+    }
+
+    /// The column over its least common denominator, when it was read in
+    /// one stretch; `None` when a value does not fit `i64`.
+    #[cfg(test)]
+    pub(crate) fn finish(self) -> Option<ScaledColumn> {
+        let mut whole = Joined {
+            lcm: self.den.lcm,
+            g: self.den.lcm,
+            range: Range::EMPTY,
+            values: Vec::new(),
+            stretches: Vec::new(),
+        };
+        whole.take(self);
+        whole.finish()
+    }
+}
+
+impl Joined {
+    /// Appends the next stretch of the column (the one that starts where
+    /// the values so far end).
+    pub(crate) fn take(&mut self, part: ColumnScaler) {
+        debug_assert_eq!(part.den.lcm, self.lcm);
+        let at = self.values.len();
+        // g only shrinks: the column's g divides every stretch's.
+        self.g = gcd(self.g, part.g);
+        if part.range.lo <= part.range.hi {
+            self.range.take(part.range.lo);
+            self.range.take(part.range.hi);
+        }
+        self.stretches
+            .extend(part.stretches.iter().map(|&(i, g)| (at + i, g)));
+        self.values.extend_from_slice(&part.values);
     }
 
     /// The column over its least common denominator; `None` when a value
@@ -125,7 +214,7 @@ impl ColumnScaler {
         }
         Some(ScaledColumn {
             values: self.values,
-            den: self.den.lcm / g,
+            den: self.lcm / g,
             range,
         })
     }

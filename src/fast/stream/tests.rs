@@ -490,9 +490,9 @@ fn fields(l: &Lean) -> (Vec<i64>, Vec<i64>, i128, i128, u64, u64, BigRational) {
     (x, u, l.dx, l.du, l.x_bits, l.u_bits, l.radius.clone())
 }
 
-/// A column file read in chunks (NPY in C and Fortran order, CSV with
-/// blank lines and `\r\n`), at chunk sizes that cut rows and values
-/// across reads, gives the scene [`Lean::new`] gives on the whole file's
+/// A column file read in segments on every core (NPY in C and Fortran
+/// order, CSV with blank lines and `\r\n`), at segment sizes that cut the
+/// file at many places, gives the scene [`Lean::new`] gives on the whole file's
 /// values.
 #[test]
 fn chunked_files_read_as_whole_files() {
@@ -599,5 +599,38 @@ fn the_column_scaler_is_scale_pairs() {
         };
         let got = scaled(&xs, Some(two_r)).zip(scaled(&us, None));
         assert_eq!(got, want, "case {k}: {xs:?} {us:?}");
+        // The same column read in stretches, each from its first row on:
+        // lcms merged, stretches joined in order.
+        let cuts: Vec<usize> = {
+            let mut c: Vec<usize> = (0..rng.next_u64() % 4)
+                .map(|_| (rng.next_u64() % (n as u64 + 1)) as usize)
+                .chain([0, n])
+                .collect();
+            c.sort_unstable();
+            c
+        };
+        let in_stretches = |col: &[Small], two_r: Option<(i128, u128)>| {
+            let mut lcm = scale::Lcm::new();
+            for w in cuts.windows(2) {
+                let mut part = scale::Lcm::new();
+                for &(_, d) in &col[w[0]..w[1]] {
+                    part.add(d)?;
+                }
+                lcm.merge(&part)?;
+            }
+            let scale = lcm.scale(two_r)?;
+            let mut whole = scale.joined(n);
+            for w in cuts.windows(2) {
+                let mut s = scale.part(w[0], w[1] - w[0])?;
+                for &(p, d) in &col[w[0]..w[1]] {
+                    s.push(p, d)?;
+                }
+                whole.take(s);
+            }
+            let c = whole.finish()?;
+            Some((c.values, c.den))
+        };
+        let got = in_stretches(&xs, Some(two_r)).zip(in_stretches(&us, None));
+        assert_eq!(got, want, "case {k} in stretches {cuts:?}: {xs:?} {us:?}");
     }
 }

@@ -11,7 +11,9 @@
 //! * **TOML**: the CSV's strings inline (`positions = […]`,
 //!   `velocities = […]`), the form of a hand-written scene.
 //!
-//! The pipelines: `sticky run SCENE --at 1 --json > FILE` and
+//! The pipelines: `sticky run SCENE --at 1 --json > FILE`,
+//! `sticky run SCENE --at 1 --format npy --lossy > FILE` (CSV and NPY
+//! input: the doubles scipy's NPY pipeline writes) and
 //! `sticky events SCENE --json > FILE` on each input, and scipy's own
 //! (`scripts/peers/e2e_scipy.py`): `numpy.loadtxt` → `isotonic_regression`
 //! → `numpy.savetxt` on the CSV, `numpy.load` → … → `numpy.save` on the
@@ -90,6 +92,9 @@ impl Input {
 pub enum Tool {
     /// `sticky run SCENE --at 1 --json`.
     Run,
+    /// `sticky run SCENE --at 1 --format npy --lossy`: the state as an
+    /// `(1, N, 3)` `<f8` array.
+    RunNpy,
     /// `sticky events SCENE --json`.
     Events,
     /// `scripts/peers/e2e_scipy.py` (CSV or NPY only).
@@ -101,6 +106,7 @@ impl Tool {
     pub fn name(self) -> &'static str {
         match self {
             Tool::Run => "sticky run --at 1 --json",
+            Tool::RunNpy => "sticky run --format npy",
             Tool::Events => "sticky events --json",
             Tool::Scipy => "scipy pipeline",
         }
@@ -108,12 +114,14 @@ impl Tool {
 }
 
 /// The pipelines, in the order of the table.
-pub const PIPELINES: [(Tool, Input); 8] = [
+pub const PIPELINES: [(Tool, Input); 10] = [
     (Tool::Scipy, Input::Csv),
     (Tool::Run, Input::Csv),
+    (Tool::RunNpy, Input::Csv),
     (Tool::Events, Input::Csv),
     (Tool::Scipy, Input::Npy),
     (Tool::Run, Input::Npy),
+    (Tool::RunNpy, Input::Npy),
     (Tool::Events, Input::Npy),
     (Tool::Run, Input::Toml),
     (Tool::Events, Input::Toml),
@@ -126,8 +134,8 @@ pub struct E2eOptions {
     pub n: usize,
     /// Repetitions (interleaved; the median is reported).
     pub reps: usize,
-    /// Run scipy's pipelines.
-    pub peers: bool,
+    /// Run scipy's pipelines or not.
+    pub peers: super::Peers,
     /// The `sticky` binary.
     pub sticky: PathBuf,
     /// The folder holding the peers' drivers (the repository's `scripts/`,
@@ -387,7 +395,7 @@ fn measure(
                 Input::Csv | Input::Npy => vec![dir.join(scene), dir.join(columns)],
             };
             let cmd = match tool {
-                Tool::Scipy if !opts.peers => {
+                Tool::Scipy if opts.peers == super::Peers::Skip => {
                     notes[k] = Some("skipped (--no-peers)".into());
                     stopped[k] = true;
                     continue;
@@ -406,14 +414,19 @@ fn measure(
                         .args(["--t", "1", "--two-r", two_r]);
                     c
                 }
-                Tool::Run | Tool::Events => {
+                Tool::Run | Tool::RunNpy | Tool::Events => {
                     let mut c = Command::new(&opts.sticky);
-                    if tool == Tool::Run {
-                        c.arg("run").arg(dir.join(scene)).args(["--at", "1"]);
-                    } else {
-                        c.arg("events").arg(dir.join(scene));
-                    }
-                    c.arg("--json");
+                    match tool {
+                        Tool::Events => c.arg("events").arg(dir.join(scene)).arg("--json"),
+                        Tool::RunNpy => c
+                            .arg("run")
+                            .arg(dir.join(scene))
+                            .args(["--at", "1", "--format", "npy", "--lossy"]),
+                        _ => c
+                            .arg("run")
+                            .arg(dir.join(scene))
+                            .args(["--at", "1", "--json"]),
+                    };
                     c
                 }
             };

@@ -72,6 +72,24 @@ pub enum Metric {
     PeakMemory,
 }
 
+/// Whether the Python peers run beside our methods.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Peers {
+    /// Run them (skipped with a message when Python is absent).
+    Run,
+    /// Leave them out (`--no-peers`).
+    Skip,
+}
+
+/// Whether the full event-driven trajectory is timed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Events {
+    /// Time it, with the event rows.
+    Time,
+    /// Leave it out (`--quick`).
+    Skip,
+}
+
 /// What to measure.
 #[derive(Debug, Clone)]
 pub struct BenchOptions {
@@ -79,10 +97,10 @@ pub struct BenchOptions {
     pub n: usize,
     /// Repetitions (each on a fresh scene).
     pub reps: usize,
-    /// Run the Python peers (skipped with a message when Python is absent).
-    pub peers: bool,
-    /// Time the full event-driven trajectory too.
-    pub events: bool,
+    /// Run the Python peers or not.
+    pub peers: Peers,
+    /// Time the full event-driven trajectory or not.
+    pub events: Events,
     /// Timings or peak memory.
     pub metric: Metric,
 }
@@ -346,7 +364,7 @@ pub fn run_with_progress(
     let rounds = opts.reps.max(1) + warmups;
     progress.stage(
         &format!("N = {n}: repetitions"),
-        Some((rounds + usize::from(opts.peers)) as u64),
+        Some((rounds + usize::from(opts.peers == Peers::Run)) as u64),
     );
     let mut stopped = false;
     for rep in 0..rounds {
@@ -426,7 +444,7 @@ pub fn run_with_progress(
             "generic PAVA on BigRational, measured on N = {naive_n} and reported per particle"
         );
         acc[at("bigrational_naive")].push(ns / naive_n as f64, mib);
-        if opts.events {
+        if opts.events == Events::Time {
             doing("event-driven histories");
             let (ns, mib, traj) = measured(|| IntegerTrajectory::new(&data));
             acc[at("events")].note = format!(
@@ -493,7 +511,7 @@ pub fn run_with_progress(
             note: a.note,
         })
         .collect();
-    let peers = if opts.peers && !stopped {
+    let peers = if opts.peers == Peers::Run && !stopped {
         progress.note(&format!("N = {n}: the Python peers"));
         run_peers(&peer_inputs, scripts)
     } else {

@@ -20,8 +20,8 @@ pub struct ScalingOptions {
     pub ns: Vec<usize>,
     /// Repetitions per N (fresh scenes).
     pub reps: usize,
-    /// Run the Python peers.
-    pub peers: bool,
+    /// Run the Python peers or not.
+    pub peers: super::Peers,
     /// Warm timings or peak memory ([`super::Memory::Cold`]).
     pub metric: Metric,
     /// Output folder.
@@ -64,7 +64,7 @@ pub fn scaling(
                     n,
                     reps,
                     peers: opts.peers,
-                    events: true,
+                    events: super::Events::Time,
                     metric: opts.metric,
                 },
                 &t,
