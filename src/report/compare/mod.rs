@@ -3,7 +3,7 @@
 //! (`Report::json`, feature `json`) — the one comparison behind `sticky
 //! compare` and the Python package's `sticky.compare`.
 //!
-//! The exact answer at each time is the [`Solver`](crate::solver::Solver)'s
+//! The exact answer at each time is the [`Solver`]'s
 //! `x(t) = P_K(x⁰ + t u⁰)` (`prop:proj-micro`), `u(t)` and `λ(t)`
 //! (`eq:dyn-micro`); the figures are
 //! [`reference::measure::compare`](crate::reference::measure::compare)'s,
