@@ -4,7 +4,7 @@ process (issue 38, item 2).
 
 Not a test: a measurement. Run after `pip install ./python`:
 
-    python benches/python_api.py [N] [--skip NAME,NAME...]
+    python benches/python_api.py [N] [--skip NAME,NAME...] [--only NAME,NAME...]
 
 Data (what a notebook user types): positions `np.cumsum` of exponential
 gaps (mean 1e-6) on top of the contact distance 2r, radius 4e-7, velocities
@@ -18,7 +18,8 @@ the median of five calls. Each entry point is timed once (the median of
 three when a call takes under a second), wall clock (`time.perf_counter`);
 the table gives the time and its ratio to the reference, and the issue's
 target where it states one. A call can be left out with `--skip` (the
-names of the first column).
+names of the first column, or their beginnings: a name holding a comma is
+given by the part before it), or the table restricted to some with `--only`.
 """
 
 import statistics
@@ -103,11 +104,14 @@ def _three(s):
 
 def main():
     args = sys.argv[1:]
-    skip = set()
-    if "--skip" in args:
-        i = args.index("--skip")
-        skip = set(args[i + 1].split(","))
-        del args[i : i + 2]
+    chosen = {}
+    for flag in ("--skip", "--only"):
+        if flag in args:
+            i = args.index(flag)
+            chosen[flag] = set(args[i + 1].split(","))
+            del args[i : i + 2]
+    skip = chosen.get("--skip", set())
+    only = chosen.get("--only")
     n = int(args[0]) if args else 10**6
     x0, u0 = notebook_data(n)
     z = x0 + T * u0 - 2 * RADIUS * np.arange(n)
@@ -115,7 +119,9 @@ def main():
     print(f"N = {n}, radius = {RADIUS}, t = {T}; scipy isotonic_regression {ref * 1e3:.1f} ms")
     print(f"{'entry point':36} {'ms':>10} {'x scipy':>9}  target")
     for name, call, target, says in entries(x0, u0):
-        if name in skip:
+        if any(name.startswith(k) for k in skip) or (
+            only is not None and not any(name.startswith(k) for k in only)
+        ):
             print(f"{name:36} {'skipped':>10}")
             continue
         wall, _ = timed(call)

@@ -22,6 +22,20 @@ const SMALL_BITS: u64 = 192;
 
 /// `gcd(a, b)` (non-negative; `gcd(0, 0) = 0`).
 pub fn gcd(a: &BigUint, b: &BigUint) -> BigUint {
+    // gcd(a, b) = gcd(odd(a), odd(b)) 2^min(tz(a), tz(b)): the powers of two
+    // of the denominators of doubles and of dyadic answers come off at
+    // once, and what is left is often a word (then one remainder).
+    match (a.trailing_zeros(), b.trailing_zeros()) {
+        (None, _) => b.clone(),
+        (_, None) => a.clone(),
+        (Some(0), Some(0)) => odd_gcd(a, b),
+        (Some(za), Some(zb)) => odd_gcd(&(a >> za), &(b >> zb)) << za.min(zb),
+    }
+}
+
+/// `gcd(a, b)` by Lehmer's algorithm (a remainder by a word first when an
+/// operand fits one).
+fn odd_gcd(a: &BigUint, b: &BigUint) -> BigUint {
     let (mut a, mut b) = if a >= b {
         (a.clone(), b.clone())
     } else {
@@ -235,6 +249,25 @@ mod tests {
             (f, g) = (g.clone(), f + g);
         }
         assert!(gcd(&f, &g).is_one());
+    }
+
+    /// One operand a power of two (the denominators of doubles), the other
+    /// with planted powers of two, odd, or itself a power: the same gcd as
+    /// `num-bigint`'s.
+    #[test]
+    fn powers_of_two_equal_the_binary_gcd() {
+        let mut w = Words(0x2545_f491_4f6c_dd1d);
+        for k in 0..600u64 {
+            let p = BigUint::one() << (w.next() % 300);
+            let other = match k % 4 {
+                0 => (w.big(1 + (k % 9) as usize) | BigUint::one()) << (w.next() % 300),
+                1 => w.big(1 + (k % 9) as usize) | BigUint::one(),
+                2 => BigUint::one() << (w.next() % 300),
+                _ => w.big(1 + (k % 9) as usize) + 1u32,
+            };
+            assert_eq!(gcd(&p, &other), p.gcd(&other), "gcd({p}, {other})");
+            assert_eq!(gcd(&other, &p), p.gcd(&other));
+        }
     }
 
     #[test]

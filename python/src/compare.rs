@@ -12,7 +12,7 @@ use sticky::cluster::Cluster;
 use sticky::reference::measure::{MaxError, PairValue};
 use sticky::report::compare::decimal::{nearest_f64, Value};
 use sticky::report::compare::{
-    compare_solution_with, CompareFailure, CompareOptions, ContactTolerance, FrameReport, Report,
+    compare_solution_by, CompareFailure, CompareOptions, ContactTolerance, FrameReport, Report,
 };
 use sticky::report::solution::Frame;
 
@@ -156,18 +156,15 @@ pub fn compare(
     };
     let given = scene;
     let scene = given.get();
-    let file = scene.file(py)?;
-    let n = file.n();
+    let inner = Arc::clone(&scene.inner);
+    let n = py.detach(|| inner.n()).map_err(errors::py_error)?;
     if let Some(c) = &clusters {
         frame.contacts = Some(contacts(py, c, n)?);
     }
     let kept = frame.clone();
-    let inner = Arc::clone(&scene.inner);
-    let report = interrupt::run_sized(py, n, move |stop| -> Result<_, sticky::Error> {
-        let data = &inner.scene()?.data;
-        Ok(compare_solution_with(data, &[frame], &options, stop))
+    let report = interrupt::run_sized(py, n, move |stop| {
+        compare_solution_by(inner.solver(), &[frame], &options, stop)
     })?
-    .map_err(errors::py_error)?
     .map_err(|e| {
         let message = match e {
             CompareFailure::Frame { error, .. } => error.to_string(),

@@ -52,6 +52,11 @@ impl Inner {
         }
     }
 
+    /// The library's Solver of this scene.
+    pub fn solver(&self) -> &Solver {
+        &self.solver
+    }
+
     /// The validated scene of the general path, built on first use.
     pub fn scene(&self) -> Result<&SceneFile, Error> {
         self.solver.scene()

@@ -30,14 +30,17 @@
 //! overlap and by how much, which clusters are wrong, and the sign and
 //! complementarity of its `λ`.
 
+use std::collections::HashMap;
 use std::fmt;
 
+use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{Signed, Zero};
 
 use crate::contact::kkt_multipliers;
 use crate::initial::InitialData;
 use crate::projection::{project_at, state_at};
+use crate::reduced::{difference, product, quotient};
 use crate::scalar::Scalar;
 use crate::state::State;
 
@@ -339,9 +342,12 @@ pub fn oleinik_violations(x: &[BigRational], u: &[BigRational], t: &BigRational)
     }
     (1..x.len().min(u.len()))
         .filter(|&i| {
-            let dx = x[i].clone() - &x[i - 1];
-            let du = u[i].clone() - &u[i - 1];
-            !dx.is_positive() || t * du >= dx
+            let dx = difference(&x[i], &x[i - 1]);
+            if !dx.is_positive() {
+                return true;
+            }
+            let du = difference(&u[i], &u[i - 1]);
+            du.is_positive() && !exceeds(&dx, &product(t, &du))
         })
         .collect()
 }
@@ -492,30 +498,87 @@ impl fmt::Display for CompareError {
 
 impl std::error::Error for CompareError {}
 
+/// `a > b`, by one cross multiplication (denominators are positive):
+/// `BigRational`'s own order takes a continued fraction, divisions each.
+pub(crate) fn exceeds(a: &BigRational, b: &BigRational) -> bool {
+    if a.denom() == b.denom() {
+        return a.numer() > b.numer();
+    }
+    a.numer() * b.denom() > b.numer() * a.denom()
+}
+
+/// The largest of `values` (`None` when empty), by [`exceeds`].
+pub(crate) fn largest<'a>(
+    values: impl IntoIterator<Item = &'a BigRational>,
+) -> Option<&'a BigRational> {
+    values.into_iter().fold(None, |best, v| match best {
+        Some(b) if !exceeds(v, b) => Some(b),
+        _ => Some(v),
+    })
+}
+
 fn max_error(a: &[BigRational], b: &[BigRational]) -> MaxError {
     let mut best = MaxError {
         value: <BigRational as Zero>::zero(),
         index: 0,
     };
     for (i, (p, q)) in a.iter().zip(b).enumerate() {
-        let d = (p - q).abs();
-        if d > best.value {
+        let d = difference(p, q).abs();
+        if exceeds(&d, &best.value) {
             best = MaxError { value: d, index: i };
         }
     }
     best
 }
 
+/// A sum of squares `Σ n_i² / (o² 2^{2 z_i})` over one odd part `o` of the
+/// denominators: the integer `Σ n_i² 2^{shift − 2 z_i}` over `2^shift`.
+#[derive(Debug, Default)]
+struct DyadicSum {
+    numerator: BigInt,
+    shift: u64,
+}
+
+impl DyadicSum {
+    /// Adds `square / 2^shift`.
+    fn add(&mut self, square: BigInt, shift: u64) {
+        if shift > self.shift {
+            self.numerator <<= shift - self.shift;
+            self.shift = shift;
+            self.numerator += square;
+        } else {
+            self.numerator += square << (self.shift - shift);
+        }
+    }
+}
+
+/// `(1/N) Σ_i (a_i − b_i)²`, exact. The squares are summed by the odd part
+/// of their denominators, each group as one integer over a power of two
+/// (no gcd per value: the denominators of doubles and of dyadic answers
+/// share a few odd parts), and the groups added once at the end.
 fn mean_square_error(a: &[BigRational], b: &[BigRational]) -> BigRational {
     if a.is_empty() {
         return <BigRational as Zero>::zero();
     }
-    let mut s = <BigRational as Zero>::zero();
+    let mut groups: HashMap<BigInt, DyadicSum> = HashMap::new();
     for (p, q) in a.iter().zip(b) {
-        let d = p - q;
-        s += &d * &d;
+        let d = difference(p, q);
+        if Zero::is_zero(&d) {
+            continue;
+        }
+        // A denominator is positive: it has a number of trailing zeros.
+        let z = d.denom().trailing_zeros().unwrap_or(0);
+        groups
+            .entry(d.denom() >> z)
+            .or_default()
+            .add(d.numer() * d.numer(), 2 * z);
     }
-    s / BigRational::from_integer(a.len().into())
+    let mut s = <BigRational as Zero>::zero();
+    for (odd, group) in groups {
+        let den = (&odd * &odd) << group.shift;
+        s = crate::reduced::sum(&s, &crate::gcd::ratio(group.numerator, den));
+    }
+    quotient(&s, &BigRational::from_integer(a.len().into()))
 }
 
 fn check_len(what: &'static str, v: &[impl Sized], expected: usize) -> Result<(), CompareError> {
@@ -528,6 +591,20 @@ fn check_len(what: &'static str, v: &[impl Sized], expected: usize) -> Result<()
             found: v.len(),
         })
     }
+}
+
+/// `x_{j+1} − x_j − 2r` for every pair of `x`, exact.
+pub fn candidate_gaps(x: &[BigRational], two_r: &BigRational) -> Vec<BigRational> {
+    x.windows(2)
+        .map(|w| difference(&difference(&w[1], &w[0]), two_r))
+        .collect()
+}
+
+/// Whether the clusters `clusters` (left to right, as a state's) hold `c`.
+fn holds(clusters: &[crate::cluster::Cluster], c: &crate::cluster::Cluster) -> bool {
+    clusters
+        .binary_search_by_key(&c.first, |d| d.first)
+        .is_ok_and(|k| clusters[k] == *c)
 }
 
 /// Compares a candidate exactly with the exact state `exact` of the data
@@ -565,7 +642,7 @@ pub fn compare(
         check_len("contacts", c, pairs)?;
     }
     let x = cand.positions;
-    let gaps: Vec<BigRational> = (0..pairs).map(|j| &x[j + 1] - &x[j] - two_r).collect();
+    let gaps = candidate_gaps(x, two_r);
     let overlaps = gaps
         .iter()
         .enumerate()
@@ -583,7 +660,7 @@ pub fn compare(
     }
     let cand_contact: Vec<bool> = match cand.contacts {
         Some(c) => c.to_vec(),
-        None => gaps.iter().map(|g| g <= tol).collect(),
+        None => gaps.iter().map(|g| !exceeds(g, tol)).collect(),
     };
     let missed_contacts = (0..pairs)
         .filter(|&j| exact_contact[j] && !cand_contact[j])
@@ -597,13 +674,13 @@ pub fn compare(
         .clusters
         .iter()
         .filter(big)
-        .filter(|c| !cand_clusters.contains(c))
+        .filter(|c| !holds(&cand_clusters, c))
         .copied()
         .collect();
     let spurious_clusters = cand_clusters
         .iter()
         .filter(big)
-        .filter(|c| !exact.clusters.contains(c))
+        .filter(|c| !holds(&exact.clusters, c))
         .copied()
         .collect();
     let (negative_multipliers, complementarity) = match cand.multipliers {
@@ -619,8 +696,11 @@ pub fn compare(
             l.iter()
                 .zip(&gaps)
                 .enumerate()
-                .map(|(pair, (v, g))| PairValue { pair, value: v * g })
-                .filter(|p| !Zero::is_zero(&p.value))
+                .filter(|(_, (v, g))| !Zero::is_zero(*v) && !Zero::is_zero(*g))
+                .map(|(pair, (v, g))| PairValue {
+                    pair,
+                    value: product(v, g),
+                })
                 .collect(),
         ),
         None => (Vec::new(), Vec::new()),

@@ -523,9 +523,9 @@ fn fill_velocities<W>(runs: &[Run<W, i128>], eu: i64, out: &mut [f64]) -> Option
 fn exact(num: BigInt, den: BigInt, exp: i64) -> BigRational {
     let shift = exp.unsigned_abs() as usize;
     if exp >= 0 {
-        BigRational::new(num << shift, den)
+        crate::gcd::ratio(num << shift, den)
     } else {
-        BigRational::new(num, den << shift)
+        crate::gcd::ratio(num, den << shift)
     }
 }
 

@@ -3,7 +3,7 @@
 //! (`Report::json`, feature `json`) — the one comparison behind `sticky
 //! compare` and the Python package's `sticky.compare`.
 //!
-//! The exact answer at each time is the [`Solver`](crate::solver::Solver)'s
+//! The exact answer at each time is the [`Solver`]'s
 //! `x(t) = P_K(x⁰ + t u⁰)` (`prop:proj-micro`), `u(t)` and `λ(t)`
 //! (`eq:dyn-micro`); the figures are
 //! [`reference::measure::compare`](crate::reference::measure::compare)'s,
@@ -42,9 +42,10 @@ use num_traits::{Signed, Zero};
 
 use crate::initial::InitialData;
 use crate::progress::{Progress, Silent};
-use crate::reference::measure::{compare, CompareError, Comparison};
+use crate::reference::measure::{candidate_gaps, compare, largest, CompareError, Comparison};
 use crate::report::solution::Frame;
 use crate::scalar::Scalar;
+use crate::solver::Solver;
 
 pub use verdict::{Representation, Tolerances, Verdict};
 
@@ -172,6 +173,11 @@ pub enum CompareFailure {
         /// `contact tolerance` or `overlap tolerance`.
         what: &'static str,
     },
+    /// The scene's data cannot be read (a scene the general path refuses).
+    Scene {
+        /// The library's message.
+        message: String,
+    },
     /// The observer asked to stop.
     Interrupted,
 }
@@ -186,6 +192,7 @@ impl fmt::Display for CompareFailure {
             }
             CompareFailure::Frame { t, error, .. } => write!(f, "t = {}: {error}", t.render()),
             CompareFailure::NegativeTolerance { what } => write!(f, "the {what} is negative"),
+            CompareFailure::Scene { message } => f.write_str(message),
             CompareFailure::Interrupted => f.write_str("interrupted"),
         }
     }
@@ -211,7 +218,50 @@ pub fn compare_solution_with(
     options: &CompareOptions,
     progress: &dyn Progress,
 ) -> Result<Report, CompareFailure> {
-    let two_r = data.two_r();
+    compare_solution_by(
+        &crate::solver::Solver::from_data(data.clone()),
+        frames,
+        options,
+        progress,
+    )
+}
+
+/// `max_i |u⁰_i|` of the Solver's data: from its doubles when it was built
+/// from them (`|·|` and `max` are exact on doubles), else from its
+/// validated data.
+fn largest_speed(solver: &Solver) -> Result<BigRational, crate::Error> {
+    if let Some((_, u)) = solver.doubles() {
+        let top = u.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        return crate::columns::f64_exact(top).ok_or_else(|| crate::Error::Unsupported {
+            message: format!("{top} is not a finite number"),
+        });
+    }
+    let speeds: Vec<BigRational> = solver
+        .data()?
+        .velocities()
+        .iter()
+        .map(|u| u.abs())
+        .collect();
+    Ok(largest(&speeds)
+        .cloned()
+        .unwrap_or_else(<BigRational as Zero>::zero))
+}
+
+/// [`compare_solution_with`] on the exact answers of `solver`, by the path
+/// its data allow (a Solver built from doubles answers a double time on
+/// the dyadic path, with no `BigRational` engine).
+pub fn compare_solution_by(
+    solver: &Solver,
+    frames: &[Frame],
+    options: &CompareOptions,
+    progress: &dyn Progress,
+) -> Result<Report, CompareFailure> {
+    let scene = |e: crate::Error| CompareFailure::Scene {
+        message: e.to_string(),
+    };
+    let radius = solver.radius().map_err(scene)?.clone();
+    let n = solver.n().map_err(scene)?;
+    let two_r = &radius + &radius;
     let contact_tol = options.contact_tol.length(&two_r);
     if contact_tol.is_negative() {
         return Err(CompareFailure::NegativeTolerance {
@@ -224,13 +274,7 @@ pub fn compare_solution_with(
         });
     }
     let tol = &options.overlap_tol;
-    let speed = data
-        .velocities()
-        .iter()
-        .map(|u| u.abs())
-        .max()
-        .unwrap_or_else(<BigRational as Zero>::zero);
-    let solver = crate::solver::Solver::from_data(data.clone());
+    let speed = largest_speed(solver).map_err(scene)?;
     progress.stage("compare", Some(frames.len() as u64));
     let mut reports = Vec::with_capacity(frames.len());
     for f in frames {
@@ -243,7 +287,7 @@ pub fn compare_solution_with(
             error,
         };
         let state = solver
-            .state(&f.t)
+            .state_with_progress(&f.t, progress)
             .map_err(|e| {
                 fail(CompareError::Exact {
                     message: e.to_string(),
@@ -252,12 +296,11 @@ pub fn compare_solution_with(
             .into_state();
         let comparison = compare(&f.candidate(), &state, &two_r, &contact_tol).map_err(fail)?;
         let x = &f.positions;
-        let gaps: Vec<BigRational> = x.windows(2).map(|w| &w[1] - &w[0] - &two_r).collect();
-        let lambda_scale = state
-            .multipliers
-            .iter()
-            .map(|l| l.abs())
-            .max()
+        let gaps = candidate_gaps(x, &two_r);
+        // λ ≥ 0 (eq:dyn-micro): the largest is the largest |λ|.
+        debug_assert!(state.multipliers.iter().all(|l| !l.is_negative()));
+        let lambda_scale = largest(&state.multipliers)
+            .cloned()
             .unwrap_or_else(<BigRational as Zero>::zero);
         let tolerances = Tolerances {
             length: tol * &two_r,
@@ -299,8 +342,8 @@ pub fn compare_solution_with(
     Ok(Report {
         scene: None,
         solution: None,
-        n: data.n(),
-        radius: data.radius().clone(),
+        n,
+        radius,
         options: options.clone(),
         contact_tol,
         frames: reports,
