@@ -116,14 +116,14 @@ fn fast_paths_for_auto_and_the_named_engine_alone() {
             assert!(s.explain().unwrap().ends_with(" (named by --engine)"));
         }
     }
-    // Columns of doubles: the dyadic path, the same states.
+    // Columns of doubles: the filter or the dyadic path, the same states.
     let xs = [0.0, 1.0, 3.0, 4.5, 6.0, 6.5];
     let us = [2.0, 0.0, -1.0, 0.0, 1.0, 3.0];
     let s = Solver::from_doubles(Some(q(1, 4)), xs.to_vec(), us.to_vec()).unwrap();
     assert_eq!(s.doubles().map(|(x, _)| x.len()), Some(6));
     let mut seen = Vec::new();
     s.states(&times(), &Silent, |a| -> Result<(), Error> {
-        assert!(matches!(a, Answer::Dyadic(_)));
+        assert!(matches!(a, Answer::Dyadic(_) | Answer::Filtered(_)));
         seen.push(a.into_state());
         Ok(())
     })
@@ -237,7 +237,10 @@ fn a_full_mantissa_double_time_stays_on_the_dyadic_path() {
     )
     .unwrap();
     let t = exact(0.01);
-    let a = s.state(&t).unwrap();
+    // The filter answers first, with the same state.
+    let filtered = s.state(&t).unwrap();
+    assert!(matches!(filtered, Answer::Filtered(_)));
+    let a = s.state_by_exact_paths(&t, &Silent).unwrap();
     match &a {
         Answer::Dyadic(b) => assert_eq!(b.width(), crate::fast::kernel::Width::I256),
         _ => panic!("a double t left the dyadic path"),
@@ -246,6 +249,7 @@ fn a_full_mantissa_double_time_stays_on_the_dyadic_path() {
     // Particles 0 and 1 have met (the answer is not free flight).
     let gap = &oracle.positions[1] - &oracle.positions[0];
     assert_eq!(gap, q(2, 1) * data.radius());
+    assert_eq!(filtered.into_state(), oracle);
     assert_eq!(a.into_state(), oracle);
 }
 
