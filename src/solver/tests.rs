@@ -341,3 +341,33 @@ fn isotonic_doubles_on_both_paths() {
         Err(Error::Unsupported { .. })
     ));
 }
+
+/// States the filter refuses (a block past its size, a value past its
+/// exponent range, an exact tie) are answered by the exact paths, the
+/// same states as the generic projection; one it proves comes from it.
+#[test]
+fn the_filter_refuses_and_the_exact_paths_answer() {
+    let exact = |v: f64| crate::columns::f64_exact(v).unwrap();
+    let big = 2f64.powi(350);
+    let many: Vec<f64> = (0..200).map(f64::from).collect();
+    let slow: Vec<f64> = (0..200).map(|i| -f64::from(i) / 64.0).collect();
+    let cases: [(f64, Vec<f64>, Vec<f64>, f64, bool); 4] = [
+        (0.125, many, slow, 1000.0, false),
+        (0.25, vec![0.0, big], vec![1.0, 0.0], 1.0, false),
+        (0.25, vec![0.0, 1.5, 10.0], vec![1.0, 0.0, 0.0], 1.0, false),
+        (0.25, vec![0.0, 1.5, 10.0], vec![1.0, 0.0, 0.0], 1.25, true),
+    ];
+    for (r, xs, us, t, filtered) in cases {
+        let s = Solver::from_doubles(Some(exact(r)), xs.clone(), us.clone()).unwrap();
+        let data = InitialData::new(
+            exact(r),
+            xs.iter().map(|&x| exact(x)).collect(),
+            us.iter().map(|&u| exact(u)).collect(),
+        )
+        .unwrap();
+        let a = s.state(&exact(t)).unwrap();
+        assert_eq!(matches!(a, Answer::Filtered(_)), filtered, "{xs:?} at {t}");
+        let oracle = crate::projection::state_at(&data, &exact(t)).unwrap();
+        assert_eq!(a.into_state(), oracle);
+    }
+}

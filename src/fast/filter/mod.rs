@@ -34,7 +34,7 @@
 //! filter refuses). The PAVA runs on `ẑ_i = fl(fl(x_i + fl(t u_i)) −
 //! fl(2r i))`; four roundings give `|ẑ_i − z_i| ≤ u(|t u_i| + |w_i| + |s_i| +
 //! |ẑ_i|) ≤ 3.01 u G ≤ 4 u G = E` with `G ≥ max|x⁰| + t max|u⁰| + 2r N`
-//! (computed with [`eft::up`]). A mean of `m` consecutive `ẑ` by recursive
+//! (computed with `eft::up`). A mean of `m` consecutive `ẑ` by recursive
 //! summation then one division is within `E + (m − 1) u G (1 + 2⁻⁴⁰) +
 //! u G (1 + 2⁻⁴⁰) ≤ (4 + 2m) u G =: β(m)` of the exact mean of `z`
 //! (`|ẑ_i| ≤ G(1 + 4u)`). So
@@ -48,9 +48,9 @@
 //!   the prefix and the right one from the suffix, each a recursive sum.
 //!
 //! The outputs: a one-particle block's position is the nearest double of
-//! `x⁰_i + t u⁰_i` ([`eft::nearest_free_flight`]); a larger block's
+//! `x⁰_i + t u⁰_i` (`eft::nearest_free_flight`); a larger block's
 //! positions, velocity and multipliers are quotients `(Σ exact terms)/d`
-//! rounded by [`eft::Acc::nearest_quotient`] (double-double with a bound,
+//! rounded by `eft::Acc::nearest_quotient` (double-double with a bound,
 //! Ziv's test), the rare undecided ones exactly.
 //!
 //! The decisions of the float PAVA itself need no proof: only the
@@ -84,15 +84,14 @@ pub fn exact_double(q: &BigRational) -> Option<f64> {
     (d.is_finite() && BigRational::from_float(d).as_ref() == Some(q)).then_some(d)
 }
 
-/// `2^−SAFE_EXP` and `2^SAFE_EXP`.
-const LOWEST: f64 = f64::from_bits(((1023 - SAFE_EXP) as u64) << 52);
-const HIGHEST: f64 = f64::from_bits(((1023 + SAFE_EXP) as u64) << 52);
-
-/// Is `v` zero or of a magnitude in the filter's range?
+/// Is `v` zero or of a magnitude in the filter's range, `[2^−SAFE_EXP,
+/// 2^SAFE_EXP]`?
 #[inline]
 fn in_range(v: f64) -> bool {
+    let lowest = f64::from_bits(((1023 - SAFE_EXP) as u64) << 52);
+    let highest = f64::from_bits(((1023 + SAFE_EXP) as u64) << 52);
     let a = v.abs();
-    a == 0.0 || (LOWEST..=HIGHEST).contains(&a)
+    a == 0.0 || (lowest..=highest).contains(&a)
 }
 
 /// Columns of doubles validated exactly (`df:KN`, `def:velcone`), with a
@@ -143,7 +142,7 @@ impl Doubles {
     /// double: if `d > 2r` then the exact gap `> 2r` (were it `≤ 2r`, its
     /// rounding would be `≤ fl(2r) = 2r`, rounding being monotone); if
     /// `d < 2r` the exact gap is `< 2r` likewise; if `d = 2r`, the exact gap
-    /// is `d + e` with `e` the [`eft::two_sum`] error (`x_{i+1} − x_i = d + e`
+    /// is `d + e` with `e` the `eft::two_sum` error (`x_{i+1} − x_i = d + e`
     /// exactly), so it is `≥ 2r` iff `e ≥ 0` and equal to `2r` iff `e = 0`.
     /// (Sterbenz: when `x_i` and `x_{i+1}` are within a factor 2 the
     /// difference is exact and `e = 0`.) An infinite `d` (finite values

@@ -13,7 +13,7 @@ use crate::cluster::Cluster;
 
 /// The state at one time whose partition the filter proved (module
 /// documentation of [`super`]): every block of one particle but the
-/// [`Multi`] ones, each block its own contact cluster.
+/// larger ones it lists, each block its own contact cluster.
 #[derive(Debug, Clone)]
 pub struct Filtered {
     d: Doubles,

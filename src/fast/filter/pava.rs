@@ -18,6 +18,8 @@
 //! right half's first. When that check fails (a block pools across the
 //! junction) one thread streams everything.
 
+use std::cmp::Ordering;
+
 use super::eft::{self, up, Acc, U};
 use super::Doubles;
 
@@ -165,7 +167,8 @@ impl Certifier<'_, '_> {
             let left = prefix[m] / f64::from(ml);
             let right = suffix[m] / f64::from(mr);
             let margin = up(beta(self.ug, ml) + beta(self.ug, mr));
-            if !(left - right > margin) {
+            // A NaN fails it too.
+            if (left - right).partial_cmp(&margin) != Some(Ordering::Greater) {
                 return None;
             }
         }

@@ -8,9 +8,9 @@ use num_rational::BigRational;
 use num_traits::ToPrimitive;
 
 use super::{Doubles, Refusal};
+use crate::fast::dyadic::Dyadic;
 use crate::generate::SplitMix64;
 use crate::initial::InitialData;
-use crate::solver::Solver;
 use crate::state::State;
 
 fn q(v: f64) -> BigRational {
@@ -22,7 +22,8 @@ fn unit(rng: &mut SplitMix64) -> f64 {
     (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64
 }
 
-/// The exact state by the general engines (no filter, no dyadic path).
+/// The exact state by the generic projection on the exact data (no
+/// filter, no machine words).
 fn oracle(r: &BigRational, xs: &[f64], us: &[f64], t: &BigRational) -> State<BigRational> {
     let data = InitialData::new(
         r.clone(),
@@ -30,10 +31,14 @@ fn oracle(r: &BigRational, xs: &[f64], us: &[f64], t: &BigRational) -> State<Big
         us.iter().map(|&v| q(v)).collect(),
     )
     .expect("valid data");
-    Solver::from_data(data)
-        .state(t)
-        .expect("a state")
-        .into_state()
+    crate::projection::state_at(&data, t).expect("a state")
+}
+
+/// The exact state by the dyadic path (what the Solver answers when the
+/// filter refuses).
+fn dyadic(r: &BigRational, xs: &[f64], us: &[f64], t: &BigRational) -> State<BigRational> {
+    let d = Dyadic::from_doubles(Some(r.clone()), xs, us).expect("the dyadic path");
+    d.blocks_at(t).expect("its blocks").exact_state()
 }
 
 fn bits(v: &[f64]) -> Vec<u64> {
@@ -113,17 +118,16 @@ fn random_scenes_are_certified_and_exact() {
 }
 
 /// A block past [`super::pava::MAX_BLOCK`] particles: the filter gives up,
-/// the Solver answers by the exact paths, the same state.
+/// the dyadic path answers, the same state.
 #[test]
 fn a_large_block_is_left_to_the_exact_path() {
     let n = 200;
-    let x: Vec<f64> = (0..n).map(|i| f64::from(i)).collect();
+    let x: Vec<f64> = (0..n).map(f64::from).collect();
     let u: Vec<f64> = (0..n).map(|i| -f64::from(i) / 64.0).collect();
     let (r, t) = (q(0.125), q(1000.0));
     let d = Doubles::validate(Some(r.clone()), x.clone(), u.clone()).unwrap();
     assert!(d.at(&t).is_none());
-    let s = Solver::from_doubles(Some(r.clone()), x.clone(), u.clone()).unwrap();
-    assert_eq!(s.state(&t).unwrap().into_state(), oracle(&r, &x, &u, &t));
+    assert_eq!(dyadic(&r, &x, &u, &t), oracle(&r, &x, &u, &t));
 }
 
 /// Pairs whose free flights cross by `2⁻⁴⁰` to `2⁻¹⁰⁰` (either way), from
@@ -202,10 +206,8 @@ fn exponents_out_of_range_are_refused_and_in_range_exact() {
     let big = 2f64.powi(350);
     let d = Doubles::validate(Some(q(0.25)), vec![0.0, big], vec![1.0, 0.0]).unwrap();
     assert!(d.at(&q(1.0)).is_none(), "a huge position");
-    // The Solver still answers them, exactly.
-    let s = Solver::from_doubles(Some(q(0.25)), vec![0.0, big], vec![1.0, 0.0]).unwrap();
-    let want = oracle(&q(0.25), &[0.0, big], &[1.0, 0.0], &q(1.0));
-    assert_eq!(s.state(&q(1.0)).unwrap().into_state(), want);
+    // (The Solver answers it by the general path:
+    // `solver::tests::the_filter_refuses_and_the_exact_paths_answer`.)
     // The same crowded scene scaled by powers of two (exact, the same
     // blocks): certified near both edges of the range, refused beyond.
     let mut rng = SplitMix64::new(0xed6e);
@@ -247,8 +249,8 @@ fn full_mantissa_times_and_radii() {
 fn validation_in_doubles_is_exact() {
     let mut rng = SplitMix64::new(0x5a1d);
     for case in 0..5_000 {
-        let x0 = (unit(&mut rng) + 0.5) * 2f64.powi((case % 40) as i32 - 10);
-        let two_r = (unit(&mut rng) + 0.5) * 2f64.powi((case % 13) as i32 - 20);
+        let x0 = (unit(&mut rng) + 0.5) * 2f64.powi(case % 40 - 10);
+        let two_r = (unit(&mut rng) + 0.5) * 2f64.powi(case % 13 - 20);
         let exact = x0 + two_r;
         let ulps = (case % 7) as i64 - 3;
         let x1 = f64::from_bits((exact.to_bits() as i64 + ulps) as u64);
