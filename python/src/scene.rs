@@ -76,6 +76,7 @@ impl Inner {
     /// `stop` (Ctrl-C ends it with [`Error::Interrupted`]).
     pub fn answer(&self, t: &BigRational, stop: &dyn Progress) -> Result<Answer, Error> {
         match self.solver.state_with_progress(t, stop)? {
+            Solved::Filtered(f) => Ok(Answer::from_filtered(f)),
             Solved::Dyadic(blocks) => Answer::from_dyadic(blocks, stop),
             Solved::Words(blocks) => Ok(Answer::from_blocks(&blocks)),
             solved => Answer::from_state(solved.into_state(), stop),
@@ -85,7 +86,8 @@ impl Inner {
     /// The exact state at `t`, every value a `BigRational` (for the exact
     /// lists a `State` gives on demand).
     pub fn exact(&self, t: &BigRational) -> Result<sticky::State<BigRational>, Error> {
-        Ok(self.solver.state(t)?.into_state())
+        let silent = &sticky::progress::Silent;
+        Ok(self.solver.state_by_exact_paths(t, silent)?.into_state())
     }
 }
 
@@ -141,9 +143,15 @@ impl Scene {
         let (x, u) = match (x, u) {
             (Column::Doubles(xs), Column::Doubles(us)) => {
                 let r = radius.clone();
-                match py.detach(|| Solver::from_doubles(r, xs.clone(), us.clone())) {
-                    Some(solver) => return Ok(Scene::wrap(Inner::new(solver))),
-                    None => (Column::Doubles(xs), Column::Doubles(us)),
+                match py.detach(|| Solver::from_double_columns(r, xs, us)) {
+                    Ok(solver) => return Ok(Scene::wrap(Inner::new(solver))),
+                    Err(refused) => {
+                        let refused = *refused;
+                        (
+                            Column::Doubles(refused.positions),
+                            Column::Doubles(refused.velocities),
+                        )
+                    }
                 }
             }
             other => other,

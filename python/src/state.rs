@@ -14,6 +14,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use sticky::cluster::Cluster;
 use sticky::fast::dyadic::DyadicBlocks;
+use sticky::fast::filter::Filtered;
 use sticky::fast::stream::LeanBlocks;
 use sticky::progress::Progress;
 use sticky::Error;
@@ -33,8 +34,38 @@ pub struct Answer {
     multipliers: Option<Vec<f64>>,
     /// `None`: found from `blocks` (or the exact state) on first use.
     clusters: Option<Vec<Cluster>>,
-    blocks: Option<DyadicBlocks>,
+    blocks: Option<Kept>,
     exact: Option<sticky::State<BigRational>>,
+}
+
+/// What a fast path left to compute the velocities, multipliers and
+/// clusters from on first use.
+pub enum Kept {
+    /// The dyadic path's blocks.
+    Dyadic(DyadicBlocks),
+    /// The filter's certified partition.
+    Filtered(Filtered),
+}
+
+impl Kept {
+    /// The nearest doubles of `which` (`None`: beyond machine words, the
+    /// exact state answers).
+    fn rounded(&self, which: Later) -> Option<Vec<f64>> {
+        match (self, which) {
+            (Kept::Dyadic(b), Later::Velocities) => b.velocities(),
+            (Kept::Dyadic(b), Later::Multipliers) => b.multipliers(),
+            (Kept::Filtered(f), Later::Velocities) => Some(f.velocities()),
+            (Kept::Filtered(f), Later::Multipliers) => Some(f.multipliers()),
+        }
+    }
+
+    /// The contact clusters.
+    fn clusters(&self) -> Vec<Cluster> {
+        match self {
+            Kept::Dyadic(b) => b.clusters(),
+            Kept::Filtered(f) => f.clusters(),
+        }
+    }
 }
 
 impl Answer {
@@ -53,6 +84,20 @@ impl Answer {
         }
     }
 
+    /// The filter's nearest doubles of the positions; its partition is kept
+    /// for the rest.
+    pub fn from_filtered(mut f: Filtered) -> Answer {
+        Answer {
+            t: f.t().clone(),
+            positions: f.take_positions(),
+            velocities: None,
+            multipliers: None,
+            clusters: None,
+            blocks: Some(Kept::Filtered(f)),
+            exact: None,
+        }
+    }
+
     /// The nearest doubles of the positions from the dyadic path's blocks,
     /// which are kept for the velocities and multipliers (the exact values
     /// are computed again when asked for); when an intermediate leaves
@@ -67,7 +112,7 @@ impl Answer {
                 // A pass over the blocks a caller of `positions` need not
                 // pay for: found on first use.
                 clusters: None,
-                blocks: Some(b),
+                blocks: Some(Kept::Dyadic(b)),
                 exact: None,
             }),
             None => Answer::from_state(b.exact_state(), stop),
@@ -123,8 +168,8 @@ pub struct State {
     multipliers: OnceLock<Py<PyArray1<f64>>>,
     /// Found on first use when the engine did not give them.
     clusters: OnceLock<Vec<Cluster>>,
-    /// The dyadic path's blocks, for the arrays not yet computed.
-    blocks: Option<DyadicBlocks>,
+    /// A fast path's blocks, for the arrays not yet computed.
+    blocks: Option<Kept>,
     exact: OnceLock<sticky::State<BigRational>>,
 }
 
@@ -179,12 +224,7 @@ impl State {
             return Ok(a.bind(py).clone());
         }
         let blocks = &self.blocks;
-        let rounded = py.detach(|| {
-            blocks.as_ref().and_then(|b| match which {
-                Later::Velocities => b.velocities(),
-                Later::Multipliers => b.multipliers(),
-            })
-        });
+        let rounded = py.detach(|| blocks.as_ref().and_then(|b| b.rounded(which)));
         let values = match rounded {
             Some(v) => v,
             None => {
@@ -207,7 +247,7 @@ impl State {
             return Ok(c);
         }
         let blocks = &self.blocks;
-        let found = match py.detach(|| blocks.as_ref().map(DyadicBlocks::clusters)) {
+        let found = match py.detach(|| blocks.as_ref().map(Kept::clusters)) {
             Some(c) => c,
             None => self.exact(py)?.clusters.clone(),
         };

@@ -25,6 +25,7 @@ pub mod adaptive;
 pub mod battery;
 pub mod dyadic;
 pub mod engine;
+pub mod filter;
 pub(crate) mod int;
 pub mod kernel;
 pub mod merge;

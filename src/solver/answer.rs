@@ -6,6 +6,7 @@ use num_bigint::BigInt;
 use num_rational::BigRational;
 
 use crate::fast::dyadic::DyadicBlocks;
+use crate::fast::filter::Filtered;
 use crate::fast::merge::WordHistory;
 use crate::fast::stream::{Exact, LeanBlocks};
 use crate::state::State;
@@ -14,6 +15,9 @@ use crate::trajectory::Trajectory;
 /// The exact state at one time (`prop:proj-micro`), as the path that
 /// computed it left it.
 pub enum Answer<'a> {
+    /// The certified `f64` filter's state ([`crate::fast::filter`]): the
+    /// nearest doubles, from a partition proved optimal.
+    Filtered(Filtered),
     /// The dyadic path's PAVA blocks over columns of doubles
     /// ([`crate::fast::dyadic`]): nearest doubles with no big number.
     Dyadic(DyadicBlocks),
@@ -28,6 +32,7 @@ impl Answer<'_> {
     /// The time of the state.
     pub fn t(&self) -> &BigRational {
         match self {
+            Answer::Filtered(f) => f.t(),
             Answer::Dyadic(b) => b.t(),
             Answer::Words(b) => b.t(),
             Answer::Exact(s) => &s.t,
@@ -38,6 +43,7 @@ impl Answer<'_> {
     /// path: the library's tests compare them).
     pub fn into_state(self) -> State<BigRational> {
         match self {
+            Answer::Filtered(f) => f.exact_state(),
             Answer::Dyadic(b) => b.exact_state(),
             Answer::Words(b) => words_state(&b),
             Answer::Exact(s) => s,

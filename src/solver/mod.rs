@@ -9,6 +9,10 @@
 //!
 //! The choice, in order, for [`Engine::Auto`] (the default):
 //!
+//! 0. the certified `f64` filter ([`crate::fast::filter`]) when the Solver
+//!    was built from doubles with `2r` a double and `t` is a double: the
+//!    PAVA in floating point with its partition proved optimal, or, when a
+//!    check does not pass, nothing (the next path answers);
 //! 1. the dyadic path ([`crate::fast::dyadic`]) when the Solver was built
 //!    from doubles and the time is one it covers (every double `t` with a
 //!    64-bit odd part);
@@ -53,13 +57,14 @@ pub mod work;
 mod tests;
 
 use std::path::Path;
-use std::sync::OnceLock;
+use std::sync::{Arc, OnceLock};
 
 use num_rational::BigRational;
 
 use crate::error::Error;
 use crate::fast::dyadic::Dyadic;
 use crate::fast::engine::{ExactEngine, Merge, Prepared};
+use crate::fast::filter::{Doubles, Refusal, Refused};
 use crate::fast::stream::Lean;
 use crate::initial::InitialData;
 use crate::progress::{Progress, Silent};
@@ -85,8 +90,11 @@ pub struct Options {
 /// data allow (the module documentation).
 pub struct Solver {
     options: Options,
-    dyadic: Option<Dyadic>,
-    words: Option<Lean>,
+    /// Columns of doubles validated exactly, for the filter (and the
+    /// dyadic and streaming paths, built from them on first use).
+    filter: Option<Doubles>,
+    dyadic: OnceLock<Option<Dyadic>>,
+    words: OnceLock<Option<Lean>>,
     source: Source,
     general: OnceLock<Scene>,
     choice: OnceLock<Choice>,
@@ -98,8 +106,9 @@ impl Solver {
     fn with_paths(dyadic: Option<Dyadic>, words: Option<Lean>, source: Source) -> Solver {
         Solver {
             options: Options::default(),
-            dyadic,
-            words,
+            filter: None,
+            dyadic: OnceLock::from(dyadic),
+            words: OnceLock::from(words),
             source,
             general: OnceLock::new(),
             choice: OnceLock::new(),
@@ -139,31 +148,104 @@ impl Solver {
     }
 
     /// Columns of doubles, each the exact binary rational it is, with
-    /// radius `radius` (`None`: `1/(2N)`), on the dyadic path or else the
-    /// streaming path; `None` when neither takes them (the caller then
-    /// validates the data and calls [`Solver::from_data`], which names the
-    /// error of record).
+    /// radius `radius` (`None`: `1/(2N)`): [`Self::from_double_columns`],
+    /// `None` when it refuses them.
     pub fn from_doubles(
         radius: Option<BigRational>,
         positions: Vec<f64>,
         velocities: Vec<f64>,
     ) -> Option<Solver> {
-        let (dyadic, words) = match Dyadic::from_doubles(radius.clone(), &positions, &velocities) {
-            Some(d) => (Some(d), None),
-            None => (
-                None,
-                Some(Lean::from_doubles(radius.clone(), &positions, &velocities)?),
-            ),
+        Solver::from_double_columns(radius, positions, velocities).ok()
+    }
+
+    /// Columns of doubles, each the exact binary rational it is, with
+    /// radius `radius` (`None`: `1/(2N)`). When `2r` is a double the data
+    /// are validated in doubles with exact decisions
+    /// ([`Doubles::validate`]) and nothing else is built: the filter
+    /// answers the states, the dyadic and streaming paths are built on
+    /// first need. Otherwise the dyadic path or else the streaming path
+    /// reads them now. The columns are handed back ([`Refused`]) when the
+    /// data are invalid or no path takes them (the caller then validates
+    /// them and calls [`Solver::from_data`], which names the error of
+    /// record).
+    pub fn from_double_columns(
+        radius: Option<BigRational>,
+        positions: Vec<f64>,
+        velocities: Vec<f64>,
+    ) -> Result<Solver, Box<Refused>> {
+        let refused = match Doubles::validate(radius.clone(), positions, velocities) {
+            Ok(d) => {
+                let (positions, velocities) = d.shared_columns();
+                let mut solver = Solver::with_paths(
+                    None,
+                    None,
+                    Source::Doubles {
+                        radius,
+                        positions,
+                        velocities,
+                    },
+                );
+                solver.dyadic = OnceLock::new();
+                solver.words = OnceLock::new();
+                solver.filter = Some(d);
+                return Ok(solver);
+            }
+            Err(r) if r.reason == Refusal::Invalid => return Err(r),
+            Err(r) => r,
         };
-        Some(Solver::with_paths(
+        let Refused {
+            positions,
+            velocities,
+            ..
+        } = *refused;
+        let dyadic = Dyadic::from_doubles(radius.clone(), &positions, &velocities);
+        let words = match dyadic {
+            Some(_) => None,
+            None => Lean::from_doubles(radius.clone(), &positions, &velocities),
+        };
+        if dyadic.is_none() && words.is_none() {
+            return Err(Box::new(Refused {
+                positions,
+                velocities,
+                reason: Refusal::Undecided,
+            }));
+        }
+        Ok(Solver::with_paths(
             dyadic,
             words,
             Source::Doubles {
                 radius,
-                positions,
-                velocities,
+                positions: Arc::new(positions),
+                velocities: Arc::new(velocities),
             },
         ))
+    }
+
+    /// The dyadic path's columns ([`crate::fast::dyadic`]), built from the
+    /// doubles on first use.
+    fn dyadic(&self) -> Option<&Dyadic> {
+        self.dyadic
+            .get_or_init(|| {
+                let f = self.filter.as_ref()?;
+                let (x, u) = f.columns();
+                Dyadic::from_doubles(Some(f.radius().clone()), x, u)
+            })
+            .as_ref()
+    }
+
+    /// The streaming path's words ([`crate::fast::stream`]), built from the
+    /// doubles on first use when the dyadic path does not take them.
+    fn words(&self) -> Option<&Lean> {
+        self.words
+            .get_or_init(|| {
+                let f = self.filter.as_ref()?;
+                if self.dyadic().is_some() {
+                    return None;
+                }
+                let (x, u) = f.columns();
+                Lean::from_doubles(Some(f.radius().clone()), x, u)
+            })
+            .as_ref()
     }
 
     /// The same Solver answering with `options`.
@@ -201,10 +283,13 @@ impl Solver {
 
     /// N.
     pub fn n(&self) -> Result<usize, Error> {
-        if let Some(d) = &self.dyadic {
+        if let Some(f) = &self.filter {
+            return Ok(f.n());
+        }
+        if let Some(d) = self.dyadic() {
             return Ok(d.n());
         }
-        match &self.words {
+        match self.words() {
             Some(w) => Ok(w.n()),
             None => Ok(self.data()?.n()),
         }
@@ -212,10 +297,13 @@ impl Solver {
 
     /// The radius r.
     pub fn radius(&self) -> Result<&BigRational, Error> {
-        if let Some(d) = &self.dyadic {
+        if let Some(f) = &self.filter {
+            return Ok(f.radius());
+        }
+        if let Some(d) = self.dyadic() {
             return Ok(d.radius());
         }
-        match &self.words {
+        match self.words() {
             Some(w) => Ok(w.radius()),
             None => Ok(self.data()?.radius()),
         }
@@ -239,7 +327,7 @@ impl Solver {
     /// column file, the projected peak memory ([`Lean::footprint`]).
     pub fn explain(&self) -> Result<String, Error> {
         if self.options.engine == Engine::Auto {
-            if let Some(words) = &self.words {
+            if let Some(words) = self.words() {
                 // The streaming path answers first (`state_with_progress`);
                 // a column file adds its projected memory.
                 let mut text = words.explain();
@@ -289,12 +377,29 @@ impl Solver {
         progress: &dyn Progress,
     ) -> Result<Answer<'_>, Error> {
         if self.options.engine == Engine::Auto {
+            // The filter first: a proved partition in floating point.
+            if let Some(f) = self.filter.as_ref().and_then(|d| d.at(t)) {
+                return Ok(Answer::Filtered(f));
+            }
+            return self.state_by_exact_paths(t, progress);
+        }
+        let state = self.prepared()?.state_at_with_progress(t, progress)?;
+        Ok(Answer::Exact(state))
+    }
+
+    /// [`Self::state_with_progress`] on the exact paths alone (no filter).
+    pub fn state_by_exact_paths(
+        &self,
+        t: &BigRational,
+        progress: &dyn Progress,
+    ) -> Result<Answer<'_>, Error> {
+        if self.options.engine == Engine::Auto {
             // A double `t` on a Solver built from doubles goes the dyadic
             // path whatever its mantissa (its wider words included).
-            if let Some(b) = self.dyadic.as_ref().and_then(|d| d.blocks_at(t)) {
+            if let Some(b) = self.dyadic().and_then(|d| d.blocks_at(t)) {
                 return Ok(Answer::Dyadic(b));
             }
-            if let Some(b) = self.words.as_ref().and_then(|w| w.blocks_at(t)) {
+            if let Some(b) = self.words().and_then(|w| w.blocks_at(t)) {
                 return Ok(Answer::Words(b));
             }
         }
@@ -331,7 +436,7 @@ impl Solver {
     /// ([`Solver::trajectory`]).
     pub fn events(&self, progress: &dyn Progress) -> Result<History, Error> {
         if self.options.engine == Engine::Auto {
-            if let Some(h) = self.words.as_ref().and_then(|w| w.history()) {
+            if let Some(h) = self.words().and_then(|w| w.history()) {
                 return Ok(History::Words(h));
             }
         }

@@ -2,6 +2,7 @@
 //! when a fast path read the input and the general path needs them later.
 
 use std::path::PathBuf;
+use std::sync::Arc;
 
 use num_rational::BigRational;
 
@@ -16,8 +17,8 @@ pub(crate) enum Source {
     /// Columns of doubles, kept until the general path needs them.
     Doubles {
         radius: Option<BigRational>,
-        positions: Vec<f64>,
-        velocities: Vec<f64>,
+        positions: Arc<Vec<f64>>,
+        velocities: Arc<Vec<f64>>,
     },
     /// A scene file the streaming path read.
     File(PathBuf),

@@ -116,14 +116,14 @@ fn fast_paths_for_auto_and_the_named_engine_alone() {
             assert!(s.explain().unwrap().ends_with(" (named by --engine)"));
         }
     }
-    // Columns of doubles: the dyadic path, the same states.
+    // Columns of doubles: the filter or the dyadic path, the same states.
     let xs = [0.0, 1.0, 3.0, 4.5, 6.0, 6.5];
     let us = [2.0, 0.0, -1.0, 0.0, 1.0, 3.0];
     let s = Solver::from_doubles(Some(q(1, 4)), xs.to_vec(), us.to_vec()).unwrap();
     assert_eq!(s.doubles().map(|(x, _)| x.len()), Some(6));
     let mut seen = Vec::new();
     s.states(&times(), &Silent, |a| -> Result<(), Error> {
-        assert!(matches!(a, Answer::Dyadic(_)));
+        assert!(matches!(a, Answer::Dyadic(_) | Answer::Filtered(_)));
         seen.push(a.into_state());
         Ok(())
     })
@@ -237,7 +237,10 @@ fn a_full_mantissa_double_time_stays_on_the_dyadic_path() {
     )
     .unwrap();
     let t = exact(0.01);
-    let a = s.state(&t).unwrap();
+    // The filter answers first, with the same state.
+    let filtered = s.state(&t).unwrap();
+    assert!(matches!(filtered, Answer::Filtered(_)));
+    let a = s.state_by_exact_paths(&t, &Silent).unwrap();
     match &a {
         Answer::Dyadic(b) => assert_eq!(b.width(), crate::fast::kernel::Width::I256),
         _ => panic!("a double t left the dyadic path"),
@@ -246,6 +249,7 @@ fn a_full_mantissa_double_time_stays_on_the_dyadic_path() {
     // Particles 0 and 1 have met (the answer is not free flight).
     let gap = &oracle.positions[1] - &oracle.positions[0];
     assert_eq!(gap, q(2, 1) * data.radius());
+    assert_eq!(filtered.into_state(), oracle);
     assert_eq!(a.into_state(), oracle);
 }
 
@@ -336,4 +340,34 @@ fn isotonic_doubles_on_both_paths() {
         isotonic_doubles(&[1.0, f64::NAN]),
         Err(Error::Unsupported { .. })
     ));
+}
+
+/// States the filter refuses (a block past its size, a value past its
+/// exponent range, an exact tie) are answered by the exact paths, the
+/// same states as the generic projection; one it proves comes from it.
+#[test]
+fn the_filter_refuses_and_the_exact_paths_answer() {
+    let exact = |v: f64| crate::columns::f64_exact(v).unwrap();
+    let big = 2f64.powi(350);
+    let many: Vec<f64> = (0..200).map(f64::from).collect();
+    let slow: Vec<f64> = (0..200).map(|i| -f64::from(i) / 64.0).collect();
+    let cases: [(f64, Vec<f64>, Vec<f64>, f64, bool); 4] = [
+        (0.125, many, slow, 1000.0, false),
+        (0.25, vec![0.0, big], vec![1.0, 0.0], 1.0, false),
+        (0.25, vec![0.0, 1.5, 10.0], vec![1.0, 0.0, 0.0], 1.0, false),
+        (0.25, vec![0.0, 1.5, 10.0], vec![1.0, 0.0, 0.0], 1.25, true),
+    ];
+    for (r, xs, us, t, filtered) in cases {
+        let s = Solver::from_doubles(Some(exact(r)), xs.clone(), us.clone()).unwrap();
+        let data = InitialData::new(
+            exact(r),
+            xs.iter().map(|&x| exact(x)).collect(),
+            us.iter().map(|&u| exact(u)).collect(),
+        )
+        .unwrap();
+        let a = s.state(&exact(t)).unwrap();
+        assert_eq!(matches!(a, Answer::Filtered(_)), filtered, "{xs:?} at {t}");
+        let oracle = crate::projection::state_at(&data, &exact(t)).unwrap();
+        assert_eq!(a.into_state(), oracle);
+    }
 }

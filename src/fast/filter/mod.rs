@@ -1,0 +1,265 @@
+//! A certified floating-point filter for the state of a scene of doubles at
+//! a double time (issue 38): the PAVA of `prop:proj-micro` run in `f64`,
+//! its partition **proved** optimal by the projection's index-form KKT
+//! conditions (`\label{app:KKT}`, the Coq development's `Kkt.v`), and each
+//! output rounded once to the nearest double of its exact value. Anything
+//! the filter cannot prove makes it answer `None`; the caller then takes
+//! the exact dyadic path ([`crate::fast::dyadic`]), which gives the same
+//! doubles. The filter never answers differently from the exact engines:
+//! the tests compare them bit for bit, adversarial near-ties included.
+//!
+//! **The problem.** With `z_i = x⁰_i + t u⁰_i − 2r i` (`df:translat-x`),
+//! `x(t) = P_K(x⁰ + t u⁰)` is `x_i = m_B + 2r i` for the particle `i` of the
+//! block `B` of the isotonic regression of `z`, `m_B` the mean of `z` over
+//! `B`. A partition into blocks of consecutive indices gives the
+//! regression (the projection onto the cone of non-decreasing vectors,
+//! unique) exactly when (KKT, index form):
+//!
+//! 1. the block means are non-decreasing from one block to the next;
+//! 2. inside each block `B = [a, b]`, every prefix sum
+//!    `Σ_{a ≤ i ≤ j} (z_i − m_B) ≥ 0` (`j < b`): the multipliers are `≥ 0`.
+//!
+//! The filter proves both **strictly** (means strictly increasing, every
+//! prefix sum `> 0`): then the partition is also the one of `z + ε u⁰` for
+//! all small `ε > 0`, i.e. the exact path's lexicographic blocks, each
+//! block is its own contact cluster (`df:Omega-micro`), and the velocities
+//! (`eq:proj-u-micro`: block means of `u⁰`) and multipliers
+//! (`eq:dyn-micro`) follow from the same partition. A tie (a prefix sum of
+//! exactly 0, two touching clusters) is never proved: the exact path
+//! answers it.
+//!
+//! **Error analysis** (standard model `|fl(a ∘ b) − a ∘ b| ≤ u |a ∘ b|`,
+//! `u = 2⁻⁵³`, no underflow or overflow: every nonzero `|x⁰_i|`, `|u⁰_i|`,
+//! `t`, `2r` lies in `[2⁻³⁰⁰, 2³⁰⁰]` ([`SAFE_EXP`]) and `N ≤ 2²⁶`, else the
+//! filter refuses). The PAVA runs on `ẑ_i = fl(fl(x_i + fl(t u_i)) −
+//! fl(2r i))`; four roundings give `|ẑ_i − z_i| ≤ u(|t u_i| + |w_i| + |s_i| +
+//! |ẑ_i|) ≤ 3.01 u G ≤ 4 u G = E` with `G ≥ max|x⁰| + t max|u⁰| + 2r N`
+//! (computed with `eft::up`). A mean of `m` consecutive `ẑ` by recursive
+//! summation then one division is within `E + (m − 1) u G (1 + 2⁻⁴⁰) +
+//! u G (1 + 2⁻⁴⁰) ≤ (4 + 2m) u G =: β(m)` of the exact mean of `z`
+//! (`|ẑ_i| ≤ G(1 + 4u)`). So
+//!
+//! * condition 1 between blocks `A`, `B` is proved by
+//!   `fl(μ̂_B − μ̂_A) > up(β(k_A) + β(k_B))` (monotone rounding: the float
+//!   difference exceeding a double implies the exact one does);
+//! * condition 2 at a split of `B` (`m` entries left, `k − m` right) is
+//!   `mean(left) > mean(right)` (equivalent to the prefix sum being `> 0`),
+//!   proved by `fl(μ̂_L − μ̂_R) > up(β(m) + β(k − m))` with the left mean from
+//!   the prefix and the right one from the suffix, each a recursive sum.
+//!
+//! The outputs: a one-particle block's position is the nearest double of
+//! `x⁰_i + t u⁰_i` (`eft::nearest_free_flight`); a larger block's
+//! positions, velocity and multipliers are quotients `(Σ exact terms)/d`
+//! rounded by `eft::Acc::nearest_quotient` (double-double with a bound,
+//! Ziv's test), the rare undecided ones exactly.
+//!
+//! The decisions of the float PAVA itself need no proof: only the
+//! certificate is trusted. A partition the floats got wrong fails it.
+
+mod eft;
+mod outputs;
+mod pava;
+#[cfg(test)]
+mod tests;
+
+use std::sync::Arc;
+
+use num_bigint::BigInt;
+use num_rational::BigRational;
+use num_traits::{Signed, ToPrimitive};
+
+pub use outputs::Filtered;
+
+/// Every nonzero magnitude the filter takes lies in `[2^−SAFE_EXP,
+/// 2^SAFE_EXP]` (module documentation).
+pub const SAFE_EXP: i32 = 300;
+
+/// The largest `N` the filter takes: sums of indices and products of block
+/// sizes (`k N`, `k i`) stay exact integers below `2⁵³`.
+pub const MAX_N: usize = 1 << 26;
+
+/// The double equal to `q`, if there is one (finite).
+pub fn exact_double(q: &BigRational) -> Option<f64> {
+    let d = q.to_f64()?;
+    (d.is_finite() && BigRational::from_float(d).as_ref() == Some(q)).then_some(d)
+}
+
+/// Is `v` zero or of a magnitude in the filter's range, `[2^−SAFE_EXP,
+/// 2^SAFE_EXP]`?
+#[inline]
+fn in_range(v: f64) -> bool {
+    let lowest = f64::from_bits(((1023 - SAFE_EXP) as u64) << 52);
+    let highest = f64::from_bits(((1023 + SAFE_EXP) as u64) << 52);
+    let a = v.abs();
+    a == 0.0 || (lowest..=highest).contains(&a)
+}
+
+/// Columns of doubles validated exactly (`df:KN`, `def:velcone`), with a
+/// radius `r` such that `2r` is a double: the data of the filter, shared
+/// with its answers.
+#[derive(Debug, Clone)]
+pub struct Doubles {
+    radius: BigRational,
+    two_r: f64,
+    x: Arc<Vec<f64>>,
+    u: Arc<Vec<f64>>,
+    /// `max |u⁰_i|`.
+    u_max: f64,
+    /// Every value in the filter's range and `N ≤ MAX_N`.
+    in_range: bool,
+}
+
+/// Why [`Doubles::validate`] did not take the columns (they are handed
+/// back).
+#[derive(Debug)]
+pub struct Refused {
+    /// The positions given.
+    pub positions: Vec<f64>,
+    /// The velocities given.
+    pub velocities: Vec<f64>,
+    /// Invalid, or not decided in doubles.
+    pub reason: Refusal,
+}
+
+/// The kind of a [`Refused`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Refusal {
+    /// The data are not valid initial data (`df:KN`, `def:velcone`, a NaN
+    /// or an infinity): the general path names the error.
+    Invalid,
+    /// `2r` is not a double, or there are no particles, or the lengths
+    /// differ: the check was not made here.
+    Undecided,
+}
+
+impl Doubles {
+    /// The columns, validated with exact decisions in doubles: every value
+    /// finite, and for each pair `x_{i+1} − x_i ≥ 2r`, with
+    /// `u_{i+1} ≥ u_i` where the gap is exactly `2r` (`InitialData::new`'s
+    /// checks). `radius` `None` is the paper's `1/(2N)`.
+    ///
+    /// **The gap test is exact.** With `d = fl(x_{i+1} − x_i)` and `2r` a
+    /// double: if `d > 2r` then the exact gap `> 2r` (were it `≤ 2r`, its
+    /// rounding would be `≤ fl(2r) = 2r`, rounding being monotone); if
+    /// `d < 2r` the exact gap is `< 2r` likewise; if `d = 2r`, the exact gap
+    /// is `d + e` with `e` the `eft::two_sum` error (`x_{i+1} − x_i = d + e`
+    /// exactly), so it is `≥ 2r` iff `e ≥ 0` and equal to `2r` iff `e = 0`.
+    /// (Sterbenz: when `x_i` and `x_{i+1}` are within a factor 2 the
+    /// difference is exact and `e = 0`.) An infinite `d` (finite values
+    /// overflowing) is a gap beyond every double, `> 2r`.
+    pub fn validate(
+        radius: Option<BigRational>,
+        positions: Vec<f64>,
+        velocities: Vec<f64>,
+    ) -> Result<Doubles, Box<Refused>> {
+        let n = positions.len();
+        let refuse = |positions, velocities, reason| {
+            Err(Box::new(Refused {
+                positions,
+                velocities,
+                reason,
+            }))
+        };
+        if n == 0 || velocities.len() != n {
+            return refuse(positions, velocities, Refusal::Undecided);
+        }
+        let radius = radius.unwrap_or_else(|| BigRational::new(1.into(), BigInt::from(2 * n)));
+        let two_r = match exact_double(&(&radius + &radius)) {
+            Some(d) if radius.is_positive() => d,
+            _ => return refuse(positions, velocities, Refusal::Undecided),
+        };
+        match check(&positions, &velocities, two_r) {
+            Some(Scan { u_max, in_range }) => Ok(Doubles {
+                radius,
+                two_r,
+                x: Arc::new(positions),
+                u: Arc::new(velocities),
+                u_max,
+                in_range: in_range && self::in_range(two_r) && n <= MAX_N,
+            }),
+            None => refuse(positions, velocities, Refusal::Invalid),
+        }
+    }
+
+    /// N.
+    pub fn n(&self) -> usize {
+        self.x.len()
+    }
+
+    /// The radius.
+    pub fn radius(&self) -> &BigRational {
+        &self.radius
+    }
+
+    /// The positions and velocities.
+    pub fn columns(&self) -> (&[f64], &[f64]) {
+        (&self.x, &self.u)
+    }
+
+    /// The positions and velocities, shared.
+    pub fn shared_columns(&self) -> (Arc<Vec<f64>>, Arc<Vec<f64>>) {
+        (Arc::clone(&self.x), Arc::clone(&self.u))
+    }
+
+    /// The certified state at `t` ([`Filtered`]), or `None` when `t` is not
+    /// a double `≥ 0` in range, a value is out of range, or a check of the
+    /// certificate does not pass (module documentation).
+    pub fn at(&self, t: &BigRational) -> Option<Filtered> {
+        self.at_with(t, pava::PARALLEL_MIN)
+    }
+
+    /// [`Self::at`] on two threads from `parallel_min` particles on.
+    fn at_with(&self, t: &BigRational, parallel_min: usize) -> Option<Filtered> {
+        if !self.in_range || t.is_negative() {
+            return None;
+        }
+        let tf = exact_double(t)?;
+        if !in_range(tf) {
+            return None;
+        }
+        let run = pava::certified(self, tf, parallel_min)?;
+        Some(Filtered::new(self.clone(), t.clone(), tf, run))
+    }
+}
+
+/// What the validating scan learnt besides validity.
+struct Scan {
+    u_max: f64,
+    in_range: bool,
+}
+
+/// The exact validity checks of [`Doubles::validate`] in one pass; `None`
+/// when the data are invalid. The positions are finite when their ends are
+/// and every gap is `> 0` (a NaN fails the gap test); a velocity is finite
+/// when `u · 0 = 0` (a NaN or an infinity gives a NaN).
+fn check(x: &[f64], u: &[f64], two_r: f64) -> Option<Scan> {
+    let n = x.len();
+    let (mut u_max, mut nan) = (0.0f64, 0.0f64);
+    let mut ok = true;
+    for (&xi, &ui) in x.iter().zip(u) {
+        nan += ui * 0.0;
+        u_max = u_max.max(ui.abs());
+        ok &= in_range(xi) & in_range(ui);
+    }
+    if nan != 0.0 || !x[0].is_finite() || !x[n - 1].is_finite() {
+        return None;
+    }
+    for (i, pair) in x.windows(2).enumerate() {
+        let d = pair[1] - pair[0];
+        if d > two_r {
+            continue;
+        }
+        // `d < 2r`, or a NaN: invalid.
+        if d != two_r {
+            return None;
+        }
+        let (_, e) = eft::two_sum(pair[1], -pair[0]);
+        if e < 0.0 || (e == 0.0 && u[i + 1] < u[i]) {
+            return None;
+        }
+    }
+    Some(Scan {
+        u_max,
+        in_range: ok,
+    })
+}

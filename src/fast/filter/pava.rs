@@ -1,0 +1,346 @@
+//! The float PAVA of the filter, streamed over the particles, and the
+//! certificate (module documentation of [`super`]) checked on each block
+//! the moment it is final, its positions written then: one pass over the
+//! columns, a stack that stays in cache.
+//!
+//! **When a block is final.** `x̃_i = x⁰_i − 2r i` is non-decreasing
+//! (`df:KN`), so every later `z_j = x̃_j + t u⁰_j ≥ x̃_i − t max|u⁰|` for
+//! `j ≥ i` (`t ≥ 0`). A block at the bottom of the stack whose mean is below
+//! that bound can never pool again: the blocks above it have larger means,
+//! and any block that later forms to its right averages entries that are
+//! all larger. The floats decide this only heuristically: a block emitted
+//! too early meets a right neighbour whose mean is not larger, and the
+//! certificate's check between the two refuses the whole run.
+//!
+//! **Two cores.** From [`PARALLEL_MIN`] particles on, each half is streamed
+//! and certified by its own thread; the certificate of the whole is the
+//! two halves' and condition 1 between the left half's last block and the
+//! right half's first. When that check fails (a block pools across the
+//! junction) one thread streams everything.
+
+use std::cmp::Ordering;
+
+use super::eft::{self, up, Acc, U};
+use super::Doubles;
+
+/// A block of the float PAVA: `k` entries from `start`, `sum` the float
+/// sum of their `ẑ`.
+#[derive(Debug, Clone, Copy)]
+struct Block {
+    sum: f64,
+    k: u32,
+    start: u32,
+}
+
+/// A block of more than one particle of the certified partition (the
+/// others are single particles).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Multi {
+    /// Its first particle.
+    pub start: u32,
+    /// Its number of particles, `≥ 2`.
+    pub k: u32,
+}
+
+/// The certified partition and the positions' nearest doubles.
+pub(crate) struct Run {
+    pub positions: Vec<f64>,
+    pub multi: Vec<Multi>,
+}
+
+/// Two threads from this many particles on.
+pub(crate) const PARALLEL_MIN: usize = 1 << 16;
+
+/// The largest block the filter keeps: past it the filter gives up (a
+/// choice of speed, not of correctness). Its per-particle work on a larger
+/// block (double-double positions, multipliers quadratic in the block)
+/// costs more than the exact dyadic path, which is fast on the data that
+/// pool a lot (short dyadic grids), and a scene of a few large blocks is
+/// not the one the filter is for.
+pub(crate) const MAX_BLOCK: u32 = 64;
+
+/// The certificate of a range of particles: its larger blocks, and the
+/// mean and size of its first and last blocks (for condition 1 across a
+/// junction).
+struct Part {
+    multi: Vec<Multi>,
+    first: Option<(f64, u32)>,
+    last: Option<(f64, u32)>,
+}
+
+/// `β(k) = (4 + 2k) u G`: the bound of a mean of `k` consecutive `ẑ`
+/// (module documentation of [`super`]), `ug = u G`.
+#[inline]
+fn beta(ug: f64, k: u32) -> f64 {
+    (4.0 + 2.0 * f64::from(k)) * ug
+}
+
+/// What every range's certificate shares.
+#[derive(Clone, Copy)]
+struct Context<'a> {
+    x: &'a [f64],
+    u: &'a [f64],
+    t: f64,
+    two_r: f64,
+    /// `u G`.
+    ug: f64,
+    /// Room below the heuristic bound of the later `ẑ` (`t max|u⁰|` and
+    /// the roundings).
+    slack: f64,
+}
+
+/// The certificate's state between two blocks, and the outputs so far.
+struct Certifier<'a, 'o> {
+    x: &'a [f64],
+    u: &'a [f64],
+    t: f64,
+    two_r: f64,
+    /// `u G`.
+    ug: f64,
+    /// The first and the last emitted blocks' means and sizes.
+    first: Option<(f64, u32)>,
+    prev: Option<(f64, u32)>,
+    /// The positions of the range, from particle `base` on.
+    out: &'o mut [f64],
+    base: usize,
+    multi: Vec<Multi>,
+    /// `ẑ` of a block, then its prefix and suffix sums.
+    scratch: Vec<f64>,
+    terms: Vec<f64>,
+}
+
+impl Certifier<'_, '_> {
+    /// `ẑ_i = fl(fl(x_i + fl(t u_i)) − fl(2r i))`.
+    #[inline]
+    fn z(&self, i: usize) -> f64 {
+        (self.x[i] + self.t * self.u[i]) - self.two_r * i as f64
+    }
+
+    /// Condition 1 between the previous block and this one (mean `mean`,
+    /// `k` entries): `fl(μ̂_B − μ̂_A) > up(β(k_A) + β(k_B))`.
+    #[inline]
+    fn after_previous(&mut self, mean: f64, k: u32) -> Option<()> {
+        if let Some(p) = self.prev {
+            increasing(self.ug, p, (mean, k))?;
+        } else {
+            self.first = Some((mean, k));
+        }
+        self.prev = Some((mean, k));
+        Some(())
+    }
+
+    /// Checks block `b` and writes its positions.
+    #[inline]
+    fn emit(&mut self, b: Block) -> Option<()> {
+        let i = b.start as usize;
+        if b.k == 1 {
+            self.after_previous(b.sum, 1)?;
+            self.out[i - self.base] = eft::nearest_free_flight(self.x[i], self.t, self.u[i]);
+            return Some(());
+        }
+        self.emit_multi(b)
+    }
+
+    /// [`Self::emit`] for a block of `k ≥ 2` particles: condition 2 at
+    /// every split, condition 1, then each position `(Σ_j z_j)/k + 2r i` as
+    /// the quotient by `k` of the exact terms `x_j`, `t u_j` (two each),
+    /// `2r (k i − Σ_j j)` (two).
+    #[cold]
+    fn emit_multi(&mut self, b: Block) -> Option<()> {
+        let (a, k) = (b.start as usize, b.k as usize);
+        let mut zs = std::mem::take(&mut self.scratch);
+        zs.clear();
+        zs.extend((a..a + k).map(|i| self.z(i)));
+        // prefix[m] = ẑ_a + … + ẑ_{a+m−1}; suffix[m] = ẑ_{a+m} + … (each a
+        // recursive sum in its own order).
+        let mut prefix = vec![0.0; k + 1];
+        for m in 0..k {
+            prefix[m + 1] = prefix[m] + zs[m];
+        }
+        let mut suffix = vec![0.0; k + 1];
+        for m in (0..k).rev() {
+            suffix[m] = zs[m] + suffix[m + 1];
+        }
+        self.scratch = zs;
+        for m in 1..k {
+            let (ml, mr) = (m as u32, (k - m) as u32);
+            let left = prefix[m] / f64::from(ml);
+            let right = suffix[m] / f64::from(mr);
+            let margin = up(beta(self.ug, ml) + beta(self.ug, mr));
+            // A NaN fails it too.
+            if (left - right).partial_cmp(&margin) != Some(Ordering::Greater) {
+                return None;
+            }
+        }
+        self.after_previous(prefix[k] / k as f64, b.k)?;
+        let mut base = Acc::default();
+        self.terms.clear();
+        for j in a..a + k {
+            base.add(self.x[j]);
+            base.add_product(self.t, self.u[j]);
+            let (p, e) = eft::two_prod(self.t, self.u[j]);
+            self.terms.extend([self.x[j], p, e]);
+        }
+        // Σ j over the block, exact (< 2⁵³: `k N < 2⁵²`).
+        let sum_j = (k * a + k * (k - 1) / 2) as i64;
+        let d = k as f64;
+        for i in a..a + k {
+            let c = (k * i) as i64 - sum_j;
+            let mut acc = base;
+            acc.add_product(self.two_r, c as f64);
+            let p = match acc.nearest_quotient(d) {
+                Some(p) => p,
+                None => {
+                    let (p, e) = eft::two_prod(self.two_r, c as f64);
+                    let mut terms = self.terms.clone();
+                    terms.extend([p, e]);
+                    eft::exact_quotient(&terms, k as u64)
+                }
+            };
+            self.out[i - self.base] = p;
+        }
+        self.multi.push(Multi {
+            start: b.start,
+            k: b.k,
+        });
+        Some(())
+    }
+}
+
+/// Condition 1 between consecutive blocks `(mean, size)`:
+/// `fl(μ̂_B − μ̂_A) > up(β(k_A) + β(k_B))` (a NaN fails it too).
+#[inline]
+fn increasing(ug: f64, (ma, ka): (f64, u32), (mb, kb): (f64, u32)) -> Option<()> {
+    let margin = up(beta(ug, ka) + beta(ug, kb));
+    (mb - ma > margin).then_some(())
+}
+
+/// Does block `a` pool with the block `b` to its right (mean `≥`)?
+#[inline]
+fn pools(a: &Block, b: &Block) -> bool {
+    a.sum * f64::from(b.k) >= b.sum * f64::from(a.k)
+}
+
+/// The float PAVA at `t` (a double in range) and its certificate, on two
+/// threads from `parallel_min` particles on; `None` when a check fails.
+pub(crate) fn certified(d: &Doubles, t: f64, parallel_min: usize) -> Option<Run> {
+    let (x, u) = (&d.x[..], &d.u[..]);
+    let n = x.len();
+    let two_r = d.two_r;
+    // G ≥ max|x⁰| + t max|u⁰| + 2r N (x⁰ sorted: its extremes are its ends).
+    let x_max = x[0].abs().max(x[n - 1].abs());
+    let tu = t * d.u_max;
+    let g = up(x_max + tu + two_r * n as f64);
+    let ug = up(U * g);
+    let cx = Context {
+        x,
+        u,
+        t,
+        two_r,
+        ug,
+        slack: tu + 64.0 * ug,
+    };
+    let mut positions = vec![0.0; n];
+    if n >= parallel_min.max(2) {
+        let h = n / 2;
+        let (lo, hi) = positions.split_at_mut(h);
+        let halves = std::thread::scope(|s| {
+            let worker = std::thread::Builder::new().spawn_scoped(s, move || cx.stream(h, hi));
+            let left = cx.stream(0, lo);
+            match worker.map(|w| w.join()) {
+                Ok(Ok(right)) => Some((left, right)),
+                Ok(Err(panic)) => std::panic::resume_unwind(panic),
+                // No second thread to be had: one streams everything.
+                Err(_) => None,
+            }
+        });
+        if let Some((Some(mut left), Some(right))) = halves {
+            let joined = match (left.last, right.first) {
+                (Some(a), Some(b)) => increasing(ug, a, b).is_some(),
+                _ => false,
+            };
+            if joined {
+                left.multi.extend(right.multi);
+                return Some(Run {
+                    positions,
+                    multi: left.multi,
+                });
+            }
+        }
+    }
+    let part = cx.stream(0, &mut positions)?;
+    Some(Run {
+        positions,
+        multi: part.multi,
+    })
+}
+
+impl<'a> Context<'a> {
+    /// The float PAVA on the particles from `base` on (`out.len()` of
+    /// them), its positions into `out`, its certificate checked.
+    fn stream(self, base: usize, out: &mut [f64]) -> Option<Part> {
+        let end = base + out.len();
+        let (x, u) = (&self.x[base..end], &self.u[base..end]);
+        let (t, two_r, slack) = (self.t, self.two_r, self.slack);
+        let mut c = Certifier {
+            x: self.x,
+            u: self.u,
+            t,
+            two_r,
+            ug: self.ug,
+            first: None,
+            prev: None,
+            out,
+            base,
+            multi: Vec::new(),
+            scratch: Vec::new(),
+            terms: Vec::new(),
+        };
+        let mut stack: Vec<Block> = Vec::with_capacity(256);
+        let mut bottom = 0usize;
+        for (i, (&xi, &ui)) in (base..end).zip(x.iter().zip(u)) {
+            let s = two_r * i as f64;
+            let low = (xi - s) - slack;
+            while let Some(b) = stack.get(bottom) {
+                if b.sum >= low * f64::from(b.k) {
+                    break;
+                }
+                c.emit(*b)?;
+                bottom += 1;
+            }
+            if bottom == stack.len() {
+                stack.clear();
+                bottom = 0;
+            }
+            let mut cur = Block {
+                sum: (xi + t * ui) - s,
+                k: 1,
+                start: i as u32,
+            };
+            while stack.len() > bottom {
+                let top = stack[stack.len() - 1];
+                if !pools(&top, &cur) {
+                    break;
+                }
+                stack.pop();
+                cur = Block {
+                    sum: top.sum + cur.sum,
+                    k: top.k + cur.k,
+                    start: top.start,
+                };
+            }
+            if cur.k > MAX_BLOCK {
+                return None;
+            }
+            stack.push(cur);
+        }
+        for b in &stack[bottom..] {
+            c.emit(*b)?;
+        }
+        Some(Part {
+            multi: c.multi,
+            first: c.first,
+            last: c.prev,
+        })
+    }
+}

@@ -1,0 +1,272 @@
+//! The filter against the exact engines, bit for bit: random scenes,
+//! near-ties a few ulps wide, clusters touching exactly, exponents at and
+//! beyond the filter's range, full-mantissa `t` and `r`. Each case checks
+//! that a certified answer is the exact one, and the counts check that the
+//! filter both answers and refuses where it must.
+
+use num_rational::BigRational;
+use num_traits::ToPrimitive;
+
+use super::{Doubles, Refusal};
+use crate::fast::dyadic::Dyadic;
+use crate::generate::SplitMix64;
+use crate::initial::InitialData;
+use crate::state::State;
+
+fn q(v: f64) -> BigRational {
+    BigRational::from_float(v).unwrap()
+}
+
+/// A uniform double in `[0, 1)`.
+fn unit(rng: &mut SplitMix64) -> f64 {
+    (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64
+}
+
+/// The exact state by the generic projection on the exact data (no
+/// filter, no machine words).
+fn oracle(r: &BigRational, xs: &[f64], us: &[f64], t: &BigRational) -> State<BigRational> {
+    let data = InitialData::new(
+        r.clone(),
+        xs.iter().map(|&v| q(v)).collect(),
+        us.iter().map(|&v| q(v)).collect(),
+    )
+    .expect("valid data");
+    crate::projection::state_at(&data, t).expect("a state")
+}
+
+/// The exact state by the dyadic path (what the Solver answers when the
+/// filter refuses).
+fn dyadic(r: &BigRational, xs: &[f64], us: &[f64], t: &BigRational) -> State<BigRational> {
+    let d = Dyadic::from_doubles(Some(r.clone()), xs, us).expect("the dyadic path");
+    d.blocks_at(t).expect("its blocks").exact_state()
+}
+
+fn bits(v: &[f64]) -> Vec<u64> {
+    v.iter().map(|d| d.to_bits()).collect()
+}
+
+fn nearest(v: &[BigRational]) -> Vec<u64> {
+    v.iter().map(|x| x.to_f64().unwrap().to_bits()).collect()
+}
+
+/// Whether the filter certified the state (on one thread); when it did,
+/// every output is the exact state's nearest double and its exact state
+/// is the exact one. The same of the two-thread run (the halves joined, or
+/// one thread again when a block pools across the junction).
+fn agrees(r: &BigRational, xs: &[f64], us: &[f64], t: &BigRational) -> bool {
+    let d = Doubles::validate(Some(r.clone()), xs.to_vec(), us.to_vec()).expect("valid");
+    let one = d.at(t);
+    let two = d.at_with(t, 2);
+    if one.is_none() && two.is_none() {
+        return false;
+    }
+    let want = oracle(r, xs, us, t);
+    for f in one.iter().chain(&two) {
+        assert_eq!(bits(f.positions()), nearest(&want.positions), "positions");
+        assert_eq!(
+            bits(&f.velocities()),
+            nearest(&want.velocities),
+            "velocities"
+        );
+        assert_eq!(
+            bits(&f.multipliers()),
+            nearest(&want.multipliers),
+            "multipliers"
+        );
+        assert_eq!(f.clusters(), want.clusters, "clusters");
+        assert_eq!(f.exact_state(), want, "exact state");
+    }
+    one.is_some()
+}
+
+/// `n` particles: exponential gaps of mean `gap` plus `4r`, velocities
+/// uniform in `[−1, 1]` (the notebook's data when `gap = 1`).
+fn notebook(rng: &mut SplitMix64, n: usize, gap: f64, r: f64) -> (Vec<f64>, Vec<f64>) {
+    let mut x = Vec::with_capacity(n);
+    let mut acc = 0.0f64;
+    for _ in 0..n {
+        acc += -gap * (1.0 - unit(rng)).ln() + 4.0 * r;
+        x.push(acc);
+    }
+    let u = (0..n).map(|_| 2.0 * unit(rng) - 1.0).collect();
+    (x, u)
+}
+
+#[test]
+fn random_scenes_are_certified_and_exact() {
+    let mut rng = SplitMix64::new(0x38f1);
+    let (mut certified, mut multi) = (0, 0);
+    for case in 0..120 {
+        let n = 2 + (rng.next_u64() % 300) as usize;
+        // Gaps from sparse to crowded, times of a few to tens of gaps'
+        // travel: many collisions, blocks of up to tens of particles.
+        let gap = [1.0, 0.01, 1e-3, 1e-4][case % 4];
+        let r = [4e-7, 2f64.powi(-21), 1.0 / 3.0 * 1e-5][case % 3];
+        let t = gap * [3.0, 10.0, 30.0][case % 3] * (1.0 + unit(&mut rng));
+        let (x, u) = notebook(&mut rng, n, gap, r.min(gap / 8.0));
+        let r = r.min(gap / 8.0);
+        let ok = agrees(&q(r), &x, &u, &q(t));
+        certified += usize::from(ok);
+        if ok {
+            let d = Doubles::validate(Some(q(r)), x.clone(), u.clone()).unwrap();
+            let f = d.at(&q(t)).unwrap();
+            multi += f.clusters().iter().filter(|c| c.size > 1).count();
+        }
+    }
+    assert!(certified >= 100, "{certified} of 120 certified");
+    assert!(multi >= 500, "{multi} blocks of several particles");
+}
+
+/// A block past [`super::pava::MAX_BLOCK`] particles: the filter gives up,
+/// the dyadic path answers, the same state.
+#[test]
+fn a_large_block_is_left_to_the_exact_path() {
+    let n = 200;
+    let x: Vec<f64> = (0..n).map(f64::from).collect();
+    let u: Vec<f64> = (0..n).map(|i| -f64::from(i) / 64.0).collect();
+    let (r, t) = (q(0.125), q(1000.0));
+    let d = Doubles::validate(Some(r.clone()), x.clone(), u.clone()).unwrap();
+    assert!(d.at(&t).is_none());
+    assert_eq!(dyadic(&r, &x, &u, &t), oracle(&r, &x, &u, &t));
+}
+
+/// Pairs whose free flights cross by `2⁻⁴⁰` to `2⁻¹⁰⁰` (either way), from
+/// well above to far below the resolution of `ẑ` (`2⁻⁵⁰` here): every
+/// answer certified must be exact, the closest must be refused.
+#[test]
+fn near_ties_are_exact_or_refused() {
+    let mut rng = SplitMix64::new(0x7e5);
+    let (mut yes, mut no) = (0, 0);
+    for case in 0..3_000 {
+        let r = 2f64.powi(-20) * (1.0 + unit(&mut rng));
+        let x0 = (1.0 + unit(&mut rng)) * 2f64.powi((case % 3) as i32 - 3);
+        let g = 2f64.powi(-30) * (1.0 + unit(&mut rng));
+        let x1 = x0 + 2.0 * r + g;
+        if q(x1) - q(x0) < q(2.0 * r) {
+            continue;
+        }
+        let t = 0.01 + unit(&mut rng) * 0.001;
+        // u₁ with t u₁ ≈ −(x₁ − x₀ − 2r)(1 ± 2⁻ᵉ): the pair meets just
+        // before or just after t.
+        let gap = q(x1) - q(x0) - q(2.0 * r);
+        let target = (-gap / q(t)).to_f64().unwrap();
+        let e = [10, 14, 18, 22, 26, 70][case % 6];
+        let side = if case % 2 == 0 { 1.0 } else { -1.0 };
+        let u1 = target * (1.0 + side * (1.0 + unit(&mut rng)) * 2f64.powi(-e));
+        let mut x = vec![x0 - 1.0, x0, x1, x1 + 1.0];
+        let mut u = vec![0.0, 0.0, u1, 0.0];
+        if case % 4 < 2 {
+            // A third particle meeting the pair near the same time.
+            x.push(x1 + 2.0);
+            u.push(0.5);
+        }
+        if agrees(&q(r), &x, &u, &q(t)) {
+            yes += 1;
+        } else {
+            no += 1;
+        }
+    }
+    assert!(yes > 800, "{yes} certified");
+    assert!(no > 1_200, "{no} refused");
+}
+
+/// Clusters touching exactly (a gap of exactly `2r` and equal velocities:
+/// two blocks of equal means) and a pair meeting exactly at `t`: ties the
+/// filter must refuse, never decide.
+#[test]
+fn exact_ties_are_refused() {
+    let r = 0.25;
+    // In contact at 0 with equal velocities.
+    let (x, u) = (vec![0.0, 0.5, 3.0], vec![1.0, 1.0, -1.0]);
+    assert!(!agrees(&q(r), &x, &u, &q(0.5)));
+    // Meeting exactly at t = 1: z₁ = z₀.
+    let (x, u) = (vec![0.0, 1.5, 10.0], vec![1.0, 0.0, 0.0]);
+    assert!(!agrees(&q(r), &x, &u, &q(1.0)));
+    // Two pairs in contact meeting exactly at t = 3/4 (all four `z`
+    // equal), and before it (each pair a tie of its own): refused.
+    let (x, u) = (vec![0.0, 0.5, 2.5, 3.0], vec![1.0, 1.0, -1.0, -1.0]);
+    assert!(!agrees(&q(r), &x, &u, &q(0.75)));
+    assert!(!agrees(&q(r), &x, &u, &q(0.5)));
+    // After it, one block of four with strict prefix sums: certified.
+    assert!(agrees(&q(r), &x, &u, &q(1.0)));
+}
+
+/// Exponents beyond the filter's range (huge, tiny, subnormal) are refused
+/// and answered by the exact paths; at the edge of the range they are
+/// certified and exact.
+#[test]
+fn exponents_out_of_range_are_refused_and_in_range_exact() {
+    let r = 2f64.powi(-400);
+    let (x, u) = (vec![0.0, 1.0, 2.0], vec![1.0, -1.0, 0.0]);
+    let d = Doubles::validate(Some(q(r)), x.clone(), u.clone()).unwrap();
+    assert!(d.at(&q(0.75)).is_none(), "2r out of range");
+    let sub = f64::from_bits(3);
+    let d = Doubles::validate(Some(q(0.25)), vec![0.0, 1.0], vec![sub, 0.0]).unwrap();
+    assert!(d.at(&q(1.0)).is_none(), "a subnormal velocity");
+    let big = 2f64.powi(350);
+    let d = Doubles::validate(Some(q(0.25)), vec![0.0, big], vec![1.0, 0.0]).unwrap();
+    assert!(d.at(&q(1.0)).is_none(), "a huge position");
+    // (The Solver answers it by the general path:
+    // `solver::tests::the_filter_refuses_and_the_exact_paths_answer`.)
+    // The same crowded scene scaled by powers of two (exact, the same
+    // blocks): certified near both edges of the range, refused beyond.
+    let mut rng = SplitMix64::new(0xed6e);
+    let (x, u) = notebook(&mut rng, 60, 1e-3, 1e-4);
+    for (e, inside) in [
+        (-250, true),
+        (-100, true),
+        (0, true),
+        (250, true),
+        (-320, false),
+        (320, false),
+    ] {
+        let s = 2f64.powi(e);
+        let xs: Vec<f64> = x.iter().map(|v| v * s).collect();
+        let us: Vec<f64> = u.iter().map(|v| v * s).collect();
+        assert_eq!(agrees(&q(1e-4 * s), &xs, &us, &q(0.01)), inside, "2^{e}");
+    }
+}
+
+/// Full-mantissa `t` and `r` (as Python floats are) at many times on one
+/// crowded scene.
+#[test]
+fn full_mantissa_times_and_radii() {
+    let mut rng = SplitMix64::new(0xf011);
+    let r = 4e-7;
+    let (x, u) = notebook(&mut rng, 500, 1e-3, r);
+    let mut certified = 0;
+    for k in 0..40 {
+        let t = 1e-4 * (1.0 + unit(&mut rng)) * f64::from(k);
+        certified += usize::from(agrees(&q(r), &x, &u, &q(t)));
+    }
+    assert!(certified >= 38, "{certified} of 40");
+}
+
+/// The validation in doubles decides exactly as `InitialData::new`: gaps
+/// of `2r` up to one ulp either way, where `fl(x₁ − x₀) = 2r` hides the
+/// sign of the error, and contacts with approaching velocities.
+#[test]
+fn validation_in_doubles_is_exact() {
+    let mut rng = SplitMix64::new(0x5a1d);
+    for case in 0..5_000 {
+        let x0 = (unit(&mut rng) + 0.5) * 2f64.powi(case % 40 - 10);
+        let two_r = (unit(&mut rng) + 0.5) * 2f64.powi(case % 13 - 20);
+        let exact = x0 + two_r;
+        let ulps = (case % 7) as i64 - 3;
+        let x1 = f64::from_bits((exact.to_bits() as i64 + ulps) as u64);
+        let (u0, u1) = if case % 3 == 0 {
+            (1.0, 0.5)
+        } else {
+            (0.0, 0.0)
+        };
+        let r = q(two_r) / BigRational::from_integer(2.into());
+        let general = InitialData::new(r.clone(), vec![q(x0), q(x1)], vec![q(u0), q(u1)]).is_ok();
+        match Doubles::validate(Some(r), vec![x0, x1], vec![u0, u1]) {
+            Ok(_) => assert!(general, "{x0} {x1} {two_r}"),
+            Err(e) => {
+                assert_eq!(e.reason, Refusal::Invalid);
+                assert!(!general, "{x0} {x1} {two_r}");
+            }
+        }
+    }
+}
