@@ -64,8 +64,16 @@ pub(crate) const MAX_BLOCK: u32 = 64;
 /// junction).
 struct Part {
     multi: Vec<Multi>,
-    first: Option<(f64, u32)>,
-    last: Option<(f64, u32)>,
+    first: Option<BlockMean>,
+    last: Option<BlockMean>,
+}
+
+/// A block's mean `μ̂` (in floating point) and its number of entries `k`:
+/// what condition 1 compares across a block end.
+#[derive(Clone, Copy, Debug)]
+struct BlockMean {
+    mean: f64,
+    k: u32,
 }
 
 /// `β(k) = (4 + 2k) u G`: the bound of a mean of `k` consecutive `ẑ`
@@ -91,15 +99,11 @@ struct Context<'a> {
 
 /// The certificate's state between two blocks, and the outputs so far.
 struct Certifier<'a, 'o> {
-    x: &'a [f64],
-    u: &'a [f64],
-    t: f64,
-    two_r: f64,
-    /// `u G`.
-    ug: f64,
+    /// The data and the bound's scale.
+    cx: Context<'a>,
     /// The first and the last emitted blocks' means and sizes.
-    first: Option<(f64, u32)>,
-    prev: Option<(f64, u32)>,
+    first: Option<BlockMean>,
+    prev: Option<BlockMean>,
     /// The positions of the range, from particle `base` on.
     out: &'o mut [f64],
     base: usize,
@@ -113,19 +117,20 @@ impl Certifier<'_, '_> {
     /// `ẑ_i = fl(fl(x_i + fl(t u_i)) − fl(2r i))`.
     #[inline]
     fn z(&self, i: usize) -> f64 {
-        (self.x[i] + self.t * self.u[i]) - self.two_r * i as f64
+        (self.cx.x[i] + self.cx.t * self.cx.u[i]) - self.cx.two_r * i as f64
     }
 
     /// Condition 1 between the previous block and this one (mean `mean`,
     /// `k` entries): `fl(μ̂_B − μ̂_A) > up(β(k_A) + β(k_B))`.
     #[inline]
     fn after_previous(&mut self, mean: f64, k: u32) -> Option<()> {
+        let this = BlockMean { mean, k };
         if let Some(p) = self.prev {
-            increasing(self.ug, p, (mean, k))?;
+            increasing(self.cx.ug, p, this)?;
         } else {
-            self.first = Some((mean, k));
+            self.first = Some(this);
         }
-        self.prev = Some((mean, k));
+        self.prev = Some(this);
         Some(())
     }
 
@@ -135,7 +140,8 @@ impl Certifier<'_, '_> {
         let i = b.start as usize;
         if b.k == 1 {
             self.after_previous(b.sum, 1)?;
-            self.out[i - self.base] = eft::nearest_free_flight(self.x[i], self.t, self.u[i]);
+            self.out[i - self.base] =
+                eft::nearest_free_flight(self.cx.x[i], self.cx.t, self.cx.u[i]);
             return Some(());
         }
         self.emit_multi(b)
@@ -166,7 +172,7 @@ impl Certifier<'_, '_> {
             let (ml, mr) = (m as u32, (k - m) as u32);
             let left = prefix[m] / f64::from(ml);
             let right = suffix[m] / f64::from(mr);
-            let margin = up(beta(self.ug, ml) + beta(self.ug, mr));
+            let margin = up(beta(self.cx.ug, ml) + beta(self.cx.ug, mr));
             // A NaN fails it too.
             if (left - right).partial_cmp(&margin) != Some(Ordering::Greater) {
                 return None;
@@ -176,10 +182,10 @@ impl Certifier<'_, '_> {
         let mut base = Acc::default();
         self.terms.clear();
         for j in a..a + k {
-            base.add(self.x[j]);
-            base.add_product(self.t, self.u[j]);
-            let (p, e) = eft::two_prod(self.t, self.u[j]);
-            self.terms.extend([self.x[j], p, e]);
+            base.add(self.cx.x[j]);
+            base.add_product(self.cx.t, self.cx.u[j]);
+            let (p, e) = eft::two_prod(self.cx.t, self.cx.u[j]);
+            self.terms.extend([self.cx.x[j], p, e]);
         }
         // Σ j over the block, exact (< 2⁵³: `k N < 2⁵²`).
         let sum_j = (k * a + k * (k - 1) / 2) as i64;
@@ -187,11 +193,11 @@ impl Certifier<'_, '_> {
         for i in a..a + k {
             let c = (k * i) as i64 - sum_j;
             let mut acc = base;
-            acc.add_product(self.two_r, c as f64);
+            acc.add_product(self.cx.two_r, c as f64);
             let p = match acc.nearest_quotient(d) {
                 Some(p) => p,
                 None => {
-                    let (p, e) = eft::two_prod(self.two_r, c as f64);
+                    let (p, e) = eft::two_prod(self.cx.two_r, c as f64);
                     let mut terms = self.terms.clone();
                     terms.extend([p, e]);
                     eft::exact_quotient(&terms, k as u64)
@@ -210,9 +216,9 @@ impl Certifier<'_, '_> {
 /// Condition 1 between consecutive blocks `(mean, size)`:
 /// `fl(μ̂_B − μ̂_A) > up(β(k_A) + β(k_B))` (a NaN fails it too).
 #[inline]
-fn increasing(ug: f64, (ma, ka): (f64, u32), (mb, kb): (f64, u32)) -> Option<()> {
-    let margin = up(beta(ug, ka) + beta(ug, kb));
-    (mb - ma > margin).then_some(())
+fn increasing(ug: f64, a: BlockMean, b: BlockMean) -> Option<()> {
+    let margin = up(beta(ug, a.k) + beta(ug, b.k));
+    (b.mean - a.mean > margin).then_some(())
 }
 
 /// Does block `a` pool with the block `b` to its right (mean `≥`)?
@@ -283,11 +289,7 @@ impl<'a> Context<'a> {
         let (x, u) = (&self.x[base..end], &self.u[base..end]);
         let (t, two_r, slack) = (self.t, self.two_r, self.slack);
         let mut c = Certifier {
-            x: self.x,
-            u: self.u,
-            t,
-            two_r,
-            ug: self.ug,
+            cx: self,
             first: None,
             prev: None,
             out,
