@@ -402,9 +402,9 @@ fn doubles_are_read_exactly() {
     assert!(Lean::from_doubles(Some(r), &[0.0, 1.0], &[0.0]).is_none());
 }
 
-/// `nearest_ratio` is the nearest double, ties to even, against the exact
-/// check of `report::export::nearest_f64` (both neighbours compared
-/// exactly): small and 128-bit terms, exact ties, signs.
+/// `nearest_ratio` is the nearest double, ties to even, against the
+/// integer-only `rational::nearest_f64` (the one nearest-double routine):
+/// small and 128-bit terms, exact ties, signs.
 #[test]
 fn nearest_ratio_rounds_to_nearest_even() {
     use crate::rational::nearest_f64;
