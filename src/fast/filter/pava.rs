@@ -42,12 +42,6 @@ pub(crate) struct Multi {
     pub k: u32,
 }
 
-/// The certified partition and the positions' nearest doubles.
-pub(crate) struct Run {
-    pub positions: Vec<f64>,
-    pub multi: Vec<Multi>,
-}
-
 /// Two threads from this many particles on.
 pub(crate) const PARALLEL_MIN: usize = 1 << 16;
 
@@ -250,8 +244,16 @@ fn pools(a: &Block, b: &Block) -> bool {
 }
 
 /// The float PAVA at `t` (a double in range) and its certificate, on two
-/// threads from `parallel_min` particles on; `None` when a check fails.
-pub(crate) fn certified(d: &Doubles, t: f64, parallel_min: usize) -> Option<Run> {
+/// threads from `parallel_min` particles on: the larger blocks of the
+/// certified partition, every position's nearest double written into
+/// `positions` (`N` of them); `None` when a check fails (`positions` then
+/// holds anything).
+pub(crate) fn certified(
+    d: &Doubles,
+    t: f64,
+    positions: &mut [f64],
+    parallel_min: usize,
+) -> Option<Vec<Multi>> {
     let (x, u) = (&d.x[..], &d.u[..]);
     let n = x.len();
     let two_r = d.two_r;
@@ -269,7 +271,7 @@ pub(crate) fn certified(d: &Doubles, t: f64, parallel_min: usize) -> Option<Run>
         slack: tu + 64.0 * ug,
         m11: up(beta(ug, 1) + beta(ug, 1)),
     };
-    let mut positions = vec![0.0; n];
+    debug_assert_eq!(positions.len(), n);
     if n >= parallel_min.max(2) {
         let h = n / 2;
         let (lo, hi) = positions.split_at_mut(h);
@@ -290,18 +292,11 @@ pub(crate) fn certified(d: &Doubles, t: f64, parallel_min: usize) -> Option<Run>
             };
             if joined {
                 left.multi.extend(right.multi);
-                return Some(Run {
-                    positions,
-                    multi: left.multi,
-                });
+                return Some(left.multi);
             }
         }
     }
-    let part = cx.stream(0, &mut positions)?;
-    Some(Run {
-        positions,
-        multi: part.multi,
-    })
+    Some(cx.stream(0, positions)?.multi)
 }
 
 impl Context<'_> {
