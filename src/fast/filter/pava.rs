@@ -1,7 +1,9 @@
 //! The float PAVA of the filter, streamed over the particles, and the
 //! certificate (module documentation of [`super`]) checked on each block
-//! the moment it is final, its positions written then: one pass over the
-//! columns, a stack that stays in cache.
+//! the moment it is final: one pass over the columns, a stack that stays in
+//! cache. Each particle's free flight is written when it is pushed (its
+//! position if it stays alone); a larger block writes its positions over
+//! them when it is final.
 //!
 //! **When a block is final.** `x̃_i = x⁰_i − 2r i` is non-decreasing
 //! (`df:KN`), so every later `z_j = x̃_j + t u⁰_j ≥ x̃_i − t max|u⁰|` for
@@ -129,7 +131,7 @@ impl Chain {
                     up(beta(ug, p.k) + beta(ug, this.k))
                 };
                 // A NaN fails it too.
-                if !(this.mean - p.mean > margin) {
+                if (this.mean - p.mean).partial_cmp(&margin) != Some(Ordering::Greater) {
                     return None;
                 }
             }
@@ -304,7 +306,7 @@ impl Context<'_> {
     /// them), its positions into `out`, its certificate checked.
     ///
     /// Each particle's free flight `x⁰_i + t u⁰_i` is rounded to its
-    /// nearest double ([`eft::nearest_free_flight`], from the `fl(t u)` and
+    /// nearest double ([`eft::nearest_free_flight_of`], from the `fl(t u)` and
     /// `fl(x + t u)` that `ẑ_i` is made of) and written when the particle is
     /// pushed: it is the position when the particle stays alone, and a
     /// larger block writes its own over it when it is emitted. The top of
