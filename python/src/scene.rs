@@ -12,13 +12,13 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use num_rational::BigRational;
-use numpy::PyArray1;
+use numpy::{PyArray1, PyArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyList;
 use sticky::progress::Progress;
 use sticky::scene::{Scene as SceneFile, SceneKind};
-use sticky::solver::{Answer as Solved, Options, Solver, WorkCap};
+use sticky::solver::{Answer as Solved, Engine, Options, Solver, WorkCap};
 use sticky::{Error, InitialData};
 
 use crate::convert::{self, Column};
@@ -132,8 +132,13 @@ impl Scene {
         radius: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Scene> {
         let radius = radius.map(|r| convert::exact(r, "radius")).transpose()?;
-        let x = convert::column(positions, "positions")?;
-        let u = convert::column(velocities, "velocities")?;
+        let (x, u) = match convert::double_columns(py, positions, velocities) {
+            Some((x, u)) => (Column::Doubles(x), Column::Doubles(u)),
+            None => (
+                convert::column(positions, "positions")?,
+                convert::column(velocities, "velocities")?,
+            ),
+        };
         if x.len() != u.len() {
             return Err(py_error(Error::LengthMismatch {
                 positions: x.len(),
@@ -259,6 +264,9 @@ impl Scene {
     /// The GIL is released while it runs; Ctrl-C interrupts it.
     fn state(&self, py: Python<'_>, t: &Bound<'_, PyAny>) -> PyResult<State> {
         let t = convert::exact(t, "t")?;
+        if let Some(state) = self.filtered(py, &t)? {
+            return Ok(state);
+        }
         let mut states = self.answers(py, vec![t])?;
         states
             .pop()
@@ -337,6 +345,30 @@ impl Scene {
 }
 
 impl Scene {
+    /// The state at `t` when the certified filter proves it, its positions
+    /// written straight into a numpy array (numpy's allocator, GIL
+    /// released: a few milliseconds at `N = 10⁶`, no worker thread);
+    /// `None` when the filter does not answer (the Solver's paths then do).
+    fn filtered(&self, py: Python<'_>, t: &BigRational) -> PyResult<Option<State>> {
+        let solver = &self.inner.solver;
+        let Some(d) = solver.filter() else {
+            return Ok(None);
+        };
+        if solver.options().engine != Engine::Auto {
+            return Ok(None);
+        }
+        let positions = PyArray1::<f64>::zeros(py, d.n(), false);
+        let answer = {
+            let mut rw = positions.readwrite();
+            let out = rw.as_slice_mut()?;
+            py.detach(|| d.at_into(t, out))
+        };
+        match answer {
+            Some(f) => State::filtered(Arc::clone(&self.inner), positions, f).map(Some),
+            None => Ok(None),
+        }
+    }
+
     /// The states at `times`, on a worker thread (GIL released, Ctrl-C).
     fn answers(&self, py: Python<'_>, times: Vec<BigRational>) -> PyResult<Vec<State>> {
         states_at(py, &self.inner, times)

@@ -9,7 +9,7 @@
 use std::sync::{Arc, OnceLock};
 
 use num_rational::BigRational;
-use numpy::PyArray1;
+use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use sticky::cluster::Cluster;
@@ -212,6 +212,50 @@ impl State {
         })
     }
 
+    /// The state the filter proved, its positions already in `positions`
+    /// (a numpy array of numpy's allocator, [`sticky::fast::filter::Doubles::at_into`]).
+    pub fn filtered(
+        scene: Arc<Inner>,
+        positions: Bound<'_, PyArray1<f64>>,
+        f: Filtered,
+    ) -> PyResult<State> {
+        positions.getattr("flags")?.setattr("writeable", false)?;
+        Ok(State {
+            scene,
+            t: f.t().clone(),
+            positions: positions.unbind(),
+            velocities: OnceLock::new(),
+            multipliers: OnceLock::new(),
+            clusters: OnceLock::new(),
+            blocks: Some(Kept::Filtered(f)),
+            exact: OnceLock::new(),
+        })
+    }
+
+    /// The array `which` of a filtered state, written into an array of
+    /// numpy's allocator (GIL released while it is filled).
+    fn filtered_array<'py>(
+        py: Python<'py>,
+        f: &Filtered,
+        which: Later,
+    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let len = match which {
+            Later::Velocities => f.n(),
+            Later::Multipliers => f.n().saturating_sub(1),
+        };
+        let array = PyArray1::<f64>::zeros(py, len, false);
+        {
+            let mut rw = array.readwrite();
+            let out = rw.as_slice_mut()?;
+            py.detach(|| match which {
+                Later::Velocities => f.write_velocities(out),
+                Later::Multipliers => f.write_multipliers(out),
+            });
+        }
+        array.getattr("flags")?.setattr("writeable", false)?;
+        Ok(array)
+    }
+
     /// The array `which`, rounded on first access (GIL released) from the
     /// kept blocks, or from the exact state when the blocks leave machine
     /// words; cached.
@@ -222,6 +266,10 @@ impl State {
         };
         if let Some(a) = cell.get() {
             return Ok(a.bind(py).clone());
+        }
+        if let Some(Kept::Filtered(f)) = &self.blocks {
+            let array = State::filtered_array(py, f, which)?.unbind();
+            return Ok(cell.get_or_init(|| array).bind(py).clone());
         }
         let blocks = &self.blocks;
         let rounded = py.detach(|| blocks.as_ref().and_then(|b| b.rounded(which)));

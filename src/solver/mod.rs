@@ -275,6 +275,13 @@ impl Solver {
         Ok(&self.scene()?.data)
     }
 
+    /// The certified filter's columns ([`Doubles`]), when it was built from
+    /// doubles with `2r` a double: for a caller that wants the filter's
+    /// answer in its own buffers ([`Doubles::at_into`]).
+    pub fn filter(&self) -> Option<&Doubles> {
+        self.filter.as_ref()
+    }
+
     /// The columns of doubles it was built from, if it was
     /// ([`Solver::from_doubles`]): positions, velocities.
     pub fn doubles(&self) -> Option<(&[f64], &[f64])> {

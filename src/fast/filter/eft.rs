@@ -163,10 +163,18 @@ pub(crate) fn half_gap(r: f64) -> Option<f64> {
 /// `|x + t u − w| < |e| + |p| 2⁻⁵²`; when `fl(|e| + |p| 2⁻⁵²)` is below
 /// [`half_gap`]`(w)` (monotone rounding: then the exact sum is too) the
 /// value is strictly inside `w`'s rounding interval.
-#[inline]
+#[cfg(test)]
 pub(crate) fn nearest_free_flight(x: f64, t: f64, u: f64) -> f64 {
     let p = t * u;
     let (w, e) = two_sum(x, p);
+    nearest_free_flight_of(x, t, u, p, w, e)
+}
+
+/// [`nearest_free_flight`] from the `p = fl(t u)` and `(w, e) =`
+/// [`two_sum`]`(x, p)` the caller has already computed.
+#[inline(always)]
+pub(crate) fn nearest_free_flight_of(x: f64, t: f64, u: f64, p: f64, w: f64, e: f64) -> f64 {
+    debug_assert!(p.to_bits() == (t * u).to_bits() && (w, e) == two_sum(x, p));
     match half_gap(w) {
         Some(h) if e.abs() + p.abs() * f64::EPSILON < h => w,
         _ => u.mul_add(t, x),

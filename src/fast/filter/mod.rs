@@ -208,42 +208,140 @@ impl Doubles {
         self.at_with(t, pava::PARALLEL_MIN)
     }
 
+    /// [`Self::at`] with the positions' nearest doubles written into
+    /// `positions` (`N` of them, e.g. a buffer of the caller's allocator):
+    /// the answer's own [`Filtered::positions`] is then empty. On `None`
+    /// `positions` holds anything.
+    pub fn at_into(&self, t: &BigRational, positions: &mut [f64]) -> Option<Filtered> {
+        self.at_into_with(t, positions, pava::PARALLEL_MIN)
+    }
+
     /// [`Self::at`] on two threads from `parallel_min` particles on.
     fn at_with(&self, t: &BigRational, parallel_min: usize) -> Option<Filtered> {
-        if !self.in_range || t.is_negative() {
+        let mut positions = vec![0.0; self.n()];
+        let mut f = self.at_into_with(t, &mut positions, parallel_min)?;
+        f.set_positions(positions);
+        Some(f)
+    }
+
+    /// [`Self::at_into`] on two threads from `parallel_min` particles on.
+    fn at_into_with(
+        &self,
+        t: &BigRational,
+        positions: &mut [f64],
+        parallel_min: usize,
+    ) -> Option<Filtered> {
+        if !self.in_range || t.is_negative() || positions.len() != self.n() {
             return None;
         }
         let tf = exact_double(t)?;
         if !in_range(tf) {
             return None;
         }
-        let run = pava::certified(self, tf, parallel_min)?;
-        Some(Filtered::new(self.clone(), t.clone(), tf, run))
+        let multi = pava::certified(self, tf, positions, parallel_min)?;
+        Some(Filtered::new(self.clone(), t.clone(), tf, multi))
     }
 }
 
 /// What the validating scan learnt besides validity.
+#[derive(Debug, Clone, Copy, PartialEq)]
 struct Scan {
     u_max: f64,
     in_range: bool,
 }
 
-/// The exact validity checks of [`Doubles::validate`] in one pass; `None`
-/// when the data are invalid. The positions are finite when their ends are
-/// and every gap is `> 0` (a NaN fails the gap test); a velocity is finite
-/// when `u · 0 = 0` (a NaN or an infinity gives a NaN).
+/// The exact validity checks of [`Doubles::validate`]; `None` when the
+/// data are invalid. From [`PARALLEL_CHECK`] particles on, each half is
+/// scanned by its own thread (the right half from the last particle of the
+/// left one, so the pair across the junction is checked too).
 fn check(x: &[f64], u: &[f64], two_r: f64) -> Option<Scan> {
+    check_with(x, u, two_r, PARALLEL_CHECK)
+}
+
+/// [`check`] on two threads from `parallel_min` particles on (at least 2).
+fn check_with(x: &[f64], u: &[f64], two_r: f64, parallel_min: usize) -> Option<Scan> {
     let n = x.len();
-    let (mut u_max, mut nan) = (0.0f64, 0.0f64);
+    if n >= parallel_min.max(2) {
+        let h = n / 2;
+        let halves = std::thread::scope(|s| {
+            let worker = std::thread::Builder::new()
+                .spawn_scoped(s, || scan(&x[h - 1..], &u[h - 1..], two_r));
+            let left = scan(&x[..h], &u[..h], two_r);
+            match worker.map(|w| w.join()) {
+                Ok(Ok(right)) => Some((left, right)),
+                Ok(Err(panic)) => std::panic::resume_unwind(panic),
+                // No second thread to be had: one scans everything.
+                Err(_) => None,
+            }
+        });
+        if let Some((left, right)) = halves {
+            let (left, right) = (left?, right?);
+            return Some(Scan {
+                u_max: left.u_max.max(right.u_max),
+                in_range: left.in_range && right.in_range,
+            });
+        }
+    }
+    scan(x, u, two_r)
+}
+
+/// Two threads scan the columns from this many particles on.
+const PARALLEL_CHECK: usize = 1 << 16;
+
+/// The magnitude bits of a double (its sign cleared): for two non-NaN
+/// doubles `|a| ≤ |b|` iff `magnitude(a) ≤ magnitude(b)` as integers, an
+/// infinity's is `INFINITY_BITS` and a NaN's above it.
+#[inline(always)]
+fn magnitude(v: f64) -> u64 {
+    v.to_bits() & !(1u64 << 63)
+}
+
+/// The bits of `+∞`.
+const INFINITY_BITS: u64 = 0x7ff0_0000_0000_0000;
+
+/// The checks of [`check`] on one range, in one pass of integer and
+/// comparison operations the compiler can vectorize:
+///
+/// * every value finite: the largest magnitude bits below
+///   [`INFINITY_BITS`] (`max |u⁰|` is then the double of the velocities'
+///   largest magnitude bits, exactly);
+/// * in the filter's range ([`in_range`], by the same ordering of the
+///   bits);
+/// * every gap: `fl(x_{i+1} − x_i) > 2r` proves the exact gap `> 2r`
+///   ([`Doubles::validate`]); only when some float gap is not above `2r`
+///   (or is a NaN) does the exact pair-by-pair decision run.
+fn scan(x: &[f64], u: &[f64], two_r: f64) -> Option<Scan> {
+    let lowest = ((1023 - SAFE_EXP) as u64) << 52;
+    let highest = ((1023 + SAFE_EXP) as u64) << 52;
+    let ranged = |m: u64| m == 0 || (lowest..=highest).contains(&m);
+    let (mut x_bits, mut u_bits) = (0u64, 0u64);
     let mut ok = true;
     for (&xi, &ui) in x.iter().zip(u) {
-        nan += ui * 0.0;
-        u_max = u_max.max(ui.abs());
-        ok &= in_range(xi) & in_range(ui);
+        let (mx, mu) = (magnitude(xi), magnitude(ui));
+        x_bits = x_bits.max(mx);
+        u_bits = u_bits.max(mu);
+        ok &= ranged(mx) & ranged(mu);
     }
-    if nan != 0.0 || !x[0].is_finite() || !x[n - 1].is_finite() {
+    if x_bits >= INFINITY_BITS || u_bits >= INFINITY_BITS {
         return None;
     }
+    let wide = x
+        .iter()
+        .zip(&x[1..])
+        .fold(true, |all, (&a, &b)| all & (b - a > two_r));
+    if !wide {
+        exact_gaps(x, u, two_r)?;
+    }
+    Some(Scan {
+        u_max: f64::from_bits(u_bits),
+        in_range: ok,
+    })
+}
+
+/// The gap decisions of [`Doubles::validate`], pair by pair (finite
+/// values): `None` at the first pair closer than `2r`, or at `2r` with
+/// approaching velocities.
+fn exact_gaps(x: &[f64], u: &[f64], two_r: f64) -> Option<()> {
     for (i, pair) in x.windows(2).enumerate() {
         let d = pair[1] - pair[0];
         if d > two_r {
@@ -258,8 +356,5 @@ fn check(x: &[f64], u: &[f64], two_r: f64) -> Option<Scan> {
             return None;
         }
     }
-    Some(Scan {
-        u_max,
-        in_range: ok,
-    })
+    Some(())
 }

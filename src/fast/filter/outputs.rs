@@ -7,7 +7,7 @@ use num_rational::BigRational;
 use num_traits::Zero;
 
 use super::eft;
-use super::pava::{Multi, Run};
+use super::pava::Multi;
 use super::Doubles;
 use crate::cluster::Cluster;
 
@@ -24,14 +24,19 @@ pub struct Filtered {
 }
 
 impl Filtered {
-    pub(crate) fn new(d: Doubles, t: BigRational, tf: f64, run: Run) -> Filtered {
+    pub(crate) fn new(d: Doubles, t: BigRational, tf: f64, multi: Vec<Multi>) -> Filtered {
         Filtered {
             d,
             t,
             tf,
-            positions: run.positions,
-            multi: run.multi,
+            positions: Vec::new(),
+            multi,
         }
+    }
+
+    pub(crate) fn set_positions(&mut self, positions: Vec<f64>) {
+        debug_assert_eq!(positions.len(), self.n());
+        self.positions = positions;
     }
 
     /// The time.
@@ -49,7 +54,8 @@ impl Filtered {
         self.d.n()
     }
 
-    /// `x(t)`'s nearest doubles (ties to even).
+    /// `x(t)`'s nearest doubles (ties to even); empty when the state was
+    /// made by [`super::Doubles::at_into`] (they are in its buffer).
     pub fn positions(&self) -> &[f64] {
         &self.positions
     }
@@ -62,21 +68,35 @@ impl Filtered {
     /// `u(t)`'s nearest doubles: `u⁰_i` for a particle alone, the mean of
     /// `u⁰` over a larger block (`eq:proj-u-micro`).
     pub fn velocities(&self) -> Vec<f64> {
-        let mut out = self.d.u.to_vec();
+        let mut out = vec![0.0; self.n()];
+        self.write_velocities(&mut out);
+        out
+    }
+
+    /// [`Self::velocities`] written into `out` (`N` values, e.g. a buffer
+    /// of the caller's allocator).
+    pub fn write_velocities(&self, out: &mut [f64]) {
+        out.copy_from_slice(&self.d.u);
         for m in &self.multi {
             let (a, k) = (m.start as usize, m.k as usize);
             let v = eft::quotient(&self.d.u[a..a + k], k as u64);
             out[a..a + k].fill(v);
         }
-        out
     }
 
     /// `λ(t)`'s nearest doubles, `N − 1` values: `0` between two blocks,
     /// `(k Σ_{j<m} u⁰_j − m Σ_j u⁰_j) / (k N)` for the `m`-th pair of a block
     /// of `k` (`eq:dyn-micro`).
     pub fn multipliers(&self) -> Vec<f64> {
+        let mut out = vec![0.0; self.n().saturating_sub(1)];
+        self.write_multipliers(&mut out);
+        out
+    }
+
+    /// [`Self::multipliers`] written into `out` (`N − 1` values).
+    pub fn write_multipliers(&self, out: &mut [f64]) {
         let n = self.n();
-        let mut out = vec![0.0; n.saturating_sub(1)];
+        out.fill(0.0);
         let mut terms = Vec::new();
         for m in &self.multi {
             let (a, k) = (m.start as usize, m.k as usize);
@@ -102,7 +122,6 @@ impl Filtered {
                 debug_assert!(*l >= 0.0);
             }
         }
-        out
     }
 
     /// The contact clusters, left to right: the blocks.

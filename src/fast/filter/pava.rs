@@ -1,7 +1,9 @@
 //! The float PAVA of the filter, streamed over the particles, and the
 //! certificate (module documentation of [`super`]) checked on each block
-//! the moment it is final, its positions written then: one pass over the
-//! columns, a stack that stays in cache.
+//! the moment it is final: one pass over the columns, a stack that stays in
+//! cache. Each particle's free flight is written when it is pushed (its
+//! position if it stays alone); a larger block writes its positions over
+//! them when it is final.
 //!
 //! **When a block is final.** `x̃_i = x⁰_i − 2r i` is non-decreasing
 //! (`df:KN`), so every later `z_j = x̃_j + t u⁰_j ≥ x̃_i − t max|u⁰|` for
@@ -40,12 +42,6 @@ pub(crate) struct Multi {
     pub start: u32,
     /// Its number of particles, `≥ 2`.
     pub k: u32,
-}
-
-/// The certified partition and the positions' nearest doubles.
-pub(crate) struct Run {
-    pub positions: Vec<f64>,
-    pub multi: Vec<Multi>,
 }
 
 /// Two threads from this many particles on.
@@ -95,15 +91,15 @@ struct Context<'a> {
     /// Room below the heuristic bound of the later `ẑ` (`t max|u⁰|` and
     /// the roundings).
     slack: f64,
+    /// `up(β(1) + β(1))`: condition 1's bound between two blocks of one
+    /// particle.
+    m11: f64,
 }
 
-/// The certificate's state between two blocks, and the outputs so far.
+/// The larger blocks' certificate (condition 2) and their positions.
 struct Certifier<'a, 'o> {
     /// The data and the bound's scale.
     cx: Context<'a>,
-    /// The first and the last emitted blocks' means and sizes.
-    first: Option<BlockMean>,
-    prev: Option<BlockMean>,
     /// The positions of the range, from particle `base` on.
     out: &'o mut [f64],
     base: usize,
@@ -113,6 +109,39 @@ struct Certifier<'a, 'o> {
     terms: Vec<f64>,
 }
 
+/// Condition 1 along the emitted blocks, left to right: the first block's
+/// mean and size, and the last one's.
+#[derive(Clone, Copy, Default)]
+struct Chain {
+    first: Option<BlockMean>,
+    prev: Option<BlockMean>,
+}
+
+impl Chain {
+    /// Condition 1 between the previous block and `this`:
+    /// `fl(μ̂_B − μ̂_A) > up(β(k_A) + β(k_B))`, the bound of two blocks of one
+    /// particle being `m11` (the same expression, computed once).
+    #[inline(always)]
+    fn follow(&mut self, ug: f64, m11: f64, this: BlockMean) -> Option<()> {
+        match self.prev {
+            Some(p) => {
+                let margin = if p.k == 1 && this.k == 1 {
+                    m11
+                } else {
+                    up(beta(ug, p.k) + beta(ug, this.k))
+                };
+                // A NaN fails it too.
+                if (this.mean - p.mean).partial_cmp(&margin) != Some(Ordering::Greater) {
+                    return None;
+                }
+            }
+            None => self.first = Some(this),
+        }
+        self.prev = Some(this);
+        Some(())
+    }
+}
+
 impl Certifier<'_, '_> {
     /// `ẑ_i = fl(fl(x_i + fl(t u_i)) − fl(2r i))`.
     #[inline]
@@ -120,39 +149,13 @@ impl Certifier<'_, '_> {
         (self.cx.x[i] + self.cx.t * self.cx.u[i]) - self.cx.two_r * i as f64
     }
 
-    /// Condition 1 between the previous block and this one (mean `mean`,
-    /// `k` entries): `fl(μ̂_B − μ̂_A) > up(β(k_A) + β(k_B))`.
-    #[inline]
-    fn after_previous(&mut self, mean: f64, k: u32) -> Option<()> {
-        let this = BlockMean { mean, k };
-        if let Some(p) = self.prev {
-            increasing(self.cx.ug, p, this)?;
-        } else {
-            self.first = Some(this);
-        }
-        self.prev = Some(this);
-        Some(())
-    }
-
-    /// Checks block `b` and writes its positions.
-    #[inline]
-    fn emit(&mut self, b: Block) -> Option<()> {
-        let i = b.start as usize;
-        if b.k == 1 {
-            self.after_previous(b.sum, 1)?;
-            self.out[i - self.base] =
-                eft::nearest_free_flight(self.cx.x[i], self.cx.t, self.cx.u[i]);
-            return Some(());
-        }
-        self.emit_multi(b)
-    }
-
-    /// [`Self::emit`] for a block of `k ≥ 2` particles: condition 2 at
-    /// every split, condition 1, then each position `(Σ_j z_j)/k + 2r i` as
-    /// the quotient by `k` of the exact terms `x_j`, `t u_j` (two each),
-    /// `2r (k i − Σ_j j)` (two).
+    /// A block of `k ≥ 2` particles: condition 2 at every split, then each
+    /// position `(Σ_j z_j)/k + 2r i` as the quotient by `k` of the exact
+    /// terms `x_j`, `t u_j` (two each), `2r (k i − Σ_j j)` (two), written
+    /// over the free flights. Its mean and size, for condition 1.
     #[cold]
-    fn emit_multi(&mut self, b: Block) -> Option<()> {
+    #[inline(never)]
+    fn multi(&mut self, b: Block) -> Option<BlockMean> {
         let (a, k) = (b.start as usize, b.k as usize);
         let mut zs = std::mem::take(&mut self.scratch);
         zs.clear();
@@ -178,7 +181,6 @@ impl Certifier<'_, '_> {
                 return None;
             }
         }
-        self.after_previous(prefix[k] / k as f64, b.k)?;
         let mut base = Acc::default();
         self.terms.clear();
         for j in a..a + k {
@@ -209,7 +211,23 @@ impl Certifier<'_, '_> {
             start: b.start,
             k: b.k,
         });
-        Some(())
+        Some(BlockMean {
+            mean: prefix[k] / d,
+            k: b.k,
+        })
+    }
+
+    /// Checks the final block `b` (conditions 1 and 2); a block of one
+    /// particle keeps the free flight already written, a larger one has
+    /// its positions written.
+    #[inline(always)]
+    fn emit(&mut self, chain: &mut Chain, b: Block) -> Option<()> {
+        let this = if b.k == 1 {
+            BlockMean { mean: b.sum, k: 1 }
+        } else {
+            self.multi(b)?
+        };
+        chain.follow(self.cx.ug, self.cx.m11, this)
     }
 }
 
@@ -228,8 +246,16 @@ fn pools(a: &Block, b: &Block) -> bool {
 }
 
 /// The float PAVA at `t` (a double in range) and its certificate, on two
-/// threads from `parallel_min` particles on; `None` when a check fails.
-pub(crate) fn certified(d: &Doubles, t: f64, parallel_min: usize) -> Option<Run> {
+/// threads from `parallel_min` particles on: the larger blocks of the
+/// certified partition, every position's nearest double written into
+/// `positions` (`N` of them); `None` when a check fails (`positions` then
+/// holds anything).
+pub(crate) fn certified(
+    d: &Doubles,
+    t: f64,
+    positions: &mut [f64],
+    parallel_min: usize,
+) -> Option<Vec<Multi>> {
     let (x, u) = (&d.x[..], &d.u[..]);
     let n = x.len();
     let two_r = d.two_r;
@@ -245,8 +271,9 @@ pub(crate) fn certified(d: &Doubles, t: f64, parallel_min: usize) -> Option<Run>
         two_r,
         ug,
         slack: tu + 64.0 * ug,
+        m11: up(beta(ug, 1) + beta(ug, 1)),
     };
-    let mut positions = vec![0.0; n];
+    debug_assert_eq!(positions.len(), n);
     if n >= parallel_min.max(2) {
         let h = n / 2;
         let (lo, hi) = positions.split_at_mut(h);
@@ -267,82 +294,111 @@ pub(crate) fn certified(d: &Doubles, t: f64, parallel_min: usize) -> Option<Run>
             };
             if joined {
                 left.multi.extend(right.multi);
-                return Some(Run {
-                    positions,
-                    multi: left.multi,
-                });
+                return Some(left.multi);
             }
         }
     }
-    let part = cx.stream(0, &mut positions)?;
-    Some(Run {
-        positions,
-        multi: part.multi,
-    })
+    Some(cx.stream(0, positions)?.multi)
 }
 
-impl<'a> Context<'a> {
+impl Context<'_> {
     /// The float PAVA on the particles from `base` on (`out.len()` of
     /// them), its positions into `out`, its certificate checked.
+    ///
+    /// Each particle's free flight `x⁰_i + t u⁰_i` is rounded to its
+    /// nearest double ([`eft::nearest_free_flight_of`], from the `fl(t u)` and
+    /// `fl(x + t u)` that `ẑ_i` is made of) and written when the particle is
+    /// pushed: it is the position when the particle stays alone, and a
+    /// larger block writes its own over it when it is emitted. The top of
+    /// the stack stays in registers (`top`, `k = 0` when there is none):
+    /// on sparse data a particle is pushed, then emitted by the next one,
+    /// without the stack in memory.
     fn stream(self, base: usize, out: &mut [f64]) -> Option<Part> {
         let end = base + out.len();
-        let (x, u) = (&self.x[base..end], &self.u[base..end]);
         let (t, two_r, slack) = (self.t, self.two_r, self.slack);
         let mut c = Certifier {
             cx: self,
-            first: None,
-            prev: None,
             out,
             base,
             multi: Vec::new(),
             scratch: Vec::new(),
             terms: Vec::new(),
         };
+        let mut chain = Chain::default();
+        // The blocks below `top`, the final ones before `bottom`.
         let mut stack: Vec<Block> = Vec::with_capacity(256);
         let mut bottom = 0usize;
-        for (i, (&xi, &ui)) in (base..end).zip(x.iter().zip(u)) {
+        let none = Block {
+            sum: 0.0,
+            k: 0,
+            start: 0,
+        };
+        let mut top = none;
+        for i in base..end {
+            let (xi, ui) = (self.x[i], self.u[i]);
+            let p = t * ui;
+            let (w, e) = eft::two_sum(xi, p);
+            c.out[i - base] = eft::nearest_free_flight_of(xi, t, ui, p, w, e);
             let s = two_r * i as f64;
             let low = (xi - s) - slack;
-            while let Some(b) = stack.get(bottom) {
-                if b.sum >= low * f64::from(b.k) {
-                    break;
+            // Emit the blocks that are final, from the bottom.
+            if bottom < stack.len() {
+                while let Some(&b) = stack.get(bottom) {
+                    if b.sum >= low * f64::from(b.k) {
+                        break;
+                    }
+                    c.emit(&mut chain, b)?;
+                    bottom += 1;
                 }
-                c.emit(*b)?;
-                bottom += 1;
+                if bottom == stack.len() {
+                    stack.clear();
+                    bottom = 0;
+                }
             }
-            if bottom == stack.len() {
-                stack.clear();
-                bottom = 0;
+            if top.k != 0 && stack.is_empty() && top.sum < low * f64::from(top.k) {
+                c.emit(&mut chain, top)?;
+                top = none;
             }
             let mut cur = Block {
-                sum: (xi + t * ui) - s,
+                sum: w - s,
                 k: 1,
                 start: i as u32,
             };
-            while stack.len() > bottom {
-                let top = stack[stack.len() - 1];
-                if !pools(&top, &cur) {
-                    break;
+            if top.k != 0 {
+                if pools(&top, &cur) {
+                    cur = Block {
+                        sum: top.sum + cur.sum,
+                        k: top.k + cur.k,
+                        start: top.start,
+                    };
+                    while stack.len() > bottom {
+                        let below = stack[stack.len() - 1];
+                        if !pools(&below, &cur) {
+                            break;
+                        }
+                        stack.pop();
+                        cur = Block {
+                            sum: below.sum + cur.sum,
+                            k: below.k + cur.k,
+                            start: below.start,
+                        };
+                    }
+                    if cur.k > MAX_BLOCK {
+                        return None;
+                    }
+                } else {
+                    stack.push(top);
                 }
-                stack.pop();
-                cur = Block {
-                    sum: top.sum + cur.sum,
-                    k: top.k + cur.k,
-                    start: top.start,
-                };
             }
-            if cur.k > MAX_BLOCK {
-                return None;
-            }
-            stack.push(cur);
+            top = cur;
         }
-        for b in &stack[bottom..] {
-            c.emit(*b)?;
+        for b in stack[bottom..].iter().chain((top.k != 0).then_some(&top)) {
+            c.emit(&mut chain, *b)?;
         }
         Some(Part {
             multi: c.multi,
-            first: c.first,
-            last: c.prev,
+            first: chain.first,
+            last: chain.prev,
         })
     }
 }

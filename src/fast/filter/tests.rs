@@ -270,3 +270,94 @@ fn validation_in_doubles_is_exact() {
         }
     }
 }
+
+/// The validation's scan on two threads (halves, and the pair across the
+/// junction) decides as the one-thread scan and as `InitialData::new`:
+/// columns with one defect (a gap 1 ulp below `2r`, a gap of exactly `2r`
+/// with approaching velocities, a NaN, an infinity, a value out of the
+/// filter's range) at every place, the junction's pair included.
+#[test]
+fn validation_on_two_threads_is_the_one_thread_one() {
+    let mut rng = SplitMix64::new(0x7c4);
+    let n = 40;
+    let two_r = 0.25;
+    let r = q(two_r) / BigRational::from_integer(2.into());
+    let (mut valid, mut invalid) = (0, 0);
+    for case in 0..600 {
+        let mut x: Vec<f64> = (0..n).map(|i| i as f64 + 0.5 * unit(&mut rng)).collect();
+        let mut u: Vec<f64> = (0..n).map(|_| 2.0 * unit(&mut rng) - 1.0).collect();
+        // The junction of the two-thread scan is between `n/2 − 1` and
+        // `n/2`: every third case puts the defect there.
+        let at = if case % 3 == 0 {
+            n / 2 - 1
+        } else {
+            (rng.next_u64() % (n as u64 - 1)) as usize
+        };
+        match case % 6 {
+            0 => x[at + 1] = f64::from_bits((x[at] + two_r).to_bits() - 1),
+            1 => {
+                x[at + 1] = x[at] + two_r;
+                u[at + 1] = u[at] - 0.5;
+            }
+            2 => u[at] = f64::NAN,
+            3 => x[at + 1] = f64::INFINITY,
+            4 => u[at + 1] = 2f64.powi(-400),
+            _ => {}
+        }
+        let one = super::check_with(&x, &u, two_r, usize::MAX);
+        let two = super::check_with(&x, &u, two_r, 2);
+        assert_eq!(one, two, "case {case}, defect at {at}");
+        let finite = x.iter().chain(&u).all(|v| v.is_finite());
+        let general = finite
+            && InitialData::new(
+                r.clone(),
+                x.iter().map(|&v| q(v)).collect(),
+                u.iter().map(|&v| q(v)).collect(),
+            )
+            .is_ok();
+        assert_eq!(one.is_some(), general, "case {case}, defect at {at}");
+        if let Some(scan) = one {
+            let u_max = u.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            assert_eq!(scan.u_max, u_max);
+            assert_eq!(scan.in_range, case % 6 != 4);
+            valid += 1;
+        } else {
+            invalid += 1;
+        }
+    }
+    assert!(
+        valid >= 150 && invalid >= 350,
+        "{valid} valid, {invalid} invalid"
+    );
+}
+
+/// The positions written into a caller's buffer are those of
+/// [`Doubles::at`], on one thread and on two; a buffer of the wrong length
+/// is refused.
+#[test]
+fn positions_into_a_buffer_are_those_of_at() {
+    let mut rng = SplitMix64::new(0x1b0);
+    let mut answered = 0;
+    for case in 0..40 {
+        let n = 2 + (rng.next_u64() % 400) as usize;
+        let gap = [1.0, 0.01][case % 2];
+        let r = 4e-7;
+        let (x, u) = notebook(&mut rng, n, gap, r);
+        let d = Doubles::validate(Some(q(r)), x, u).expect("valid");
+        let t = q(gap * 5.0 * (1.0 + unit(&mut rng)));
+        let Some(f) = d.at(&t) else { continue };
+        answered += 1;
+        for parallel_min in [usize::MAX, 2] {
+            let mut out = vec![f64::NAN; n];
+            let g = d
+                .at_into_with(&t, &mut out, parallel_min)
+                .expect("certified");
+            assert_eq!(bits(&out), bits(f.positions()));
+            assert!(g.positions().is_empty());
+            assert_eq!(bits(&g.velocities()), bits(&f.velocities()));
+            assert_eq!(g.clusters(), f.clusters());
+        }
+        assert!(d.at_into(&t, &mut vec![0.0; n + 1]).is_none());
+    }
+    assert!(answered >= 30, "{answered} of 40 answered");
+}
