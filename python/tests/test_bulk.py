@@ -101,10 +101,19 @@ def test_export_of_signed_zeros_and_overlapping_doubles():
 def interrupted_after(call, delay):
     """Seconds from a real SIGINT (sent by another process `delay` seconds
     after the call starts) to KeyboardInterrupt; None when the call ended
-    first. The call holds the GIL: only the signal's C handler runs."""
-    killer = subprocess.Popen(
-        [sys.executable, "-c", f"import os, time; time.sleep({delay}); os.kill({os.getpid()}, {int(signal.SIGINT)})"]
+    first. The call holds the GIL: only the signal's C handler runs. The
+    other process says when it has started, so its start-up is not counted
+    in the delay."""
+    script = (
+        "import os, sys, time; print(flush=True); sys.stdin.readline(); "
+        f"time.sleep({delay}); os.kill({os.getpid()}, {int(signal.SIGINT)})"
     )
+    killer = subprocess.Popen(
+        [sys.executable, "-c", script], stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True
+    )
+    killer.stdout.readline()
+    killer.stdin.write("\n")
+    killer.stdin.flush()
     start = time.monotonic()
     try:
         call()
