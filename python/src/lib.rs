@@ -10,9 +10,11 @@
 //! * [`macro_scene`] — `Scene.from_macro`, through the library's `[macro]` checks;
 //! * [`compare`] — another solver's answer against the exact one;
 //! * [`convert`] — Python numbers to exact rationals and back;
+//! * [`bulk`] — many exact values at once: `Fraction` and string lists, dicts;
 //! * [`errors`] — the library's errors as `sticky.errors` exceptions;
 //! * [`interrupt`] — long work off the interpreter's thread (GIL, Ctrl-C).
 
+mod bulk;
 mod compare;
 mod convert;
 mod errors;
@@ -64,13 +66,31 @@ fn claims<'py>(
 /// a double.
 #[pyfunction]
 fn export<'py>(py: Python<'py>, scene: &scene::Scene) -> PyResult<Bound<'py, PyAny>> {
-    let file = scene.file(py)?;
-    let text = py
-        .detach(|| {
-            sticky::report::export::export(file).map(|e| sticky::report::export::json(file, &e))
-        })
-        .map_err(|e| errors::raise(py, "UnsupportedError", e.to_string(), vec![]))?;
-    json_loads(py, &text)
+    let inner = std::sync::Arc::clone(&scene.inner);
+    let n = py.detach(|| inner.n()).map_err(scene::py_error)?;
+    let exported = interrupt::run_sized(py, n, move |stop| exported(&inner, stop))?;
+    let e = exported.map_err(|e| errors::raise(py, "UnsupportedError", e, vec![]))?;
+    Ok(bulk::export_dict(py, &e)?.into_any())
+}
+
+/// The export's object of `scene`: from its columns of doubles when it was
+/// built from them ([`sticky::report::export::export_doubles`]), else from
+/// the validated scene; the error's message otherwise.
+fn exported(
+    scene: &scene::Inner,
+    stop: &dyn sticky::progress::Progress,
+) -> Result<sticky::report::export::ExportJson, String> {
+    use sticky::report::export::{export, export_doubles, ExportJson};
+    if let Some((positions, velocities)) = scene.solver().doubles() {
+        let radius = scene.radius().map_err(|e| e.to_string())?;
+        let fast = export_doubles(&radius, positions, velocities, stop);
+        if let Some(e) = fast.map_err(|e| e.to_string())? {
+            return Ok(e);
+        }
+    }
+    let file = scene.scene().map_err(|e| e.to_string())?;
+    let e = export(file).map_err(|e| e.to_string())?;
+    Ok(ExportJson::of(file, &e))
 }
 
 /// The module `sticky._sticky`.

@@ -83,11 +83,15 @@ impl Inner {
         }
     }
 
-    /// The exact state at `t`, every value a `BigRational` (for the exact
-    /// lists a `State` gives on demand).
-    pub fn exact(&self, t: &BigRational) -> Result<sticky::State<BigRational>, Error> {
-        let silent = &sticky::progress::Silent;
-        Ok(self.solver.state_by_exact_paths(t, silent)?.into_state())
+    /// The exact state at `t` by the exact paths, every value a
+    /// `BigRational` (for the exact lists a `State` gives on demand),
+    /// polling `stop` (Ctrl-C ends it with [`Error::Interrupted`]).
+    pub fn exact(
+        &self,
+        t: &BigRational,
+        stop: &dyn Progress,
+    ) -> Result<sticky::State<BigRational>, Error> {
+        Ok(self.solver.state_by_exact_paths(t, stop)?.into_state())
     }
 }
 

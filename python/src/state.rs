@@ -19,8 +19,8 @@ use sticky::fast::stream::LeanBlocks;
 use sticky::progress::Progress;
 use sticky::Error;
 
-use crate::convert;
 use crate::scene::{py_error, Inner};
+use crate::{bulk, convert, interrupt};
 
 /// What an engine answered at one time: the nearest doubles of the
 /// positions (and of the rest when they came with them), the clusters (or
@@ -169,7 +169,7 @@ pub struct State {
     /// Found on first use when the engine did not give them.
     clusters: OnceLock<Vec<Cluster>>,
     /// A fast path's blocks, for the arrays not yet computed.
-    blocks: Option<Kept>,
+    blocks: Option<Arc<Kept>>,
     exact: OnceLock<sticky::State<BigRational>>,
 }
 
@@ -207,7 +207,7 @@ impl State {
             velocities: array(a.velocities)?,
             multipliers: array(a.multipliers)?,
             clusters,
-            blocks: a.blocks,
+            blocks: a.blocks.map(Arc::new),
             exact,
         })
     }
@@ -295,21 +295,28 @@ impl State {
             return Ok(c);
         }
         let blocks = &self.blocks;
-        let found = match py.detach(|| blocks.as_ref().map(Kept::clusters)) {
+        let found = match py.detach(|| blocks.as_deref().map(Kept::clusters)) {
             Some(c) => c,
             None => self.exact(py)?.clusters.clone(),
         };
         Ok(self.clusters.get_or_init(|| found))
     }
 
-    /// The exact state (computed again on first use for the streaming
-    /// path, with the GIL released).
+    /// The exact state, on first use: from the dyadic path's kept blocks
+    /// (the same block sums, [`DyadicBlocks::exact_state`]), else computed
+    /// again by the exact paths; on a worker thread (GIL released, Ctrl-C).
     pub fn exact(&self, py: Python<'_>) -> PyResult<&sticky::State<BigRational>> {
         if let Some(s) = self.exact.get() {
             return Ok(s);
         }
-        let (scene, t) = (&self.scene, &self.t);
-        let s = py.detach(|| scene.exact(t)).map_err(py_error)?;
+        let (scene, t) = (Arc::clone(&self.scene), self.t.clone());
+        let blocks = self.blocks.clone();
+        let n = self.n(py);
+        let s = interrupt::run_sized(py, n, move |stop| match blocks.as_deref() {
+            Some(Kept::Dyadic(b)) => Ok(b.exact_state()),
+            _ => scene.exact(&t, stop),
+        })?
+        .map_err(py_error)?;
         Ok(self.exact.get_or_init(|| s))
     }
 }
@@ -366,17 +373,17 @@ impl State {
 
     /// x(t) exact: a list of fractions.Fraction.
     fn exact_positions<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
-        convert::fractions(py, &self.exact(py)?.positions)
+        bulk::fractions(py, &self.exact(py)?.positions)
     }
 
     /// u(t) exact: a list of fractions.Fraction.
     fn exact_velocities<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
-        convert::fractions(py, &self.exact(py)?.velocities)
+        bulk::fractions(py, &self.exact(py)?.velocities)
     }
 
     /// λ(t) exact: a list of N - 1 fractions.Fraction.
     fn exact_multipliers<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
-        convert::fractions(py, &self.exact(py)?.multipliers)
+        bulk::fractions(py, &self.exact(py)?.multipliers)
     }
 
     /// The state as `sticky run --json` prints it: a dict with "n",
@@ -386,13 +393,7 @@ impl State {
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let s = self.exact(py)?;
         let radius = self.scene.radius().map_err(py_error)?;
-        // The object `sticky run --json` prints, serialised once by the
-        // library and parsed here.
-        let text = sticky::report::json::state(s, &radius);
-        py.import("json")?
-            .call_method1("loads", (text,))?
-            .cast_into::<PyDict>()
-            .map_err(Into::into)
+        state_dict(py, s, &radius)
     }
 
     fn __repr__(&self, py: Python<'_>) -> PyResult<String> {
@@ -410,4 +411,25 @@ impl State {
             shown.join(", ")
         ))
     }
+}
+
+/// The dict `json.loads` makes of `sticky run --json`'s object
+/// ([`sticky::report::json::StateJson`]: the same keys in the same order),
+/// built directly: exact values as strings `"p/q"`, clusters as
+/// `[first, size]` lists (Ctrl-C: `KeyboardInterrupt`).
+fn state_dict<'py>(
+    py: Python<'py>,
+    s: &sticky::State<BigRational>,
+    radius: &BigRational,
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("n", s.positions.len())?;
+    d.set_item("radius", bulk::text(radius))?;
+    d.set_item("t", bulk::text(&s.t))?;
+    d.set_item("positions", bulk::texts(py, &s.positions)?)?;
+    d.set_item("velocities", bulk::texts(py, &s.velocities)?)?;
+    d.set_item("multipliers", bulk::texts(py, &s.multipliers)?)?;
+    let clusters: Vec<[usize; 2]> = s.clusters.iter().map(|c| [c.first, c.size]).collect();
+    d.set_item("clusters", clusters)?;
+    Ok(d)
 }

@@ -210,6 +210,129 @@ impl ExportJson {
     }
 }
 
+/// The exact value of the finite double `d` written as [`render_exact`]
+/// writes it (`"p/q"` in lowest terms, `"p"` for an integer), read from the
+/// double's bits (`m · 2^e`, the reading of [`crate::columns::f64_exact`])
+/// with no [`BigRational`] built: the export of a scene given as doubles.
+/// `None` for a NaN or an infinity.
+pub fn double_exact_text(d: f64) -> Option<String> {
+    use std::fmt::Write;
+    if !d.is_finite() {
+        return None;
+    }
+    let bits = d.to_bits();
+    let field = ((bits >> 52) & 0x7ff) as i64;
+    let fraction = bits & ((1u64 << 52) - 1);
+    let (m, e) = match field {
+        0 => (fraction, -1074),
+        _ => (fraction | (1 << 52), field - 1075),
+    };
+    if m == 0 {
+        return Some("0".into());
+    }
+    let z = m.trailing_zeros();
+    let (m, e) = (m >> z, e + i64::from(z));
+    let mut out = String::with_capacity(24);
+    if d < 0.0 {
+        out.push('-');
+    }
+    // `m < 2^53`: `m · 2^e` fits 128 bits for `e ≤ 74`, `2^-e` for `-e < 128`.
+    let written = match e {
+        0..=74 => write!(out, "{}", u128::from(m) << e),
+        75.. => write!(out, "{}", num_bigint::BigUint::from(m) << e as u64),
+        -127..=-1 => write!(out, "{m}/{}", 1u128 << (-e)),
+        _ => write!(
+            out,
+            "{m}/{}",
+            num_bigint::BigUint::from(1u8) << e.unsigned_abs()
+        ),
+    };
+    written.ok()?;
+    Some(out)
+}
+
+/// Values exported between two polls of [`Progress::cancelled`].
+#[cfg(feature = "json")]
+const EXPORT_CHUNK: usize = 1 << 14;
+
+/// [`ExportJson`] of a scene given as columns of doubles (no name, no end
+/// time; the radius exact): each position and velocity is its own nearest
+/// double with the error 0, so no value becomes a [`BigRational`] but the
+/// radius and the smallest gap. The smallest `x_{i+1} − x_i` is found on
+/// doubles exactly: Knuth's TwoSum writes each difference as `s + err` with
+/// `s` its rounding, and since rounding is monotone the pairs `(s, err)` in
+/// lexicographic order are the exact differences in order. `Ok(None)` when
+/// a value is not finite or a difference overflows a double (then
+/// [`export`] answers); an error when the radius is beyond the doubles, or
+/// once `stop` is cancelled.
+#[cfg(feature = "json")]
+pub fn export_doubles(
+    radius: &BigRational,
+    positions: &[f64],
+    velocities: &[f64],
+    stop: &dyn crate::progress::Progress,
+) -> Result<Option<ExportJson>, ExportError> {
+    let radius = round(radius, "radius")?;
+    let mut smallest: Option<(usize, f64, f64)> = None;
+    for (i, w) in positions.windows(2).enumerate() {
+        let (a, b) = (w[1], -w[0]);
+        let s = a + b;
+        let back = s - a;
+        let err = (a - (s - back)) + (b - back);
+        if !s.is_finite() || !err.is_finite() {
+            return Ok(None);
+        }
+        if smallest.is_none_or(|(_, s0, e0)| s < s0 || (s == s0 && err < e0)) {
+            smallest = Some((i, s, err));
+        }
+    }
+    let column = |v: &[f64]| -> Result<Option<ColumnJson>, ExportError> {
+        let mut exact = Vec::with_capacity(v.len());
+        for chunk in v.chunks(EXPORT_CHUNK) {
+            if stop.cancelled() {
+                return Err(ExportError {
+                    message: "interrupted during the export".into(),
+                });
+            }
+            for &d in chunk {
+                match double_exact_text(d) {
+                    Some(text) => exact.push(Rational(text)),
+                    None => return Ok(None),
+                }
+            }
+        }
+        Ok(Some(ColumnJson {
+            exact,
+            // The nearest double of the exact value: `-0.0` is the value 0.
+            f64: v.iter().map(|&d| d + 0.0).collect(),
+            error: vec![Rational("0".into()); v.len()],
+        }))
+    };
+    let (Some(positions_json), Some(velocities_json)) = (column(positions)?, column(velocities)?)
+    else {
+        return Ok(None);
+    };
+    let exact = |d: f64| {
+        crate::columns::f64_exact(d).unwrap_or_else(|| BigRational::from_integer(BigInt::from(0)))
+    };
+    let two_r = exact(radius.f64) * BigRational::from_integer(BigInt::from(2));
+    let gap = smallest.map(|(i, _, _)| exact(positions[i + 1]) - exact(positions[i]) - &two_r);
+    Ok(Some(ExportJson {
+        name: None,
+        n: positions.len(),
+        t_end: None,
+        radius: RoundedJson {
+            exact: Rational(render_exact(&radius.exact)),
+            f64: radius.f64,
+            error: Rational(render_exact(&radius.error)),
+        },
+        positions: positions_json,
+        velocities: velocities_json,
+        f64_admissible: gap.as_ref().is_none_or(|g| !g.is_negative()),
+        f64_min_gap_minus_2r: gap.as_ref().map(|g| Rational(render_exact(g))),
+    }))
+}
+
 /// The JSON export (one line).
 #[cfg(feature = "json")]
 pub fn json(scene: &Scene, e: &Exported) -> String {
@@ -272,5 +395,138 @@ mod tests {
         assert_eq!(nearest_f64(&q(1, 3)), Some(1.0 / 3.0));
         let huge = BigRational::from_integer(num_traits::pow(BigInt::from(2), 1100));
         assert_eq!(nearest_f64(&huge), None);
+    }
+
+    /// Doubles of every kind: signs, zeros, subnormals, integers beyond
+    /// 128 bits, tiny and huge exponents, and random bit patterns.
+    fn doubles_of_every_kind() -> Vec<f64> {
+        let mut v = vec![
+            0.0,
+            -0.0,
+            1.0,
+            -1.5,
+            0.1,
+            f64::MIN_POSITIVE,
+            f64::MIN_POSITIVE / 3.0,
+            5e-324,
+            -5e-324,
+            f64::MAX,
+            -f64::MAX,
+            2f64.powi(74),
+            2f64.powi(75) * 3.0,
+            2f64.powi(-127),
+            2f64.powi(-128) * 3.0,
+            1e300,
+            1e-300,
+        ];
+        let mut seed = 0x5EED_u64;
+        while v.len() < 2000 {
+            // SplitMix64.
+            seed = seed.wrapping_add(0x9E37_79B9_7F4A_7C15);
+            let mut z = seed;
+            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+            let d = f64::from_bits(z ^ (z >> 31));
+            if d.is_finite() {
+                v.push(d);
+            }
+        }
+        v
+    }
+
+    #[test]
+    fn a_double_is_written_as_its_exact_value() {
+        for d in doubles_of_every_kind() {
+            let exact = crate::columns::f64_exact(d).unwrap();
+            assert_eq!(double_exact_text(d), Some(render_exact(&exact)), "{d:e}");
+        }
+        assert_eq!(double_exact_text(f64::NAN), None);
+        assert_eq!(double_exact_text(f64::NEG_INFINITY), None);
+    }
+
+    #[cfg(feature = "json")]
+    #[test]
+    fn the_export_of_doubles_is_the_general_one() {
+        use crate::initial::InitialData;
+        let silent = &crate::progress::Silent;
+        let mut values = doubles_of_every_kind();
+        values.retain(|d| d.abs() < 1e300);
+        values.sort_by(f64::total_cmp);
+        values.dedup_by(|a, b| *a - *b < 1e-300);
+        let mut velocities: Vec<f64> = values.iter().rev().copied().collect();
+        // `-0.0` is the value 0, whose nearest double is `0.0`.
+        velocities[0] = -0.0;
+        let exact_all = |v: &[f64]| -> Vec<BigRational> {
+            v.iter()
+                .map(|&d| crate::columns::f64_exact(d).unwrap())
+                .collect()
+        };
+        // Radii making the doubles admissible, rounded, and overlapping.
+        let tiny = BigRational::new(1.into(), num_traits::pow(BigInt::from(10), 400));
+        for radius in [tiny.clone(), q(1, 3) * q(1, 1_000_000_000), q(1, 1)] {
+            let exact = |v: &[f64]| -> Vec<BigRational> {
+                v.iter()
+                    .map(|&d| crate::columns::f64_exact(d).unwrap())
+                    .collect()
+            };
+            let scene = match InitialData::new(radius.clone(), exact(&values), exact(&velocities)) {
+                Ok(data) => Scene::particles(data),
+                // Overlapping data: compared below without a scene.
+                Err(_) => Scene::particles(
+                    InitialData::new(tiny.clone(), exact(&values), exact(&velocities)).unwrap(),
+                ),
+            };
+            let mut general = ExportJson::of(&scene, &export(&scene).unwrap());
+            if scene.data.radius() != &radius {
+                // The general export of the same values with this radius.
+                let r = round(&radius, "radius").unwrap();
+                let two_r = 2.0f64.to_big_rational().unwrap() * (&r.exact - &r.error);
+                let gap = exact(&values)
+                    .windows(2)
+                    .map(|w| &w[1] - &w[0] - &two_r)
+                    .min()
+                    .unwrap();
+                general.radius = RoundedJson {
+                    exact: Rational(render_exact(&r.exact)),
+                    f64: r.f64,
+                    error: Rational(render_exact(&r.error)),
+                };
+                general.f64_admissible = !gap.is_negative();
+                general.f64_min_gap_minus_2r = Some(Rational(render_exact(&gap)));
+            }
+            let fast = export_doubles(&radius, &values, &velocities, silent).unwrap();
+            // The text too: `-0.0` and `0.0` are equal doubles, not equal JSON.
+            let text = fast.as_ref().map(crate::json::to_string);
+            assert_eq!(
+                text,
+                Some(crate::json::to_string(&general)),
+                "radius {radius}"
+            );
+            assert_eq!(fast, Some(general), "radius {radius}");
+        }
+        // Two differences rounding to the same double `2^53 + 4`: the
+        // smaller (`2^53 + 3`) is found from the TwoSum errors, first or
+        // second.
+        let big = 2f64.powi(53);
+        for values in [
+            [-(big + 2.0), 1.0, big + 6.0],
+            [-(big + 4.0), 1.0, big + 4.0],
+        ] {
+            let data = InitialData::new(tiny.clone(), exact_all(&values), vec![q(0, 1); 3]);
+            let scene = Scene::particles(data.unwrap());
+            let general = ExportJson::of(&scene, &export(&scene).unwrap());
+            let fast = export_doubles(&tiny, &values, &[0.0; 3], silent).unwrap();
+            let gap = general.f64_min_gap_minus_2r.clone().unwrap();
+            assert_eq!(
+                fast.as_ref().map(|f| &f.f64_min_gap_minus_2r),
+                Some(&Some(gap))
+            );
+        }
+        // A difference beyond the doubles: the general path answers.
+        let wide = [-f64::MAX, f64::MAX];
+        assert_eq!(
+            export_doubles(&tiny, &wide, &[0.0, 0.0], silent).unwrap(),
+            None
+        );
     }
 }
