@@ -255,7 +255,19 @@ pub(super) fn augmented_jumps<S: Scalar>(n: usize, imp: &crate::contact::Impulse
     j
 }
 
-fn exclusion<S: Scalar>(case: &Case<S>, id: &'static str, affine: bool) -> R {
+/// The interpolant of the pressure in `w` that an exclusion statement
+/// multiplies by `∂_w X̃_N − 1`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Interpolant {
+    /// `P_N = p_i` on `((i−1)/N, i/N]` (`lem:discPDE2`): cell `i` carries
+    /// the jump of `p_i` alone.
+    PiecewiseConstant,
+    /// `P̃_N`, affine from `p_{i−1}` to `p_i` on cell `i`
+    /// (`prop:pressure-bound`): cell `i` carries both jumps.
+    PiecewiseAffine,
+}
+
+fn exclusion<S: Scalar>(case: &Case<S>, id: &'static str, pressure: Interpolant) -> R {
     let n = S::from_usize(case.n());
     for imp in case.impulse_spread() {
         let (t, jumps) = (imp.t.clone(), augmented_jumps(case.n(), imp));
@@ -265,10 +277,9 @@ fn exclusion<S: Scalar>(case: &Case<S>, id: &'static str, affine: bool) -> R {
         let a = augmented(case, &s);
         for i in 1..=case.n() {
             let slope = n.clone() * &(a.x[i].clone() - &a.x[i - 1]);
-            let carried = if affine {
-                !jumps[i].is_zero() || !jumps[i - 1].is_zero()
-            } else {
-                !jumps[i].is_zero()
+            let carried = match pressure {
+                Interpolant::PiecewiseAffine => !jumps[i].is_zero() || !jumps[i - 1].is_zero(),
+                Interpolant::PiecewiseConstant => !jumps[i].is_zero(),
             };
             if carried && slope != S::one() {
                 return Err(Violation::new(
@@ -293,13 +304,21 @@ fn exclusion<S: Scalar>(case: &Case<S>, id: &'static str, affine: bool) -> R {
 /// `lem:discPDE2#exclusion`, as printed: `(∂_w X̃_N − 1) P_N = 0` with `P_N`
 /// piecewise constant (`P_N = p_i` on `((i−1)/N, i/N]`).
 pub fn disc_pde2_printed<S: Scalar>(case: &Case<S>) -> R {
-    exclusion(case, "lem:discPDE2#exclusion", false)
+    exclusion(
+        case,
+        "lem:discPDE2#exclusion",
+        Interpolant::PiecewiseConstant,
+    )
 }
 
 /// `prop:pressure-bound#exclusion`, as used in the proof:
 /// `(∂_w X̃_N − 1) P̃_N = 0` with `P̃_N` piecewise affine.
 pub fn pressure_bound_exclusion_printed<S: Scalar>(case: &Case<S>) -> R {
-    exclusion(case, "prop:pressure-bound#exclusion", true)
+    exclusion(
+        case,
+        "prop:pressure-bound#exclusion",
+        Interpolant::PiecewiseAffine,
+    )
 }
 
 /// The pairings at one collision instant `t_k` (the pressure is a Dirac mass
