@@ -49,6 +49,7 @@ pub mod telescope;
 use num_rational::BigRational;
 use num_traits::{One, Zero};
 
+use crate::claims::coq::Statement;
 use crate::claims::domain::{Domain, InTime};
 use crate::claims::ledger::CORRECTION_DOMAIN;
 use crate::claims::{registry, Case, Claim, Kind};
@@ -348,16 +349,6 @@ pub fn prove_program_observed<P: Program>(
     result
 }
 
-/// Which checker of a registry entry: the claim as printed or its
-/// correction.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Which {
-    /// The claim as printed.
-    Printed,
-    /// Its corrected statement.
-    Corrected,
-}
-
 /// A claim of the registry that the prover handles.
 #[derive(Debug, Clone)]
 pub struct Target {
@@ -365,8 +356,8 @@ pub struct Target {
     pub id: String,
     /// The registry id.
     pub registry_id: &'static str,
-    /// Printed or corrected.
-    pub which: Which,
+    /// The claim as printed or its correction.
+    pub statement: Statement,
     /// `true` when the ledger reports the printed claim false (so the
     /// prover is expected to refute it at some N).
     pub erratum: bool,
@@ -402,7 +393,7 @@ impl Program for Target {
         if !(claim.applies)(&case) {
             return PathEnd::Holds;
         }
-        if self.registry_id == IDENTITY_ARGUMENT && self.which == Which::Printed {
+        if self.registry_id == IDENTITY_ARGUMENT && self.statement == Statement::Printed {
             // The identity argument (`telescope`): where the engine's history
             // is a free flight between the cuts the residual is 0 without
             // being built; elsewhere the checker runs.
@@ -410,11 +401,7 @@ impl Program for Target {
                 return PathEnd::Holds;
             }
         }
-        let kind = match self.which {
-            Which::Printed => Some(&claim.kind),
-            Which::Corrected => claim.correction.as_ref().map(|c| &c.check),
-        };
-        match kind {
+        match claim.checker(self.statement) {
             Some(Kind::Case(check)) => match check(&case) {
                 Ok(()) => PathEnd::Holds,
                 Err(v) => PathEnd::Violated(v.to_string()),
@@ -533,7 +520,7 @@ pub fn targets() -> Vec<Target> {
             None => out.push(Target {
                 id: c.id.to_string(),
                 registry_id: c.id,
-                which: Which::Printed,
+                statement: Statement::Printed,
                 erratum: false,
                 times,
                 domain: c.domain,
@@ -542,7 +529,7 @@ pub fn targets() -> Vec<Target> {
                 out.push(Target {
                     id: c.id.to_string(),
                     registry_id: c.id,
-                    which: Which::Printed,
+                    statement: Statement::Printed,
                     erratum: true,
                     times,
                     domain: c.domain,
@@ -551,7 +538,7 @@ pub fn targets() -> Vec<Target> {
                     out.push(Target {
                         id: format!("{} (corrected)", c.id),
                         registry_id: c.id,
-                        which: Which::Corrected,
+                        statement: Statement::Corrected,
                         erratum: false,
                         times,
                         domain: CORRECTION_DOMAIN,
@@ -577,7 +564,7 @@ pub fn prove_target_observed(
 ) -> ProofResult {
     let mut result = prove_program_observed(&target.id, n, target.times, target, limits, progress);
     if target.registry_id == IDENTITY_ARGUMENT
-        && target.which == Which::Printed
+        && target.statement == Statement::Printed
         && result.status == Status::Proved
     {
         let how = IDENTITY_NOTE.to_string();
