@@ -101,7 +101,8 @@ pub trait Program {
     /// The times a counterexample is shown at, given the solver's
     /// replayed `input` (violated at `input.times`): the same times by
     /// default; a statement quantified "for a.e. t" asks for a second time
-    /// of the same open interval between collisions ([`Target`]). `Err`
+    /// of the same open interval between collisions, and a measure in `t`
+    /// for the last collision instant ([`Target`]). `Err`
     /// says why no admissible witness was found (the attempt ends unknown).
     fn witness_times(&self, input: &Input<BigRational>) -> Result<Vec<BigRational>, String> {
         Ok(input.times.clone())
@@ -411,15 +412,49 @@ impl Program for Target {
     }
 
     fn witness_times(&self, input: &Input<BigRational>) -> Result<Vec<BigRational>, String> {
-        if self.domain.time == InTime::AlmostEvery {
-            self.second_failing_time(input)
-        } else {
-            Ok(input.times.clone())
+        match self.domain.time {
+            InTime::AlmostEvery => self.second_failing_time(input),
+            InTime::Measure => self.history_end(input),
+            _ => Ok(input.times.clone()),
         }
     }
 }
 
 impl Target {
+    /// The witness time of a measure-in-`t` statement: its checker reads
+    /// the measure (Dirac masses at the collision instants) over the whole
+    /// history, whatever the solver's probe time, so the failure is shown
+    /// up to the last collision instant (the solver's time when nothing
+    /// collides). The checker is run again there: it must still fail, and
+    /// the time passes [`Domain::admits_times`].
+    fn history_end(&self, input: &Input<BigRational>) -> Result<Vec<BigRational>, String> {
+        let data = input.data().map_err(|e| e.to_string())?;
+        let traj = Trajectory::new(data);
+        let Some(last) = traj.last_collision() else {
+            return Ok(input.times.clone());
+        };
+        let times = vec![last.clone()];
+        self.domain
+            .admits_times(&traj, &times)
+            .map_err(|why| format!("witness time refused: {why}"))?;
+        let shown = Input {
+            times: times.clone(),
+            ..input.clone()
+        };
+        match self.run(&shown) {
+            PathEnd::Violated(_) => Ok(times),
+            other => Err(format!(
+                "the checker fails at t = {} but not when shown up to the last collision at t = {} ({other:?})",
+                input
+                    .times
+                    .last()
+                    .map(crate::rational::render_exact)
+                    .unwrap_or_default(),
+                crate::rational::render_exact(last)
+            )),
+        }
+    }
+
     /// A second failing time for an a.e.-in-`t` statement: the solver's
     /// time `t` lies strictly inside an open interval between collision
     /// instants (the collision instants themselves are excluded paths);
