@@ -339,7 +339,7 @@ fn a_measure_refutation_is_shown_over_the_whole_history() {
         .last_collision()
         .cloned()
         .expect("the witness collides");
-    assert_eq!(witness_times(&w), [last.clone()], "{w}");
+    assert_eq!(witness_times(&w), std::slice::from_ref(&last), "{w}");
     assert_eq!(scene.t_end, Some(last), "{w}");
     witness_in_domain(&target, &w).unwrap_or_else(|why| panic!("{why}\n{w}"));
 
