@@ -315,6 +315,46 @@ fn an_almost_everywhere_refutation_lies_in_its_domain() {
     );
 }
 
+/// A measure in `t` (the pressure of `lem:discPDE2#exclusion`, Dirac
+/// masses at the collision instants) is read by its checker over the whole
+/// history, whatever the solver's time: the refutation is shown up to the
+/// last collision instant (`t_end`, where the checker is replayed), not at
+/// the solver's `t = 0`; the same search under the "every t" domain keeps
+/// the solver's time, which the measure's domain refuses.
+#[test]
+fn a_measure_refutation_is_shown_over_the_whole_history() {
+    if !solver() {
+        return;
+    }
+    let target = prove::targets()
+        .into_iter()
+        .find(|t| t.id == "lem:discPDE2#exclusion")
+        .expect("lem:discPDE2#exclusion is a target");
+    assert_eq!(target.domain.time, sticky::claims::domain::InTime::Measure);
+    let r = prove::prove_target(&target, 2, limits());
+    assert_eq!(r.status, Status::Refuted, "{:?}", r.note);
+    let w = r.witness.expect("a witness");
+    let scene = sticky::scene::parse(&w).unwrap_or_else(|e| panic!("{e}\n{w}"));
+    let last = Trajectory::new(scene.data.clone())
+        .last_collision()
+        .cloned()
+        .expect("the witness collides");
+    assert_eq!(witness_times(&w), std::slice::from_ref(&last), "{w}");
+    assert_eq!(scene.t_end, Some(last), "{w}");
+    witness_in_domain(&target, &w).unwrap_or_else(|why| panic!("{why}\n{w}"));
+
+    let every_t = prove::Target {
+        domain: sticky::claims::domain::Domain::EVERY_T,
+        ..target.clone()
+    };
+    let r = prove::prove_target(&every_t, 2, limits());
+    let w = r.witness.expect("a witness");
+    assert!(
+        witness_in_domain(&target, &w).is_err(),
+        "a witness cut before the last collision must be refused by the measure's domain:\n{w}"
+    );
+}
+
 #[test]
 fn mutants_are_refuted_with_a_witness() {
     if !solver() {

@@ -18,8 +18,7 @@ use std::ops::Range;
 use num_rational::BigRational;
 use serde::{Deserialize, Serialize};
 
-use super::domain::Domain;
-use super::ledger::CORRECTION_DOMAIN;
+use super::coq::Statement;
 use super::ledger::{engines, run_case_range, run_kind, shipped_cases};
 use super::ledger::{Budget, Entry, Outcome, Status};
 use super::proved::with_proved;
@@ -70,58 +69,23 @@ impl From<ClaimsSetup> for Budget {
     }
 }
 
-/// The statement as printed, or its correction.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Version {
-    /// As printed in the paper.
-    Printed,
-    /// The corrected statement.
-    Corrected,
-}
-
-impl From<Version> for super::coq::Statement {
-    fn from(v: Version) -> Self {
-        match v {
-            Version::Printed => super::coq::Statement::Printed,
-            Version::Corrected => super::coq::Statement::Corrected,
-        }
-    }
-}
-
 /// One statement of the ledger.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Statement {
+pub struct LedgerStatement {
     /// The claim's index in the registry.
     pub claim: usize,
     /// Printed or corrected.
-    pub version: Version,
+    pub version: Statement,
 }
 
 /// One unit: a block of a case statement's sequence, or a whole statement.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct ClaimsUnit {
     /// The statement.
-    pub statement: Statement,
+    pub statement: LedgerStatement,
     /// The cases of the block (random cases `0 … cases − 1`, then the
     /// shipped scenes), or `None` for a whole statement.
     pub cases: Option<Range<usize>>,
-}
-
-/// The kind of a statement's checker.
-fn kind_of(claim: &Claim<BigRational>, version: Version) -> Option<&Kind<BigRational>> {
-    match version {
-        Version::Printed => Some(&claim.kind),
-        Version::Corrected => claim.correction.as_ref().map(|c| &c.check),
-    }
-}
-
-/// The domain a statement's witnesses must lie in: the claim's own for
-/// the printed statement; a correction must hold at every probe time.
-fn domain_of(claim: &Claim<BigRational>, version: Version) -> &Domain {
-    match version {
-        Version::Printed => &claim.domain,
-        Version::Corrected => &CORRECTION_DOMAIN,
-    }
 }
 
 /// The blocks of a case statement: the random cases cut into at most
@@ -144,11 +108,11 @@ pub fn units(
 ) -> Vec<ClaimsUnit> {
     let mut out = Vec::new();
     for (claim, c) in claims.iter().enumerate() {
-        for version in [Version::Printed, Version::Corrected] {
-            let Some(kind) = kind_of(c, version) else {
+        for version in [Statement::Printed, Statement::Corrected] {
+            let Some(kind) = c.checker(version) else {
                 continue;
             };
-            let statement = Statement { claim, version };
+            let statement = LedgerStatement { claim, version };
             match kind {
                 Kind::Case(_) => {
                     out.extend(
@@ -302,10 +266,10 @@ fn run_unit(
     shipped: &[(&'static str, Case<BigRational>)],
 ) -> UnitResult {
     let claim = &claims[unit.statement.claim];
-    let Some(kind) = kind_of(claim, unit.statement.version) else {
+    let Some(kind) = claim.checker(unit.statement.version) else {
         return UnitResult::Skipped;
     };
-    let domain = domain_of(claim, unit.statement.version);
+    let domain = claim.domain_of(unit.statement.version);
     match (kind, &unit.cases) {
         (Kind::Case(check), Some(range)) => {
             let (applied, failure) = run_case_range(
@@ -329,14 +293,8 @@ fn run_unit(
                         tightness: Vec::new(),
                         note: None,
                     };
-                    let o = with_proved(
-                        kind,
-                        domain,
-                        claim.id,
-                        unit.statement.version.into(),
-                        held,
-                        budget,
-                    );
+                    let o =
+                        with_proved(kind, domain, claim.id, unit.statement.version, held, budget);
                     match o.status {
                         Status::Holds => (None, o.tightness),
                         _ => (Some(o), Vec::new()),
@@ -458,7 +416,7 @@ pub fn entries(setup: &ClaimsSetup, results: &[UnitResult]) -> Result<Vec<Entry>
             all.len()
         ));
     }
-    let outcome = |statement: Statement| {
+    let outcome = |statement: LedgerStatement| {
         let of_it = all
             .iter()
             .zip(results)
@@ -468,9 +426,9 @@ pub fn entries(setup: &ClaimsSetup, results: &[UnitResult]) -> Result<Vec<Entry>
     };
     let mut out = Vec::with_capacity(claims.len());
     for (claim, c) in claims.iter().enumerate() {
-        let mut printed = outcome(Statement {
+        let mut printed = outcome(LedgerStatement {
             claim,
-            version: Version::Printed,
+            version: Statement::Printed,
         })?;
         if let (Status::Holds, Some(why)) = (&printed.status, c.identity) {
             printed.status = Status::Identity(why.to_string());
@@ -478,9 +436,9 @@ pub fn entries(setup: &ClaimsSetup, results: &[UnitResult]) -> Result<Vec<Entry>
         let correction = match &c.correction {
             Some(corr) => Some((
                 corr.statement,
-                outcome(Statement {
+                outcome(LedgerStatement {
                     claim,
-                    version: Version::Corrected,
+                    version: Statement::Corrected,
                 })?,
                 corr.conclusion,
             )),
@@ -535,7 +493,7 @@ mod shard_tests {
     fn sharded(
         claims: &[Claim<BigRational>],
         all: &[ClaimsUnit],
-        statement: Statement,
+        statement: LedgerStatement,
         count: usize,
         budget: Budget,
         shipped: &[(&'static str, Case<BigRational>)],
@@ -584,20 +542,20 @@ mod shard_tests {
         let all = units(&claims, &setup, shipped.len());
         let mut seen = (false, false);
         for (claim, c) in claims.iter().enumerate().take(12) {
-            for version in [Version::Printed, Version::Corrected] {
-                let Some(kind @ Kind::Case(_)) = kind_of(c, version) else {
+            for version in [Statement::Printed, Statement::Corrected] {
+                let Some(kind @ Kind::Case(_)) = c.checker(version) else {
                     continue;
                 };
-                let domain = domain_of(c, version);
+                let domain = c.domain_of(version);
                 let single = run_kind(kind, c.applies, domain, budget, &shipped).0;
-                let single = with_proved(kind, domain, c.id, version.into(), single, budget);
+                let single = with_proved(kind, domain, c.id, version, single, budget);
                 seen.0 |= single.status == Status::Holds;
                 seen.1 |= single.status == Status::Counterexample;
                 for count in [1, 3, 4] {
                     let merged = sharded(
                         &claims,
                         &all,
-                        Statement { claim, version },
+                        LedgerStatement { claim, version },
                         count,
                         budget,
                         &shipped,

@@ -107,6 +107,15 @@ pub enum Refusal {
     /// An a.e.-in-`t` statement's failure is shown at fewer than two
     /// times, or at two times of different open intervals.
     NotTwoTimesOfOneInterval,
+    /// A measure-in-`t` statement's failure is shown at times that end
+    /// (at `shown`) before the last collision instant (`last`): the
+    /// measure, Dirac masses at the collisions, is not all shown.
+    HistoryCut {
+        /// The latest witness time.
+        shown: String,
+        /// The last collision instant.
+        last: String,
+    },
 }
 
 impl std::fmt::Display for Refusal {
@@ -120,6 +129,10 @@ impl std::fmt::Display for Refusal {
             Refusal::AtCollision(t) => write!(f, "t = {t} is a collision instant"),
             Refusal::NotTwoTimesOfOneInterval => f.write_str(
                 "the failure is not shown at two times of one open interval between collisions",
+            ),
+            Refusal::HistoryCut { shown, last } => write!(
+                f,
+                "a measure in t is shown up to t = {shown}, before the last collision at t = {last}"
             ),
         }
     }
@@ -169,7 +182,10 @@ impl Domain {
     /// Whether `times` (where the failure is shown) are admissible
     /// witness times for this domain on `traj`: for an a.e.-in-`t`
     /// statement, two distinct positive times of one open interval between
-    /// consecutive collision instants (or after the last); otherwise any.
+    /// consecutive collision instants (or after the last); for a measure in
+    /// `t`, times reaching the last collision instant (none: the checker's
+    /// own probe times, its measure read over the whole history);
+    /// otherwise any.
     pub fn admits_times<S: Scalar>(
         &self,
         traj: &Trajectory<S>,
@@ -177,6 +193,16 @@ impl Domain {
     ) -> Result<(), Refusal> {
         for t in times {
             self.admits_time(traj, t)?;
+        }
+        if self.time == InTime::Measure {
+            let shown = times.iter().max_by(|a, b| a.total_cmp(b));
+            return match (shown, traj.last_collision()) {
+                (Some(shown), Some(last)) if shown < last => Err(Refusal::HistoryCut {
+                    shown: shown.render(),
+                    last: last.render(),
+                }),
+                _ => Ok(()),
+            };
         }
         if self.time != InTime::AlmostEvery {
             return Ok(());
@@ -285,4 +311,36 @@ pub fn open_intervals<S: Scalar>(traj: &Trajectory<S>) -> Vec<OpenInterval<S>> {
     });
     debug_assert!(out.iter().all(|iv| iv.times[0] < iv.times[1]));
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::initial::InitialData;
+    use crate::rational::ratio as q;
+
+    /// A measure in `t` is shown over the whole history: times ending
+    /// before the last collision (here the only one, at `t = 3/2`) are
+    /// refused, times reaching it and the checker's own times are not.
+    #[test]
+    fn a_measure_is_shown_up_to_the_last_collision() {
+        let data = InitialData::with_paper_radius(vec![q(0, 1), q(2, 1)], vec![q(1, 1), q(0, 1)]);
+        let traj = Trajectory::new(data.unwrap());
+        assert_eq!(traj.last_collision(), Some(&q(3, 2)));
+        let measure = Domain {
+            time: InTime::Measure,
+            ..Domain::EVERY_T
+        };
+        assert_eq!(
+            measure.admits_times(&traj, &[q(0, 1)]),
+            Err(Refusal::HistoryCut {
+                shown: "0".into(),
+                last: "3/2".into()
+            })
+        );
+        assert_eq!(measure.admits_times(&traj, &[q(3, 2)]), Ok(()));
+        assert_eq!(measure.admits_times(&traj, &[q(1, 1), q(2, 1)]), Ok(()));
+        assert_eq!(measure.admits_times(&traj, &[]), Ok(()));
+        assert_eq!(Domain::EVERY_T.admits_times(&traj, &[q(0, 1)]), Ok(()));
+    }
 }

@@ -42,8 +42,8 @@ type Q = BigRational;
 
 /// The largest N at which [`Row::mass_interpolated`] is measured (its
 /// cost is `O(N)` exact polynomial integrals per test function, on
-/// collision times whose denominators grow with N: up to 27 s for one
-/// datum at N = 4096, 3 s at N = 512).
+/// collision times whose denominators grow with N; timings in
+/// `docs/journal.md`).
 pub const MASS_INTERPOLATED_MAX_N: usize = 512;
 
 /// Random macroscopic data the scaling claims run on (besides the two

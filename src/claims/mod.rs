@@ -235,6 +235,27 @@ pub struct Claim<S> {
     pub identity: Option<&'static str>,
 }
 
+impl<S> Claim<S> {
+    /// The checker of one of the claim's statements: its own as printed,
+    /// its correction's when corrected (`None` without a correction).
+    pub fn checker(&self, statement: coq::Statement) -> Option<&Kind<S>> {
+        match statement {
+            coq::Statement::Printed => Some(&self.kind),
+            coq::Statement::Corrected => self.correction.as_ref().map(|c| &c.check),
+        }
+    }
+
+    /// The domain the witnesses of one of its statements must lie in: the
+    /// claim's own as printed; a correction must hold on every case, at
+    /// every probe time (`ledger::CORRECTION_DOMAIN`).
+    pub fn domain_of(&self, statement: coq::Statement) -> &domain::Domain {
+        match statement {
+            coq::Statement::Printed => &self.domain,
+            coq::Statement::Corrected => &ledger::CORRECTION_DOMAIN,
+        }
+    }
+}
+
 /// `applies` for claims valid for every admissible datum.
 pub fn always<S: Scalar>(_: &Case<S>) -> bool {
     true

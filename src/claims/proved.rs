@@ -489,10 +489,7 @@ mod tests {
         let mut checked = 0;
         for p in PROVED {
             let claim = claims.iter().find(|c| c.id == p.claim).unwrap();
-            let kind = match p.statement {
-                Statement::Printed => &claim.kind,
-                Statement::Corrected => &claim.correction.as_ref().unwrap().check,
-            };
+            let kind = claim.checker(p.statement).unwrap();
             if p.measure.is_none() || !matches!(kind, crate::claims::Kind::Case(_)) {
                 continue;
             }

@@ -5,8 +5,8 @@
 //! probe time), the path condition holds equalities such as
 //! `2(u₃ − u₂) x₁ + q(x₂, x₃, u) = 0`. z3's `nlsat` does not always decide a
 //! query with them: at N = 3 `lem:density`'s coupling bound under a triple
-//! collision ran past 30 s, while the same query with `x₁` replaced by
-//! `−q/(2(u₃ − u₂))` is `unsat` in 0.1 s.
+//! collision is not answered, while the same query with `x₁` replaced by
+//! `−q/(2(u₃ − u₂))` is `unsat` at once (timings in `docs/journal.md`).
 //!
 //! **The step.** Let `a·v + b = 0` be an equality of the system with `a`, `b`
 //! free of `v` and `a ≠ 0` implied by the system (a non-zero constant, or a

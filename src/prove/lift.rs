@@ -9,10 +9,11 @@
 //! cross-multiplied (`gap − t·closing`, `gap₁·closing₂ − gap₂·closing₁`),
 //! polynomials of degree up to 4 in `(x⁰, u⁰)` without the instant itself.
 //! At N = 3 `lem:density`'s coupling bound through a triple collision in
-//! `(s, t)` is such a query: z3's `nlsat` gave no answer in 100 s as asked;
-//! with the two collision instants declared and defined, `unsat` in 0.4 s
-//! (the variable `τ` gives the projection the instant the bound is piecewise
-//! linear in, `|x_i(t) − x_i(s)| ≤ (t − s) sup|u|` piece by piece).
+//! `(s, t)` is such a query: z3's `nlsat` does not answer it as asked, and
+//! answers `unsat` at once with the two collision instants declared and
+//! defined (timings in `docs/journal.md`; the variable `τ` gives the
+//! projection the instant the bound is piecewise linear in,
+//! `|x_i(t) − x_i(s)| ≤ (t − s) sup|u|` piece by piece).
 //!
 //! **Soundness.** Where every `den` is non-zero — required: a quotient is
 //! lifted only when the path condition excludes `den = 0` — the lifted

@@ -49,6 +49,7 @@ pub mod telescope;
 use num_rational::BigRational;
 use num_traits::{One, Zero};
 
+use crate::claims::coq::Statement;
 use crate::claims::domain::{Domain, InTime};
 use crate::claims::ledger::CORRECTION_DOMAIN;
 use crate::claims::{registry, Case, Claim, Kind};
@@ -100,7 +101,8 @@ pub trait Program {
     /// The times a counterexample is shown at, given the solver's
     /// replayed `input` (violated at `input.times`): the same times by
     /// default; a statement quantified "for a.e. t" asks for a second time
-    /// of the same open interval between collisions ([`Target`]). `Err`
+    /// of the same open interval between collisions, and a measure in `t`
+    /// for the last collision instant ([`Target`]). `Err`
     /// says why no admissible witness was found (the attempt ends unknown).
     fn witness_times(&self, input: &Input<BigRational>) -> Result<Vec<BigRational>, String> {
         Ok(input.times.clone())
@@ -348,16 +350,6 @@ pub fn prove_program_observed<P: Program>(
     result
 }
 
-/// Which checker of a registry entry: the claim as printed or its
-/// correction.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Which {
-    /// The claim as printed.
-    Printed,
-    /// Its corrected statement.
-    Corrected,
-}
-
 /// A claim of the registry that the prover handles.
 #[derive(Debug, Clone)]
 pub struct Target {
@@ -365,8 +357,8 @@ pub struct Target {
     pub id: String,
     /// The registry id.
     pub registry_id: &'static str,
-    /// Printed or corrected.
-    pub which: Which,
+    /// The claim as printed or its correction.
+    pub statement: Statement,
     /// `true` when the ledger reports the printed claim false (so the
     /// prover is expected to refute it at some N).
     pub erratum: bool,
@@ -402,7 +394,7 @@ impl Program for Target {
         if !(claim.applies)(&case) {
             return PathEnd::Holds;
         }
-        if self.registry_id == IDENTITY_ARGUMENT && self.which == Which::Printed {
+        if self.registry_id == IDENTITY_ARGUMENT && self.statement == Statement::Printed {
             // The identity argument (`telescope`): where the engine's history
             // is a free flight between the cuts the residual is 0 without
             // being built; elsewhere the checker runs.
@@ -410,11 +402,7 @@ impl Program for Target {
                 return PathEnd::Holds;
             }
         }
-        let kind = match self.which {
-            Which::Printed => Some(&claim.kind),
-            Which::Corrected => claim.correction.as_ref().map(|c| &c.check),
-        };
-        match kind {
+        match claim.checker(self.statement) {
             Some(Kind::Case(check)) => match check(&case) {
                 Ok(()) => PathEnd::Holds,
                 Err(v) => PathEnd::Violated(v.to_string()),
@@ -424,15 +412,49 @@ impl Program for Target {
     }
 
     fn witness_times(&self, input: &Input<BigRational>) -> Result<Vec<BigRational>, String> {
-        if self.domain.time == InTime::AlmostEvery {
-            self.second_failing_time(input)
-        } else {
-            Ok(input.times.clone())
+        match self.domain.time {
+            InTime::AlmostEvery => self.second_failing_time(input),
+            InTime::Measure => self.history_end(input),
+            _ => Ok(input.times.clone()),
         }
     }
 }
 
 impl Target {
+    /// The witness time of a measure-in-`t` statement: its checker reads
+    /// the measure (Dirac masses at the collision instants) over the whole
+    /// history, whatever the solver's probe time, so the failure is shown
+    /// up to the last collision instant (the solver's time when nothing
+    /// collides). The checker is run again there: it must still fail, and
+    /// the time passes [`Domain::admits_times`].
+    fn history_end(&self, input: &Input<BigRational>) -> Result<Vec<BigRational>, String> {
+        let data = input.data().map_err(|e| e.to_string())?;
+        let traj = Trajectory::new(data);
+        let Some(last) = traj.last_collision() else {
+            return Ok(input.times.clone());
+        };
+        let times = vec![last.clone()];
+        self.domain
+            .admits_times(&traj, &times)
+            .map_err(|why| format!("witness time refused: {why}"))?;
+        let shown = Input {
+            times: times.clone(),
+            ..input.clone()
+        };
+        match self.run(&shown) {
+            PathEnd::Violated(_) => Ok(times),
+            other => Err(format!(
+                "the checker fails at t = {} but not when shown up to the last collision at t = {} ({other:?})",
+                input
+                    .times
+                    .last()
+                    .map(crate::rational::render_exact)
+                    .unwrap_or_default(),
+                crate::rational::render_exact(last)
+            )),
+        }
+    }
+
     /// A second failing time for an a.e.-in-`t` statement: the solver's
     /// time `t` lies strictly inside an open interval between collision
     /// instants (the collision instants themselves are excluded paths);
@@ -533,7 +555,7 @@ pub fn targets() -> Vec<Target> {
             None => out.push(Target {
                 id: c.id.to_string(),
                 registry_id: c.id,
-                which: Which::Printed,
+                statement: Statement::Printed,
                 erratum: false,
                 times,
                 domain: c.domain,
@@ -542,7 +564,7 @@ pub fn targets() -> Vec<Target> {
                 out.push(Target {
                     id: c.id.to_string(),
                     registry_id: c.id,
-                    which: Which::Printed,
+                    statement: Statement::Printed,
                     erratum: true,
                     times,
                     domain: c.domain,
@@ -551,7 +573,7 @@ pub fn targets() -> Vec<Target> {
                     out.push(Target {
                         id: format!("{} (corrected)", c.id),
                         registry_id: c.id,
-                        which: Which::Corrected,
+                        statement: Statement::Corrected,
                         erratum: false,
                         times,
                         domain: CORRECTION_DOMAIN,
@@ -577,7 +599,7 @@ pub fn prove_target_observed(
 ) -> ProofResult {
     let mut result = prove_program_observed(&target.id, n, target.times, target, limits, progress);
     if target.registry_id == IDENTITY_ARGUMENT
-        && target.which == Which::Printed
+        && target.statement == Statement::Printed
         && result.status == Status::Proved
     {
         let how = IDENTITY_NOTE.to_string();

@@ -19,6 +19,16 @@ use crate::scalar::Scalar;
 const ID: &str = "lem:proj-characterization";
 const ID_H: &str = "lem:proj-characterization#H";
 
+/// The convex set `C` a projection is onto, for the sign its normal cone
+/// puts on the coefficients of the contacts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ConvexSet {
+    /// The cone `K^N` (`df:KN`): coefficients `≥ 0` on the contacts.
+    Cone,
+    /// A subspace, `H_x` (`df:H-micro`): coefficients of any sign.
+    Subspace,
+}
+
 /// `m_i = Σ_{k ≤ i} v_k`, `i = 1 … N`.
 fn prefix<S: Scalar>(v: &[S]) -> Vec<S> {
     let mut acc = S::zero();
@@ -31,13 +41,13 @@ fn prefix<S: Scalar>(v: &[S]) -> Vec<S> {
 }
 
 /// Whether `v` lies in the normal cone at a point whose contact pairs are
-/// `contacts` (0-based pairs `(j, j+1)`): of `K^N` (`signed = false`: the
-/// coefficients on contacts must be `≥ 0`) or of the subspace `H`
-/// (`signed = true`: any sign). `Err` says why not.
+/// `contacts` (0-based pairs `(j, j+1)`) of the convex `set`: of `K^N` (the
+/// coefficients on contacts must be `≥ 0`) or of the subspace `H` (any
+/// sign). `Err` says why not.
 pub fn normal_coefficients<S: Scalar>(
     v: &[S],
     contacts: &[usize],
-    signed: bool,
+    set: ConvexSet,
 ) -> Result<(), String> {
     let m = prefix(v);
     if let Some(last) = m.last() {
@@ -55,7 +65,7 @@ pub fn normal_coefficients<S: Scalar>(
                 j + 1
             ));
         }
-        if contact && !signed && mj.total_cmp(&S::zero()).is_lt() {
+        if contact && set == ConvexSet::Cone && mj.total_cmp(&S::zero()).is_lt() {
             return Err(format!(
                 "coefficient of e[{j}] − e[{}] is {} < 0",
                 j + 1,
@@ -88,7 +98,7 @@ fn spread(len: usize) -> Vec<usize> {
 
 /// `lem:proj-characterization` for a convex set `C` with the projection
 /// `project`, at the point `z` and the anchor `a ∈ C` whose contact pairs
-/// are `contacts` (`signed`: `C` is a subspace):
+/// are `contacts` (`set`: `C` is the cone `K^N` or a subspace):
 /// * ⟹: `y = project(z)` has `z − y ∈ N_y C` (`contacts_of(y)` its contacts);
 /// * ⟸: `z' = a + Σ μ_j n_j` with `μ_j = ((j + k) mod 3)` on the contacts
 ///   (`− 1` as well for a subspace), `k = 0, 1, 2`, projects back to `a`;
@@ -98,7 +108,7 @@ pub fn characterization<S: Scalar>(
     z: &[S],
     a: &[S],
     contacts: &[usize],
-    signed: bool,
+    set: ConvexSet,
     project: impl Fn(&[S]) -> Vec<S>,
     contacts_of: impl Fn(&[S]) -> Option<Vec<usize>>,
 ) -> Result<(), String> {
@@ -107,7 +117,7 @@ pub fn characterization<S: Scalar>(
     let Some(cy) = contacts_of(&y) else {
         return Err(format!("P_C(z) = {} ∉ C", render_vec(&y)));
     };
-    normal_coefficients(&sub(z, &y), &cy, signed).map_err(|e| {
+    normal_coefficients(&sub(z, &y), &cy, set).map_err(|e| {
         format!(
             "y = P_C(z) = {} for z = {}, but z − y ∉ N_y C: {e}",
             render_vec(&y),
@@ -120,7 +130,11 @@ pub fn characterization<S: Scalar>(
             .iter()
             .map(|&j| {
                 let c = ((j + k) % 3) as i64;
-                (j, S::from_i64(if signed { c - 1 } else { c }))
+                let c = match set {
+                    ConvexSet::Cone => c,
+                    ConvexSet::Subspace => c - 1,
+                };
+                (j, S::from_i64(c))
             })
             .collect();
         let z2 = add_normal(a, &mu);
@@ -129,7 +143,10 @@ pub fn characterization<S: Scalar>(
             return Err(format!(
                 "y = {} ∈ C and z − y = Σ μ[j] (e[j] − e[j+1]) ∈ N_y C (μ[j] = {} on the contacts), but P_C(z) = {}",
                 render_vec(a),
-                if signed { "(j + k mod 3) − 1" } else { "(j + k mod 3)" },
+                match set {
+                    ConvexSet::Cone => "(j + k mod 3)",
+                    ConvexSet::Subspace => "(j + k mod 3) − 1",
+                },
                 render_vec(&y2)
             ));
         }
@@ -147,7 +164,7 @@ pub fn characterization<S: Scalar>(
                 format!("e[{j}] − e[{}]", j + 1),
                 add_normal(a, &[(j, S::one())]),
             ));
-        } else if !signed {
+        } else if set == ConvexSet::Cone {
             outside.push((
                 format!("−(e[{j}] − e[{}])", j + 1),
                 add_normal(a, &[(j, -S::one())]),
@@ -201,7 +218,7 @@ pub fn proj_characterization_k<S: Scalar>(case: &Case<S>) -> R {
             &z,
             &s.positions,
             &contacts,
-            false,
+            ConvexSet::Cone,
             |v| project_k(v, &two_r),
             |y| k_contacts(y, &two_r),
         )
@@ -224,7 +241,7 @@ pub fn proj_characterization_h<S: Scalar>(case: &Case<S>) -> R {
             case.data().velocities(),
             &s.velocities,
             &contacts,
-            true,
+            ConvexSet::Subspace,
             |v| project_h(v, &clusters),
             |w| h_contacts(w, &clusters),
         )
@@ -258,7 +275,7 @@ mod tests {
             &z,
             &x,
             &c,
-            false,
+            ConvexSet::Cone,
             |v| project_k(v, &two_r),
             |y| k_contacts(y, &two_r),
         )
@@ -269,7 +286,7 @@ mod tests {
             &z,
             &w,
             &c,
-            true,
+            ConvexSet::Subspace,
             |v| project_h(v, &clusters),
             |w| h_contacts(w, &clusters),
         )
@@ -294,7 +311,9 @@ mod tests {
             y
         };
         let z: Vec<_> = [3, 0, 0, 10, 11].into_iter().map(q).collect();
-        let e = characterization(&z, &x, &c, false, local, |y| k_contacts(y, &two_r));
+        let e = characterization(&z, &x, &c, ConvexSet::Cone, local, |y| {
+            k_contacts(y, &two_r)
+        });
         assert!(e.is_err(), "{e:?}");
     }
 
@@ -307,7 +326,7 @@ mod tests {
             &x.clone(),
             &x,
             &c,
-            false,
+            ConvexSet::Cone,
             |v| v.to_vec(),
             |y| k_contacts(y, &two_r),
         );
@@ -322,9 +341,14 @@ mod tests {
             out
         };
         let z: Vec<_> = [2, 0, 5, 1, 1].into_iter().map(q).collect();
-        let e = characterization(&z, &project_h(&z, &clusters), &c, true, short, |w| {
-            h_contacts(w, &clusters)
-        });
+        let e = characterization(
+            &z,
+            &project_h(&z, &clusters),
+            &c,
+            ConvexSet::Subspace,
+            short,
+            |w| h_contacts(w, &clusters),
+        );
         assert!(e.is_err());
     }
 }

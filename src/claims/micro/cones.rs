@@ -9,7 +9,7 @@
 //! …, 1) + Σ_j (u_{j+1} − u_j) s_j`), and its polar by the `n_j` of the
 //! contacts.
 
-use super::characterization::normal_coefficients;
+use super::characterization::{normal_coefficients, ConvexSet};
 use super::{dot, render_vec, state, sub, R};
 use crate::claims::{Case, Violation};
 use crate::cluster::{contact_set, velocity_cone_violation};
@@ -259,7 +259,7 @@ pub fn polar_cone_at<S: Scalar>(
             render_vec(v_normal)
         ));
     }
-    normal_coefficients(v_normal, &contacts, false).map_err(|e| {
+    normal_coefficients(v_normal, &contacts, ConvexSet::Cone).map_err(|e| {
         format!(
             "v = {} ∈ (T_x K)° is not a combination of the contacts' n_j: {e}",
             render_vec(v_normal)

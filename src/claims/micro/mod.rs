@@ -34,6 +34,7 @@ pub use bounds::{
 };
 pub use characterization::{
     characterization, normal_coefficients, proj_characterization_h, proj_characterization_k,
+    ConvexSet,
 };
 pub use cones::{polar_cone, tangent_cone, translated_cone};
 pub use kkt::{

@@ -228,14 +228,37 @@ fn h_basis<S: Scalar>(x: &[S], two_r: &S) -> Vec<Vec<S>> {
         .collect()
 }
 
-fn orthogonal_to_h<S: Scalar>(case: &Case<S>, id: &'static str, subtract_x: bool) -> R {
+/// The vector of `ℝ^N` that a statement says is orthogonal to `H_{x(t)}`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Orthogonal {
+    /// The free flight `x⁰ + t u⁰` (the proof of `lem:incl-HSN`,
+    /// `eq:w-Hs-perp`).
+    FreeFlight,
+    /// Its distance to the motion, `x⁰ + t u⁰ − x(t)` (`lem:incl-HSN`).
+    FreeFlightMinusPosition,
+}
+
+impl Orthogonal {
+    /// The vector in words.
+    fn formula(self) -> &'static str {
+        match self {
+            Orthogonal::FreeFlight => "x⁰ + t u⁰",
+            Orthogonal::FreeFlightMinusPosition => "x⁰ + t u⁰ − x(t)",
+        }
+    }
+}
+
+/// `⟨v, w⟩ = 0` for every `w` of a basis of `H_{x(t)}`, `v` the vector
+/// `orthogonal` names, at every probe time.
+fn orthogonal_to_h<S: Scalar>(case: &Case<S>, id: &'static str, orthogonal: Orthogonal) -> R {
     let two_r = case.data().two_r();
     for t in &case.times {
         let s = state(case, t, id)?;
-        let mut v = free_flight(case.data(), t);
-        if subtract_x {
-            v = sub(&v, &s.positions);
-        }
+        let flight = free_flight(case.data(), t);
+        let v = match orthogonal {
+            Orthogonal::FreeFlight => flight,
+            Orthogonal::FreeFlightMinusPosition => sub(&flight, &s.positions),
+        };
         for w in h_basis(&s.positions, &two_r) {
             let d = dot(&v, &w);
             if !d.is_zero() {
@@ -247,7 +270,7 @@ fn orthogonal_to_h<S: Scalar>(case: &Case<S>, id: &'static str, subtract_x: bool
                         "t = {}: w = indicator of the cluster of particles [{first}..{}] ∈ H_x(t), ⟨{}, w⟩ = {} ≠ 0",
                         t.render(),
                         first + size - 1,
-                        if subtract_x { "x⁰ + t u⁰ − x(t)" } else { "x⁰ + t u⁰" },
+                        orthogonal.formula(),
                         d.render()
                     ),
                 )
@@ -263,18 +286,22 @@ fn orthogonal_to_h<S: Scalar>(case: &Case<S>, id: &'static str, subtract_x: bool
 /// `lem:incl-HSN`: `H_{x(t)} ⊂ [x⁰ + t u⁰ − x(t)]^⊥` (checked on a basis of
 /// `H`; the inclusion in the tangent cone is immediate).
 pub fn incl_hsn<S: Scalar>(case: &Case<S>) -> R {
-    orthogonal_to_h(case, "lem:incl-HSN", true)
+    orthogonal_to_h(case, "lem:incl-HSN", Orthogonal::FreeFlightMinusPosition)
 }
 
 /// `lem:incl-HSN#proof-second-inclusion`: the proof announces
 /// "H_{x̃(t)} ⊂ [x⁰ + t u⁰]^⊥".
 pub fn incl_hsn_printed<S: Scalar>(case: &Case<S>) -> R {
-    orthogonal_to_h(case, "lem:incl-HSN#proof-second-inclusion", false)
+    orthogonal_to_h(
+        case,
+        "lem:incl-HSN#proof-second-inclusion",
+        Orthogonal::FreeFlight,
+    )
 }
 
 /// `eq:w-Hs-perp`: `⟨x⁰ + t u⁰, w⟩ = 0` for `w ∈ H_{x(t)}`, as printed.
 pub fn w_hs_perp<S: Scalar>(case: &Case<S>) -> R {
-    orthogonal_to_h(case, "eq:w-Hs-perp", false)
+    orthogonal_to_h(case, "eq:w-Hs-perp", Orthogonal::FreeFlight)
 }
 
 /// `prop:proj-velo-micro#step1`: `⟨u⁰ − u(t), u(t)⟩ ≥ 0`.

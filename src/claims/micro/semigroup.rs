@@ -2,19 +2,27 @@
 //! growth of the contact set in time (`df:H-micro`).
 
 use super::{render_vec, state, R};
+use crate::claims::coq::Statement;
 use crate::claims::{Case, Violation};
 use crate::cluster::{contact_clusters, project_h};
 use crate::projection::project_k;
 use crate::scalar::Scalar;
 use crate::state::State;
 
-/// `eq:semigroup` and `eq:projortho-sg`: for probe times `s < t`,
-/// `x(t) = P_K(x(s) + (t − s)u(s))` and `u(t) = P_{H_{x(t)}}(u(s))`.
-fn semigroup_both<S: Scalar>(case: &Case<S>, check_x: bool) -> R {
-    let id = if check_x {
-        "eq:semigroup"
-    } else {
-        "eq:projortho-sg"
+/// The half of the semigroup property a check reads.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Half {
+    /// `eq:semigroup`: `x(t) = P_K(x(s) + (t − s)u(s))`.
+    Positions,
+    /// `eq:projortho-sg`: `u(t) = P_{H_{x(t)}}(u(s))`.
+    Velocities,
+}
+
+/// `eq:semigroup` or `eq:projortho-sg` (the `half`) for probe times `s < t`.
+fn semigroup_half<S: Scalar>(case: &Case<S>, half: Half) -> R {
+    let id = match half {
+        Half::Positions => "eq:semigroup",
+        Half::Velocities => "eq:projortho-sg",
     };
     let two_r = case.data().two_r();
     let states: Vec<State<S>> = case
@@ -28,39 +36,42 @@ fn semigroup_both<S: Scalar>(case: &Case<S>, check_x: bool) -> R {
                 continue;
             }
             let dt = st.t.clone() - &s.t;
-            if check_x {
-                let y: Vec<S> = s
-                    .positions
-                    .iter()
-                    .zip(&s.velocities)
-                    .map(|(x, u)| x.clone() + &(dt.clone() * u))
-                    .collect();
-                let x = project_k(&y, &two_r);
-                if x != st.positions {
-                    return Err(Violation::new(
-                        id,
-                        format!(
-                            "s = {}, t = {}: P_K(x(s) + (t−s)u(s)) = {} but x(t) = {}",
-                            s.t.render(),
-                            st.t.render(),
-                            render_vec(&x),
-                            render_vec(&st.positions)
-                        ),
-                    ));
+            match half {
+                Half::Positions => {
+                    let y: Vec<S> = s
+                        .positions
+                        .iter()
+                        .zip(&s.velocities)
+                        .map(|(x, u)| x.clone() + &(dt.clone() * u))
+                        .collect();
+                    let x = project_k(&y, &two_r);
+                    if x != st.positions {
+                        return Err(Violation::new(
+                            id,
+                            format!(
+                                "s = {}, t = {}: P_K(x(s) + (t−s)u(s)) = {} but x(t) = {}",
+                                s.t.render(),
+                                st.t.render(),
+                                render_vec(&x),
+                                render_vec(&st.positions)
+                            ),
+                        ));
+                    }
                 }
-            } else {
-                let u = project_h(&s.velocities, &contact_clusters(&st.positions, &two_r));
-                if u != st.velocities {
-                    return Err(Violation::new(
-                        id,
-                        format!(
-                            "s = {}, t = {}: P_H(u(s)) = {} but u(t) = {}",
-                            s.t.render(),
-                            st.t.render(),
-                            render_vec(&u),
-                            render_vec(&st.velocities)
-                        ),
-                    ));
+                Half::Velocities => {
+                    let u = project_h(&s.velocities, &contact_clusters(&st.positions, &two_r));
+                    if u != st.velocities {
+                        return Err(Violation::new(
+                            id,
+                            format!(
+                                "s = {}, t = {}: P_H(u(s)) = {} but u(t) = {}",
+                                s.t.render(),
+                                st.t.render(),
+                                render_vec(&u),
+                                render_vec(&st.velocities)
+                            ),
+                        ));
+                    }
                 }
             }
         }
@@ -70,16 +81,19 @@ fn semigroup_both<S: Scalar>(case: &Case<S>, check_x: bool) -> R {
 
 /// `eq:semigroup`.
 pub fn semigroup<S: Scalar>(case: &Case<S>) -> R {
-    semigroup_both(case, true)
+    semigroup_half(case, Half::Positions)
 }
 
 /// `eq:projortho-sg`.
 pub fn projortho_sg<S: Scalar>(case: &Case<S>) -> R {
-    semigroup_both(case, false)
+    semigroup_half(case, Half::Velocities)
 }
 
-fn contacts_grow<S: Scalar>(case: &Case<S>, id: &'static str, from_zero: bool) -> R {
+/// `df:H-micro#contacts-grow` as printed (`Ω` grows from `s = 0` on) or
+/// corrected (from `s = 0` only when `u⁰ ∈ H_{x⁰}`, else for `s > 0`).
+fn contacts_grow<S: Scalar>(case: &Case<S>, id: &'static str, statement: Statement) -> R {
     let two_r = case.data().two_r();
+    let from_zero = statement == Statement::Printed;
     let h0 = crate::cluster::h_violation(case.data().positions(), case.data().velocities(), &two_r)
         .is_none();
     let times: Vec<&S> = case
@@ -116,11 +130,15 @@ fn contacts_grow<S: Scalar>(case: &Case<S>, id: &'static str, from_zero: bool) -
 /// non-decreasing in time … N_{x(s)}K ⊂ N_{x(t)}K for all s ≤ t" (stated
 /// for data `x⁰ ∈ K`, `u⁰ ∈ C_{x⁰}`).
 pub fn contacts_grow_printed<S: Scalar>(case: &Case<S>) -> R {
-    contacts_grow(case, "df:H-micro#contacts-grow", true)
+    contacts_grow(case, "df:H-micro#contacts-grow", Statement::Printed)
 }
 
 /// Corrected: `Ω_{x(s)} ⊂ Ω_{x(t)}` for `0 < s ≤ t`, and from `s = 0` when
 /// `u⁰ ∈ H_{x⁰}`.
 pub fn contacts_grow_corrected<S: Scalar>(case: &Case<S>) -> R {
-    contacts_grow(case, "df:H-micro#contacts-grow (corrected)", false)
+    contacts_grow(
+        case,
+        "df:H-micro#contacts-grow (corrected)",
+        Statement::Corrected,
+    )
 }

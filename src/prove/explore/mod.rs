@@ -100,7 +100,18 @@ fn sign_bit(q: &BigRational) -> u8 {
 struct Decision {
     fingerprint: u64,
     outcome: u8,
-    implied: bool,
+    entailment: Entailment,
+}
+
+/// How a decision was reached: what its sign condition adds to the queries.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Entailment {
+    /// The only feasible outcome: the path condition implies it, so its
+    /// condition is left out of later queries.
+    Implied,
+    /// One of several feasible outcomes (the others queued as branches):
+    /// its condition is sent with every later query of the path.
+    Branched,
 }
 
 /// A path still to run: the decisions that lead to it and, when known, a

@@ -9,7 +9,9 @@ use std::hash::{Hash, Hasher};
 use num_rational::BigRational;
 use num_traits::Signed;
 
-use super::{flip, sign_bit, union_rel, Branch, Decision, Model, PathState, Rel, NEG, POS, ZERO};
+use super::{
+    flip, sign_bit, union_rel, Branch, Decision, Entailment, Model, PathState, Rel, NEG, POS, ZERO,
+};
 use crate::prove::eliminate::{Atom, Constraint};
 use crate::prove::poly::Poly;
 use crate::prove::smt::Sat;
@@ -48,15 +50,22 @@ impl PathState {
     /// Takes the outcome `rel` of the comparison of `p` (normalised `np`):
     /// recorded in the sign masks and the path condition, and kept as a
     /// constraint of the path.
-    fn keep(&mut self, c: &Comparison, rel: Rel, implied: bool) {
-        self.record(&c.np, c.flipped, rel, Some(rel.smt(&c.ptext)), implied);
+    fn keep(&mut self, c: &Comparison, rel: Rel, entailment: Entailment) {
+        self.record(&c.np, c.flipped, rel, Some(rel.smt(&c.ptext)), entailment);
         self.cons.push(Constraint::Atom(Atom {
             poly: c.p.clone(),
             rel,
         }));
     }
 
-    fn record(&mut self, np: &Poly, flipped: bool, rel: Rel, text: Option<String>, implied: bool) {
+    fn record(
+        &mut self,
+        np: &Poly,
+        flipped: bool,
+        rel: Rel,
+        text: Option<String>,
+        entailment: Entailment,
+    ) {
         let m = if flipped {
             flip(rel.mask())
         } else {
@@ -65,7 +74,7 @@ impl PathState {
         let e = self.masks.entry(np.clone()).or_insert(NEG | ZERO | POS);
         *e &= m;
         if let Some(t) = text {
-            if !implied {
+            if entailment == Entailment::Branched {
                 self.pc.push(t.clone());
             }
             self.full_pc.push(t);
@@ -92,7 +101,7 @@ impl PathState {
                 return 0;
             }
             &[k] => {
-                self.record(&np, flipped, outcomes[k], None, true);
+                self.record(&np, flipped, outcomes[k], None, Entailment::Implied);
                 return k;
             }
             _ => {}
@@ -129,9 +138,9 @@ impl PathState {
                 self.taken.push(Decision {
                     fingerprint,
                     outcome: k0 as u8,
-                    implied: true,
+                    entailment: Entailment::Implied,
                 });
-                self.keep(&c, outcomes[k0], true);
+                self.keep(&c, outcomes[k0], Entailment::Implied);
                 return k0;
             }
         }
@@ -153,7 +162,7 @@ impl PathState {
             fingerprint: c.fingerprint,
             ..forced
         });
-        self.keep(c, c.outcomes[k], forced.implied);
+        self.keep(c, c.outcomes[k], forced.entailment);
         k
     }
 
@@ -259,13 +268,17 @@ impl PathState {
         };
         self.model = first.model;
         // The only feasible outcome: the path condition implies it.
-        let implied = feasible.as_slice().is_empty();
+        let entailment = if feasible.as_slice().is_empty() {
+            Entailment::Implied
+        } else {
+            Entailment::Branched
+        };
         for alt in feasible {
             let mut prefix = self.taken.clone();
             prefix.push(Decision {
                 fingerprint: c.fingerprint,
                 outcome: alt.outcome as u8,
-                implied: false,
+                entailment: Entailment::Branched,
             });
             self.branches.push(Branch {
                 prefix,
@@ -275,9 +288,9 @@ impl PathState {
         self.taken.push(Decision {
             fingerprint: c.fingerprint,
             outcome: first.outcome as u8,
-            implied,
+            entailment,
         });
-        self.keep(c, c.outcomes[first.outcome], implied);
+        self.keep(c, c.outcomes[first.outcome], entailment);
         first.outcome
     }
 }
