@@ -20,7 +20,7 @@
 //! The kernel's width bound holds for the sums of every contiguous range of
 //! entries, so it covers the joined blocks too.
 
-use super::small::{pava, pools};
+use super::small::{pava, pools, USum};
 use super::Run;
 
 /// Below this many entries one thread runs the whole (starting a thread
@@ -69,13 +69,13 @@ impl<R> Parts<R> {
 
 /// [`pava`] of `xs`, `us`, on two threads (the two halves) when there are
 /// at least `parallel_min` entries (and at least 2): the same blocks.
-pub(crate) fn pava_parts(
+pub(crate) fn pava_parts<V: USum>(
     xs: &[i64],
     us: &[i64],
     a: i64,
     b: i64,
     parallel_min: usize,
-) -> Parts<Run<i128>> {
+) -> Parts<Run<i128, V>> {
     let n = xs.len().min(us.len());
     if n < parallel_min.max(2) {
         return Parts::from(pava(xs, us, a, b));
@@ -101,7 +101,10 @@ pub(crate) fn pava_parts(
 /// The blocks of the entries of `left` followed by those of `right` (each
 /// PAVA's blocks of its entries): the right blocks pushed on the left
 /// stack while they pool (module documentation).
-pub(crate) fn join(mut left: Vec<Run<i128>>, right: Vec<Run<i128>>) -> Parts<Run<i128>> {
+pub(crate) fn join<V: USum>(
+    mut left: Vec<Run<i128, V>>,
+    right: Vec<Run<i128, V>>,
+) -> Parts<Run<i128, V>> {
     let mut skip = 0;
     while let Some(first) = right.get(skip) {
         let mut b = first.clone();
@@ -115,7 +118,7 @@ pub(crate) fn join(mut left: Vec<Run<i128>>, right: Vec<Run<i128>>) -> Parts<Run
                 b = Run {
                     k: top.k + b.k,
                     sy: top.sy.wrapping_add(b.sy),
-                    su: top.su.wrapping_add(b.su),
+                    su: top.su.plus(b.su),
                 };
             }
         }

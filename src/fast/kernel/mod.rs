@@ -245,6 +245,8 @@ pub(crate) fn word_clusters<W: Word, V>(blocks: &[Run<W, V>]) -> Vec<Cluster> {
 pub(crate) enum Sums {
     /// `i128` sums, in the parts the threads left them ([`Parts`]).
     I128(Parts<Run<i128>>),
+    /// `i128` `ΣY`, `ΣU` in `i64` (`N max|U| < 2^63`).
+    I128U64(Parts<Run<i128, i64>>),
     I256(Vec<Run<I256>>),
     I512(Sparse<8, I512>),
     /// 512-bit `ΣY`, `ΣU` in `i128` (`bits(max|U|) + b_K < 128`).
@@ -290,7 +292,7 @@ impl Blocks {
     /// The integer width the block sums are held in.
     pub fn width(&self) -> Width {
         match self.sums {
-            Sums::I128(_) => Width::I128,
+            Sums::I128(_) | Sums::I128U64(_) => Width::I128,
             Sums::I256(_) => Width::I256,
             Sums::I512(_) | Sums::I512U128(_) => Width::I512,
             Sums::Big(_) => Width::Big,
@@ -300,6 +302,7 @@ impl Blocks {
     pub fn len(&self) -> usize {
         match &self.sums {
             Sums::I128(v) => v.len(),
+            Sums::I128U64(v) => v.len(),
             Sums::I256(v) => v.len(),
             Sums::I512(v) => v.len(),
             Sums::I512U128(v) => v.len(),
@@ -313,6 +316,7 @@ impl Blocks {
     fn size(&self, j: usize) -> u64 {
         match &self.sums {
             Sums::I128(v) => v.get(j).k,
+            Sums::I128U64(v) => v.get(j).k,
             Sums::I256(v) => v[j].k,
             Sums::I512(v) => v.size(j),
             Sums::I512U128(v) => v.size(j),
@@ -352,6 +356,11 @@ impl Blocks {
             Sums::I128(v) => {
                 let r = v.get(j);
                 ratio_over(if y { r.sy } else { r.su }, i128::from(r.k), d, d_small)
+            }
+            Sums::I128U64(v) => {
+                let r = v.get(j);
+                let s = if y { r.sy } else { i128::from(r.su) };
+                ratio_over(s, i128::from(r.k), d, d_small)
             }
             Sums::I256(v) => {
                 let s = if y { v[j].sy } else { v[j].su };
@@ -516,7 +525,12 @@ pub(crate) fn blocks_on(d: &IntegerData, t: &BigRational, parallel_min: usize) -
             let (a, b) = (at.a.to_i64().unwrap_or(0), at.b.to_i64().unwrap_or(0));
             // |a|, |X_i|, |b|, |U_i| < 2^63: each product < 2^126, and
             // |Y_i| < 2^b_Y with b_Y + b_K < 128 (module docs).
-            Sums::I128(halves::pava_parts(xs, us, a, b, parallel_min))
+            // |ΣU| ≤ N max|U| < 2^(bits(N) + bits(max|U|)) ≤ 2^63.
+            if u64::from(usize::BITS - n.leading_zeros()) + d.u_bits <= 63 {
+                Sums::I128U64(halves::pava_parts(xs, us, a, b, parallel_min))
+            } else {
+                Sums::I128(halves::pava_parts(xs, us, a, b, parallel_min))
+            }
         }
         (_, _, Width::I128 | Width::I256) => {
             let e = Entries::<4>::new(d, &at);

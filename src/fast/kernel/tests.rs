@@ -295,6 +295,24 @@ impl crate::fast::engine::ExactEngine for TwoThreads {
     }
 }
 
+/// The sums of the `i128` loop's blocks, `ΣU` widened (`None` for the
+/// other widths).
+fn i128_runs(b: &Blocks) -> Option<Vec<Run<i128>>> {
+    match &b.sums {
+        Sums::I128(v) => Some(v.iter().cloned().collect()),
+        Sums::I128U64(v) => Some(
+            v.iter()
+                .map(|r| Run {
+                    k: r.k,
+                    sy: r.sy,
+                    su: i128::from(r.su),
+                })
+                .collect(),
+        ),
+        _ => None,
+    }
+}
+
 /// The two-thread loop through the oracle battery, at the probe times of
 /// random scenes (contacts, chains, ties broken by `U`), and against the
 /// one-thread loop block for block.
@@ -322,9 +340,7 @@ fn two_threads_pass_the_battery() {
         }
         for t in &times {
             let (one, two) = (blocks_on(&d, t, usize::MAX), blocks_on(&d, t, 2));
-            if let (Sums::I128(a), Sums::I128(b)) = (&one.sums, &two.sums) {
-                let a: Vec<_> = a.iter().collect();
-                let b: Vec<_> = b.iter().collect();
+            if let (Some(a), Some(b)) = (i128_runs(&one), i128_runs(&two)) {
                 assert_eq!(a, b, "scene {k}, t = {t}");
                 split += 1;
             }
@@ -357,6 +373,15 @@ fn halves_and_register_loop_equal_pava_words() {
             (a * x + b * u, u)
         });
         assert_eq!(small::pava(&xs, &us, a as i64, b as i64), want, "case {k}");
+        let narrow: Vec<Run<i128>> = small::pava::<i64>(&xs, &us, a as i64, b as i64)
+            .into_iter()
+            .map(|r| Run {
+                k: r.k,
+                sy: r.sy,
+                su: i128::from(r.su),
+            })
+            .collect();
+        assert_eq!(narrow, want, "case {k}, i64 U sums");
         for h in 0..=n {
             let left = small::pava(&xs[..h], &us[..h], a as i64, b as i64);
             let right = small::pava(&xs[h..], &us[h..], a as i64, b as i64);
@@ -370,4 +395,34 @@ fn halves_and_register_loop_equal_pava_words() {
         }
     }
     assert!(across > 500, "{across}");
+}
+
+/// The `i128` loop keeps `ΣU` in `i64` exactly when `bits(N) +
+/// bits(max|U|) ≤ 63`: four particles of velocities `c + 3, c + 1, c − 1,
+/// c − 3` one unit apart (`r = 1/2`), which all meet at `t = 1/2`, so that
+/// at `t ≥ 1/2` one block sums `ΣU = 4c`: with `c = 2^59` (`bits 60 + 3 =
+/// 63`) in `i64`; with `c = 2^61` (`62 + 3 = 65`, and `4c = 2^63` would
+/// wrap an `i64`) in `i128`. Both equal the generic path.
+#[test]
+fn both_u_words_of_the_i128_loop() {
+    for (e, narrow) in [(59u32, true), (60, false), (61, false)] {
+        let c = pow2(e);
+        let x = (0..4).map(|i| q(2 * i, 1)).collect();
+        let u = [3, 1, -1, -3].map(|v| c.clone() + q(v, 1)).to_vec();
+        let data = InitialData::new(q(1, 2), x, u).unwrap();
+        let d = IntegerData::new(&data);
+        for t in [q(0, 1), q(1, 4), q(1, 2), q(1, 1)] {
+            for parallel_min in [2, usize::MAX] {
+                let b = blocks_on(&d, &t, parallel_min);
+                assert_eq!(b.width(), Width::I128, "2^{e}, t = {t}");
+                assert_eq!(matches!(b.sums, Sums::I128U64(_)), narrow, "2^{e}");
+                assert_eq!(
+                    state_of_blocks(&d, &b, &t),
+                    projection::state_at(&data, &t).unwrap(),
+                    "2^{e}, t = {t}"
+                );
+            }
+        }
+        assert_eq!(blocks_at(&d, &q(1, 1)).len(), 1, "2^{e}");
+    }
 }
