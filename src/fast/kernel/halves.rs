@@ -20,7 +20,7 @@
 //! The kernel's width bound holds for the sums of every contiguous range of
 //! entries, so it covers the joined blocks too.
 
-use super::small::{pava, pools, USum};
+use super::small::{pava, pava_into, pools, USum};
 use super::Run;
 
 /// Below this many entries one thread runs the whole (starting a thread
@@ -82,8 +82,11 @@ pub(crate) fn pava_parts<V: USum>(
     }
     let h = n / 2;
     let ((xl, xr), (ul, ur)) = (xs.split_at(h), us.split_at(h));
+    // Both stacks allocated here: memory from this thread's (warm) arena.
+    let stack = Vec::with_capacity(n - h);
     let (left, right) = std::thread::scope(|s| {
-        let worker = std::thread::Builder::new().spawn_scoped(s, move || pava(xr, ur, a, b));
+        let worker =
+            std::thread::Builder::new().spawn_scoped(s, move || pava_into(stack, xr, ur, a, b));
         let left = pava(xl, ul, a, b);
         let right = match worker {
             Ok(handle) => match handle.join() {

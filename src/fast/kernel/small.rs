@@ -81,8 +81,22 @@ pub(crate) fn pools<V: USum>(l: &Run<i128, V>, r: &Run<i128, V>) -> bool {
 /// under the bound of the module docs: the blocks of
 /// [`super::pava_words`], left to right.
 pub(crate) fn pava<V: USum>(xs: &[i64], us: &[i64], a: i64, b: i64) -> Vec<Run<i128, V>> {
+    pava_into(Vec::with_capacity(xs.len()), xs, us, a, b)
+}
+
+/// [`pava`], the blocks written to `stack` (emptied first; its capacity
+/// kept, grown if it is short): a caller may allocate it on another thread
+/// (the allocator's arena of the thread that allocates serves the memory,
+/// and the calling thread's is the one already warm).
+pub(crate) fn pava_into<V: USum>(
+    mut stack: Vec<Run<i128, V>>,
+    xs: &[i64],
+    us: &[i64],
+    a: i64,
+    b: i64,
+) -> Vec<Run<i128, V>> {
     debug_assert_eq!(xs.len(), us.len());
-    let mut stack: Vec<Run<i128, V>> = Vec::with_capacity(xs.len());
+    stack.clear();
     let mut entries = xs.iter().zip(us).map(|(&x, &u)| entry::<V>(a, b, x, u));
     let Some((sy, su)) = entries.next() else {
         return stack;
