@@ -15,6 +15,7 @@ use num_rational::BigRational;
 
 use sticky::fast::adaptive::adaptive_blocks_at;
 use sticky::fast::kernel::{blocks_at, IntegerData};
+use sticky::fast::merge::IntegerTrajectory;
 use sticky::fast::wide::Int;
 use sticky::projection::isotonic;
 use sticky::report::bench::{decimal_scene, scene};
@@ -44,13 +45,20 @@ fn sample<I, R>(units: usize, mut make: impl FnMut(u64) -> I, mut f: impl FnMut(
 
 fn main() {
     // `cargo bench -- <filter>` passes extra arguments; `--bench` is cargo's.
-    let filter: Vec<String> = std::env::args()
+    // `n=<N>` chooses the sizes (10^4 and 10^5 by default).
+    let (sizes, filter): (Vec<String>, Vec<String>) = std::env::args()
         .skip(1)
         .filter(|a| !a.starts_with("--"))
-        .collect();
+        .partition(|a| a.starts_with("n="));
+    let sizes: Vec<usize> = sizes.iter().filter_map(|a| a[2..].parse().ok()).collect();
+    let sizes = if sizes.is_empty() {
+        vec![10_000, 100_000]
+    } else {
+        sizes
+    };
     let wanted = |name: &str| filter.is_empty() || filter.iter().any(|f| name.contains(f.as_str()));
     let t = BigRational::new(BigInt::from(1), BigInt::from(100));
-    for n in [10_000usize, 100_000] {
+    for n in sizes {
         let free = |s: u64| -> Vec<f64> {
             let d = scene(n, s);
             d.shifted_positions()
@@ -61,43 +69,41 @@ fn main() {
         };
         let base = sample(n, free, |y| isotonic::<f64>(y));
         println!("pava/f64/{n:<8} {base:>10.2} ns/particle   1.00× f64");
-        let line = |name: &str, v: f64| {
+        let line = |name: &str, v: &dyn Fn() -> f64| {
             if wanted(name) {
+                let v = v();
                 println!("{name:<22} {v:>10.2} ns/particle {:>6.2}× f64", v / base);
             }
         };
         let ints = |s: u64| IntegerData::new(&scene(n, s));
-        line(
-            &format!("pava/i128/{n}"),
-            sample(n, ints, |d| blocks_at(d, &t)),
-        );
+        line(&format!("pava/i128/{n}"), &|| {
+            sample(n, ints, |d| blocks_at(d, &t))
+        });
         let wide = |s: u64| IntegerData::new(&decimal_scene(&scene(n, s), 30));
-        line(
-            &format!("pava/i256/{n}"),
-            sample(n, wide, |d| blocks_at(d, &t)),
-        );
+        line(&format!("pava/i256/{n}"), &|| {
+            sample(n, wide, |d| blocks_at(d, &t))
+        });
         let wider = |s: u64| IntegerData::new(&decimal_scene(&scene(n, s), 100));
-        line(
-            &format!("pava/i512/{n}"),
-            sample(n, wider, |d| blocks_at(d, &t)),
-        );
+        line(&format!("pava/i512/{n}"), &|| {
+            sample(n, wider, |d| blocks_at(d, &t))
+        });
         let big = |s: u64| IntegerData::new(&decimal_scene(&scene(n, s), 200));
-        line(
-            &format!("pava/bigint/{n}"),
-            sample(n, big, |d| blocks_at(d, &t)),
-        );
-        line(
-            &format!("pava/adaptive-big/{n}"),
-            sample(n, big, |d| adaptive_blocks_at(d, &t)),
-        );
-        line(
-            &format!("means/lowest-terms/{n}"),
+        line(&format!("pava/bigint/{n}"), &|| {
+            sample(n, big, |d| blocks_at(d, &t))
+        });
+        line(&format!("pava/adaptive-big/{n}"), &|| {
+            sample(n, big, |d| adaptive_blocks_at(d, &t))
+        });
+        line(&format!("history/i64/{n}"), &|| {
+            sample(n, |s| scene(n, s), IntegerTrajectory::new)
+        });
+        line(&format!("means/lowest-terms/{n}"), &|| {
             sample(
                 n,
                 |s| blocks_at(&IntegerData::new(&scene(n, s)), &t),
                 |b| (0..b.len()).map(|j| b.mean_y(j)).collect::<Vec<_>>(),
-            ),
-        );
+            )
+        });
     }
     // 256- and 512-bit arithmetic, per operation.
     if wanted("i256") {

@@ -7,7 +7,7 @@
 //! ([`crate::fast::kernel::Width::I128`], [`crate::fast::kernel::Width::I256`]
 //! or [`crate::fast::kernel::Width::I512`]) the
 //! exact kernel is as cheap as a float PAVA or within a small factor of it
-//! (measured by `sticky bench`: 0.7× and 2× our f64 PAVA), so it answers
+//! (the figures: docs/guide/performance.md), so it answers
 //! ([`Path::Integer`]). Only data that need `BigInt` take the filter: the
 //! decisions run in `f64` ([`Path::Certified`]) and the exact block sums are
 //! accumulated once over the final partition; if the uncertain decisions

@@ -224,7 +224,7 @@ impl ExactDiv {
 pub(crate) fn scale_words(data: &InitialData<BigRational>) -> Option<Scaled> {
     let two_r = small(&data.two_r())?;
     let (x, u) = both(
-        data.n() >= PARALLEL_MIN,
+        Cores::from_size(data.n(), PARALLEL_MIN),
         || match narrowed(data.positions(), small_word) {
             Some(xs) => scale_positions(two_r, &xs),
             None => scale_positions(two_r, &narrowed(data.positions(), small)?),
@@ -248,13 +248,33 @@ pub(crate) fn scale_words(data: &InitialData<BigRational>) -> Option<Scaled> {
 /// Above this many particles the two columns are scaled on two threads.
 pub(crate) const PARALLEL_MIN: usize = 1 << 15;
 
+/// How many cores a piece of work runs on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Cores {
+    /// This thread alone.
+    One,
+    /// This thread and a second one.
+    Two,
+}
+
+impl Cores {
+    /// [`Cores::Two`] from `min` items of work on, [`Cores::One`] below.
+    pub(crate) fn from_size(n: usize, min: usize) -> Cores {
+        if n >= min {
+            Cores::Two
+        } else {
+            Cores::One
+        }
+    }
+}
+
 /// `(a(), b())`, on two threads when `parallel`.
 pub(crate) fn both<A: Send, B: Send>(
-    parallel: bool,
+    cores: Cores,
     a: impl FnOnce() -> A + Send,
     b: impl FnOnce() -> B + Send,
 ) -> (A, B) {
-    if !parallel {
+    if cores == Cores::One {
         return (a(), b());
     }
     std::thread::scope(|s| {

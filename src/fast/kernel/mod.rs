@@ -60,6 +60,11 @@ use crate::initial::InitialData;
 use crate::projection;
 use crate::state::State;
 
+mod halves;
+mod small;
+
+use halves::Parts;
+
 /// The integer type the PAVA loop ran on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Width {
@@ -155,7 +160,8 @@ impl IntegerData {
     /// Scales the data once.
     pub fn new(data: &InitialData<BigRational>) -> Self {
         // Machine words when every scaled value fits `i128` (the common
-        // case, ~30× cheaper), `BigInt` otherwise: the same integers.
+        // case, no allocation per value), `BigInt` otherwise: the same
+        // integers.
         let (x, u, dx, du) = match crate::fast::scaling::scale_words(data) {
             Some(s) => {
                 let big = |v: &[i128]| v.iter().map(|&a| BigInt::from(a)).collect::<Vec<_>>();
@@ -237,7 +243,10 @@ pub(crate) fn word_clusters<W: Word, V>(blocks: &[Run<W, V>]) -> Vec<Cluster> {
 /// The block sums in the width the loop ran on.
 #[derive(Debug, Clone)]
 pub(crate) enum Sums {
-    I128(Vec<Run<i128>>),
+    /// `i128` sums, in the parts the threads left them ([`Parts`]).
+    I128(Parts<Run<i128>>),
+    /// `i128` `ΣY`, `ΣU` in `i64` (`N max|U| < 2^63`).
+    I128U64(Parts<Run<i128, i64>>),
     I256(Vec<Run<I256>>),
     I512(Sparse<8, I512>),
     /// 512-bit `ΣY`, `ΣU` in `i128` (`bits(max|U|) + b_K < 128`).
@@ -283,7 +292,7 @@ impl Blocks {
     /// The integer width the block sums are held in.
     pub fn width(&self) -> Width {
         match self.sums {
-            Sums::I128(_) => Width::I128,
+            Sums::I128(_) | Sums::I128U64(_) => Width::I128,
             Sums::I256(_) => Width::I256,
             Sums::I512(_) | Sums::I512U128(_) => Width::I512,
             Sums::Big(_) => Width::Big,
@@ -293,6 +302,7 @@ impl Blocks {
     pub fn len(&self) -> usize {
         match &self.sums {
             Sums::I128(v) => v.len(),
+            Sums::I128U64(v) => v.len(),
             Sums::I256(v) => v.len(),
             Sums::I512(v) => v.len(),
             Sums::I512U128(v) => v.len(),
@@ -305,7 +315,8 @@ impl Blocks {
     }
     fn size(&self, j: usize) -> u64 {
         match &self.sums {
-            Sums::I128(v) => v[j].k,
+            Sums::I128(v) => v.get(j).k,
+            Sums::I128U64(v) => v.get(j).k,
             Sums::I256(v) => v[j].k,
             Sums::I512(v) => v.size(j),
             Sums::I512U128(v) => v.size(j),
@@ -342,12 +353,15 @@ impl Blocks {
         };
         let pick = |r: &Run<BigInt>| if y { r.sy.clone() } else { r.su.clone() };
         match &self.sums {
-            Sums::I128(v) => ratio_over(
-                if y { v[j].sy } else { v[j].su },
-                i128::from(v[j].k),
-                d,
-                d_small,
-            ),
+            Sums::I128(v) => {
+                let r = v.get(j);
+                ratio_over(if y { r.sy } else { r.su }, i128::from(r.k), d, d_small)
+            }
+            Sums::I128U64(v) => {
+                let r = v.get(j);
+                let s = if y { r.sy } else { i128::from(r.su) };
+                ratio_over(s, i128::from(r.k), d, d_small)
+            }
             Sums::I256(v) => {
                 let s = if y { v[j].sy } else { v[j].su };
                 crate::gcd::ratio(s.to_bigint(), d * BigInt::from(v[j].k))
@@ -434,8 +448,8 @@ pub(crate) fn pava_words<W: Word, V: Word>(
 ) -> Vec<Run<W, V>> {
     let mut stack: Vec<Run<W, V>> = Vec::with_capacity(n);
     for i in 0..n {
-        // The decision of [`projection::pools`] on loose variables:
-        // building a `Run` for the entry being pooled cost ~10 % here.
+        // The decision of [`projection::pools`] on loose variables: no
+        // `Run` is built for the entry being pooled.
         let (mut sy, mut su) = item(i);
         let mut k = 1u64;
         while let Some(top) = stack.last() {
@@ -498,20 +512,25 @@ impl AtTime {
 
 /// Exact PAVA at time `t` on the integer data (see the module docs).
 pub fn blocks_at(d: &IntegerData, t: &BigRational) -> Blocks {
+    blocks_on(d, t, halves::PARALLEL_MIN)
+}
+
+/// [`blocks_at`], the `i128` loop on two threads from `parallel_min`
+/// entries on ([`halves`]).
+pub(crate) fn blocks_on(d: &IntegerData, t: &BigRational, parallel_min: usize) -> Blocks {
     let at = AtTime::new(d, t);
     let n = d.n();
     let sums = match (&*d.x_col, &*d.u_col, at.width) {
         (Column::Small(xs), Column::Small(us), Width::I128) => {
-            let (a, b) = (
-                i128::from(at.a.to_i64().unwrap_or(0)),
-                i128::from(at.b.to_i64().unwrap_or(0)),
-            );
+            let (a, b) = (at.a.to_i64().unwrap_or(0), at.b.to_i64().unwrap_or(0));
             // |a|, |X_i|, |b|, |U_i| < 2^63: each product < 2^126, and
             // |Y_i| < 2^b_Y with b_Y + b_K < 128 (module docs).
-            Sums::I128(pava_words(n, |i| {
-                let (x, u) = (i128::from(xs[i]), i128::from(us[i]));
-                (a.wrapping_mul(x).wrapping_add(b.wrapping_mul(u)), u)
-            }))
+            // |ΣU| ≤ N max|U| < 2^(bits(N) + bits(max|U|)) ≤ 2^63.
+            if u64::from(usize::BITS - n.leading_zeros()) + d.u_bits <= 63 {
+                Sums::I128U64(halves::pava_parts(xs, us, a, b, parallel_min))
+            } else {
+                Sums::I128(halves::pava_parts(xs, us, a, b, parallel_min))
+            }
         }
         (_, _, Width::I128 | Width::I256) => {
             let e = Entries::<4>::new(d, &at);
@@ -605,8 +624,8 @@ const POOLED: u64 = 1 << 63;
 /// its sums recomputed from the columns ([`Entries`]) when asked for; a
 /// block of several entries keeps its sums. 8 bytes per block instead of
 /// a 96-byte [`Run`]: the loop writes less fresh memory, and each fresh
-/// page costs a page fault (~2 µs here, ~11 µs the first time a virtual
-/// machine touches it), more than the arithmetic of the particles on it.
+/// page costs a page fault, more than the arithmetic of the particles on
+/// it (docs/guide/performance.md).
 #[derive(Debug, Clone)]
 pub(crate) struct Sparse<const L: usize, V> {
     /// Block `j`, left to right: `POOLED | s` when its sums are

@@ -240,34 +240,189 @@ fn blocks_equal_by_clusters_and_means() {
     let blocks = |s: Sums| Blocks::new(s, BigInt::from(6), BigInt::from(3));
     // Means (y, u): (1/6, 1/3), (1/2, 2/3), then the same scaled by 2.
     let a = [run(1, 1, 1), run(2, 6, 4)];
-    assert_eq!(blocks(Sums::I128(a.to_vec())), blocks(big(&a)));
+    assert_eq!(blocks(Sums::I128(a.to_vec().into())), blocks(big(&a)));
     let scaled = [run(1, 1, 1), run(2, 6, 4)].map(|r| run(r.k, 2 * r.sy, 2 * r.su));
     let scaled = Blocks::new(
-        Sums::I128(scaled.to_vec()),
+        Sums::I128(scaled.to_vec().into()),
         BigInt::from(12),
         BigInt::from(6),
     );
-    assert_eq!(blocks(Sums::I128(a.to_vec())), scaled);
+    assert_eq!(blocks(Sums::I128(a.to_vec().into())), scaled);
     // Other clusters, the same means: one block of three at (1/6, 1/3)
     // against blocks of one and two at (1/6, 1/3).
-    let one = blocks(Sums::I128(vec![run(3, 3, 3)]));
-    let two = blocks(Sums::I128(vec![run(1, 1, 1), run(2, 2, 2)]));
+    let one = blocks(Sums::I128(vec![run(3, 3, 3)].into()));
+    let two = blocks(Sums::I128(vec![run(1, 1, 1), run(2, 2, 2)].into()));
     assert_eq!(one.clusters().len(), 1);
     assert_ne!(one, two);
     assert_ne!(two, one);
     // The same clusters and positions, another velocity.
     let other_u = [run(1, 1, 1), run(2, 6, 2)];
     assert_ne!(
-        blocks(Sums::I128(a.to_vec())),
-        blocks(Sums::I128(other_u.to_vec()))
+        blocks(Sums::I128(a.to_vec().into())),
+        blocks(Sums::I128(other_u.to_vec().into()))
     );
     // The same clusters and velocities, another position.
     let other_y = [run(1, 1, 1), run(2, 8, 4)];
     assert_ne!(
-        blocks(Sums::I128(a.to_vec())),
-        blocks(Sums::I128(other_y.to_vec()))
+        blocks(Sums::I128(a.to_vec().into())),
+        blocks(Sums::I128(other_y.to_vec().into()))
     );
-    assert!(blocks(Sums::I128(Vec::new())).is_empty());
-    assert!(!blocks(Sums::I128(a.to_vec())).is_empty());
+    assert!(blocks(Sums::I128(Vec::new().into())).is_empty());
+    assert!(!blocks(Sums::I128(a.to_vec().into())).is_empty());
     assert_eq!(blocks(big(&a)).len(), 2);
+}
+
+/// The `i128` loop forced onto two threads from two entries on: the
+/// kernel engine of the oracle battery with every split.
+struct TwoThreads;
+
+impl crate::fast::engine::ExactEngine for TwoThreads {
+    fn name(&self) -> &'static str {
+        "kernel, two threads from 2 entries"
+    }
+    fn summary(&self) -> &'static str {
+        "the i128 PAVA on integers, halves on two threads"
+    }
+    fn prepare(&self, data: &InitialData<BigRational>) -> Box<dyn crate::fast::engine::Prepared> {
+        struct Two(IntegerData);
+        impl crate::fast::engine::Prepared for Two {
+            fn state_at(&self, t: &BigRational) -> Result<State<BigRational>, Error> {
+                let b = blocks_on(&self.0, t, 2);
+                Ok(state_of_blocks(&self.0, &b, t))
+            }
+        }
+        Box::new(Two(IntegerData::new(data)))
+    }
+}
+
+/// The sums of the `i128` loop's blocks, `ΣU` widened (`None` for the
+/// other widths).
+fn i128_runs(b: &Blocks) -> Option<Vec<Run<i128>>> {
+    match &b.sums {
+        Sums::I128(v) => Some(v.iter().cloned().collect()),
+        Sums::I128U64(v) => Some(
+            v.iter()
+                .map(|r| Run {
+                    k: r.k,
+                    sy: r.sy,
+                    su: i128::from(r.su),
+                })
+                .collect(),
+        ),
+        _ => None,
+    }
+}
+
+/// The two-thread loop through the oracle battery, at the probe times of
+/// random scenes (contacts, chains, ties broken by `U`), and against the
+/// one-thread loop block for block.
+#[test]
+fn two_threads_pass_the_battery() {
+    use crate::fast::battery::check_engines;
+    use crate::fast::engine::{ExactEngine, GenericProjection};
+    let engines: [&dyn ExactEngine; 2] = [&GenericProjection, &TwoThreads];
+    let mut rng = SplitMix64::new(47);
+    let mut split = 0;
+    for k in 0..240 {
+        let data = initial_data(
+            &rng.bytes(300),
+            Limits {
+                max_n: 2 + k % 50,
+                max_den: 1 + (k % 3) as u32,
+                max_speed: 1 + (k % 5) as u32,
+            },
+        );
+        let d = IntegerData::new(&data);
+        let traj = crate::trajectory::Trajectory::new(data.clone());
+        let times = crate::trajectory::probe_times(&traj, Some(6));
+        if let Err(m) = check_engines(&engines, &data, &times) {
+            panic!("scene {k}: {m}");
+        }
+        for t in &times {
+            let (one, two) = (blocks_on(&d, t, usize::MAX), blocks_on(&d, t, 2));
+            if let (Some(a), Some(b)) = (i128_runs(&one), i128_runs(&two)) {
+                assert_eq!(a, b, "scene {k}, t = {t}");
+                split += 1;
+            }
+        }
+    }
+    assert!(split > 1000, "{split}");
+}
+
+/// Random `i64` columns with few distinct values (ties on `Y` broken by
+/// `U`), large entries near the `i128` bound, and runs built to pool
+/// across the middle: the two-halves join and the register loop give the
+/// blocks of [`pava_words`], for every split point.
+#[test]
+fn halves_and_register_loop_equal_pava_words() {
+    let mut rng = SplitMix64::new(5);
+    let mut across = 0;
+    for k in 0..400 {
+        let n = 1 + k % 37;
+        let span = [3u64, 50, 1 << 40][k % 3];
+        let mut draw = || (rng.next_u64() % span) as i64 - (span / 2) as i64;
+        let mut xs: Vec<i64> = (0..n).map(|_| draw()).collect();
+        let us: Vec<i64> = (0..n).map(|_| draw()).collect();
+        if k % 4 == 3 {
+            // Decreasing: everything pools into one block, across the cut.
+            xs.sort_unstable_by(|a, b| b.cmp(a));
+        }
+        let (a, b) = [(1, 0), (3, 2), (1 << 20, -(1 << 20)), (0, 1)][k % 4];
+        let want = pava_words(n, |i| {
+            let (x, u) = (i128::from(xs[i]), i128::from(us[i]));
+            (a * x + b * u, u)
+        });
+        assert_eq!(small::pava(&xs, &us, a as i64, b as i64), want, "case {k}");
+        let narrow: Vec<Run<i128>> = small::pava::<i64>(&xs, &us, a as i64, b as i64)
+            .into_iter()
+            .map(|r| Run {
+                k: r.k,
+                sy: r.sy,
+                su: i128::from(r.su),
+            })
+            .collect();
+        assert_eq!(narrow, want, "case {k}, i64 U sums");
+        for h in 0..=n {
+            let left = small::pava(&xs[..h], &us[..h], a as i64, b as i64);
+            let right = small::pava(&xs[h..], &us[h..], a as i64, b as i64);
+            let pooled = left.len() + right.len() > want.len();
+            let parts = halves::join(left, right);
+            assert_eq!(parts.len(), want.len(), "case {k}, cut {h}");
+            let got: Vec<Run<i128>> = (0..parts.len()).map(|j| parts.get(j).clone()).collect();
+            assert_eq!(got, want, "case {k}, cut {h}");
+            assert!(parts.iter().eq(want.iter()), "case {k}, cut {h}");
+            across += usize::from(pooled);
+        }
+    }
+    assert!(across > 500, "{across}");
+}
+
+/// The `i128` loop keeps `ΣU` in `i64` exactly when `bits(N) +
+/// bits(max|U|) ≤ 63`: four particles of velocities `c + 3, c + 1, c − 1,
+/// c − 3` one unit apart (`r = 1/2`), which all meet at `t = 1/2`, so that
+/// at `t ≥ 1/2` one block sums `ΣU = 4c`: with `c = 2^59` (`bits 60 + 3 =
+/// 63`) in `i64`; with `c = 2^61` (`62 + 3 = 65`, and `4c = 2^63` would
+/// wrap an `i64`) in `i128`. Both equal the generic path.
+#[test]
+fn both_u_words_of_the_i128_loop() {
+    for (e, narrow) in [(59u32, true), (60, false), (61, false)] {
+        let c = pow2(e);
+        let x = (0..4).map(|i| q(2 * i, 1)).collect();
+        let u = [3, 1, -1, -3].map(|v| c.clone() + q(v, 1)).to_vec();
+        let data = InitialData::new(q(1, 2), x, u).unwrap();
+        let d = IntegerData::new(&data);
+        for t in [q(0, 1), q(1, 4), q(1, 2), q(1, 1)] {
+            for parallel_min in [2, usize::MAX] {
+                let b = blocks_on(&d, &t, parallel_min);
+                assert_eq!(b.width(), Width::I128, "2^{e}, t = {t}");
+                assert_eq!(matches!(b.sums, Sums::I128U64(_)), narrow, "2^{e}");
+                assert_eq!(
+                    state_of_blocks(&d, &b, &t),
+                    projection::state_at(&data, &t).unwrap(),
+                    "2^{e}, t = {t}"
+                );
+            }
+        }
+        assert_eq!(blocks_at(&d, &q(1, 1)).len(), 1, "2^{e}");
+    }
 }

@@ -6,7 +6,7 @@
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
-use super::queue::{Entry, Lookahead, Near, RadixQueue, DEEP_BYTES};
+use super::queue::{Entry, Lookahead, Near, RadixQueue, Reach, DEEP_BYTES};
 use super::sums::{meeting, Node, SumWord};
 use super::time::Time;
 
@@ -56,14 +56,13 @@ pub(super) fn run<T: Copy + PartialEq + Into<W>, W: SumWord>(x: &[T], u: &[T]) -
     run_touching::<T, W>(x, u, None)
 }
 
-/// [`run`], with the lookahead's second wave (the outer ends of the
-/// clusters, [`DEEP_BYTES`]) forced on or off by `deep`, or chosen by the
-/// size of the nodes when `None`. The loads only warm the caches: the
-/// history is the same either way.
+/// [`run`], with the lookahead's reach ([`Reach`]) forced, or chosen by the
+/// size of the nodes ([`DEEP_BYTES`]) when `None`. The loads only warm the
+/// caches: the history is the same either way.
 fn run_touching<T: Copy + PartialEq + Into<W>, W: SumWord>(
     x: &[T],
     u: &[T],
-    deep: Option<bool>,
+    reach: Option<Reach>,
 ) -> Joins {
     let n = x.len();
     // At most N − 1 merges: reserving that much costs address space only
@@ -115,7 +114,11 @@ fn run_touching<T: Copy + PartialEq + Into<W>, W: SumWord>(
     }
 
     let mut ahead = Lookahead {
-        deep: deep.unwrap_or(std::mem::size_of_val(nodes.as_slice()) > DEEP_BYTES),
+        reach: reach.unwrap_or(if std::mem::size_of_val(nodes.as_slice()) > DEEP_BYTES {
+            Reach::OuterEnds
+        } else {
+            Reach::Boundary
+        }),
         ..Lookahead::default()
     };
     let mut window: Vec<(Entry, Time)> = Vec::new();
@@ -297,8 +300,8 @@ mod tests {
             let Some(s) = scale_i128(&data) else {
                 continue;
             };
-            let plain = run_touching::<i128, i128>(&s.x, &s.u, Some(false));
-            let deep = run_touching::<i128, i128>(&s.x, &s.u, Some(true));
+            let plain = run_touching::<i128, i128>(&s.x, &s.u, Some(Reach::Boundary));
+            let deep = run_touching::<i128, i128>(&s.x, &s.u, Some(Reach::OuterEnds));
             assert_eq!(plain, deep, "scene {k}");
             assert_eq!(plain, run::<i128, i128>(&s.x, &s.u), "scene {k}");
         }

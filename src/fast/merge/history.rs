@@ -41,7 +41,7 @@
 use std::sync::atomic::{AtomicU32, AtomicU64, Ordering::Relaxed};
 
 use super::events::{Joins, JOIN_NEVER, JOIN_ZERO};
-use crate::fast::scaling::both;
+use crate::fast::scaling::{both, Cores};
 
 /// From this many pairs the clusters are read on two threads.
 pub(super) const TWO_MIN: usize = 1 << 15;
@@ -127,6 +127,15 @@ fn run_start(stack: &[Entry], top: u32) -> usize {
     start
 }
 
+/// Where the line ends, for a stretch of pairs [`scan`] reads.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum LineEnd {
+    /// At the stretch's end: every cluster open there closes.
+    Here,
+    /// Beyond it: the open clusters are returned (its stack).
+    Beyond,
+}
+
 /// Scans the stretch `join` of pairs `base..` (see the module docs),
 /// calling `formed(instant, first, pairs, end)` on every cluster formed
 /// that it settles alone: it runs over particles `first..end` and its
@@ -143,7 +152,7 @@ fn run_start(stack: &[Entry], top: u32) -> usize {
 fn scan(
     join: &mut [u32],
     base: u32,
-    ends_line: bool,
+    end: LineEnd,
     relabel: impl Fn(u32) -> u32,
     mut formed: impl FnMut(usize, u32, &[Entry], u32),
     mut open: impl FnMut(u32, u32, &[Entry]),
@@ -154,7 +163,7 @@ fn scan(
     // left of a stretch that does not start the line.
     let mut floor = (base == 0).then_some(0);
     let len = join.len();
-    for i in 0..len + usize::from(ends_line) {
+    for i in 0..len + usize::from(end == LineEnd::Here) {
         let r = base + i as u32;
         // Past the last pair, a pair that never joins closes every cluster.
         let k = join.get_mut(i).map_or(u32::MAX, |c| {
@@ -259,16 +268,15 @@ impl History {
     /// clusters the run took in), and the codes renumbered.
     pub(super) fn from_joins(joins: Joins) -> History {
         let pairs = joins.join.len();
-        if pairs >= TWO_MIN {
-            History::from_stretches(joins, pairs / 2, true)
-        } else {
-            History::from_stretches(joins, pairs, false)
+        match Cores::from_size(pairs, TWO_MIN) {
+            Cores::Two => History::from_stretches(joins, pairs / 2, Cores::Two),
+            Cores::One => History::from_stretches(joins, pairs, Cores::One),
         }
     }
 
     /// [`History::from_joins`], the pairs cut at `mid ≤ len`, the two
-    /// stretches on two threads with `two`.
-    fn from_stretches(joins: Joins, mid: usize, two: bool) -> History {
+    /// stretches on `cores`.
+    fn from_stretches(joins: Joins, mid: usize, cores: Cores) -> History {
         let Joins {
             mut instants,
             mut join,
@@ -280,13 +288,13 @@ impl History {
         //    cluster); what the right stretch leaves open recorded.
         let (left, right) = join.split_at_mut(mid);
         let ((stack, floor, mut at_l), (opens, runs, mut at_r)) = both(
-            two,
+            cores,
             || {
                 let mut at = vec![(0u32, 0u32); len];
                 let (stack, floor) = scan(
                     left,
                     0,
-                    false,
+                    LineEnd::Beyond,
                     |c| c,
                     |g, _, p, _| count(&mut at, g, p),
                     |_, _, _| {},
@@ -299,7 +307,7 @@ impl History {
                 scan(
                     right,
                     base,
-                    true,
+                    LineEnd::Here,
                     |c| c,
                     |g, _, p, _| count(&mut at, g, p),
                     |key, end, run| {
@@ -362,12 +370,12 @@ impl History {
             parts: &parts,
         };
         both(
-            two,
+            cores,
             || {
                 scan(
                     left,
                     0,
-                    false,
+                    LineEnd::Beyond,
                     relabel,
                     |g, f, p, e| place_l.write(g, f, p, e),
                     |_, _, _| {},
@@ -380,7 +388,7 @@ impl History {
                 scan(
                     right,
                     base,
-                    true,
+                    LineEnd::Here,
                     relabel,
                     |g, f, p, e| place_r.write(g, f, p, e),
                     |_, _, _| {},
@@ -488,11 +496,11 @@ mod tests {
                     join: join.clone(),
                 };
                 for mid in 0..=join.len() {
-                    let h = History::from_stretches(joins(), mid, false);
+                    let h = History::from_stretches(joins(), mid, Cores::One);
                     assert_eq!(h, expected, "join {join:?}, cut at {mid}");
                 }
                 if pairs == 6 && pattern % 7 == 0 {
-                    let h = History::from_stretches(joins(), 3, true);
+                    let h = History::from_stretches(joins(), 3, Cores::Two);
                     assert_eq!(h, expected, "join {join:?}, two threads");
                 }
             }

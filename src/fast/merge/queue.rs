@@ -140,9 +140,9 @@ impl RadixQueue {
 }
 
 /// Above this many bytes of nodes the lookahead also touches the outer ends
-/// of the clusters (measured: a gain at N = 10^6 on one thread, a loss at
-/// N = 10^5; on the parts of 250,000 nodes of 24 bytes that `split` runs at
-/// N = 10^6, a gain of about 5 %, so 4 MiB and not 8).
+/// of the clusters ([`Reach::OuterEnds`]): the extra loads pay only when
+/// the nodes miss the caches (the measurements that set it:
+/// docs/guide/performance.md).
 pub(super) const DEEP_BYTES: usize = 4 << 20;
 
 /// How many queued entries are taken out ahead of time.
@@ -158,9 +158,20 @@ pub(super) const AHEAD: usize = 16;
 pub(super) struct Lookahead {
     pub(super) entries: std::collections::VecDeque<Entry>,
     pub(super) early: BinaryHeap<std::cmp::Reverse<Entry>>,
-    /// Also touch the outer ends of the clusters (worth it only when the
-    /// nodes do not fit in the caches).
-    pub(super) deep: bool,
+    /// Which nodes a refill touches.
+    pub(super) reach: Reach,
+}
+
+/// Which nodes [`Lookahead::refill`] loads ahead of time (the loads only
+/// warm the caches: the history is the same either way).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub(super) enum Reach {
+    /// The two nodes at each boundary taken out.
+    #[default]
+    Boundary,
+    /// Also the outer ends of the two clusters (worth it only when the
+    /// nodes do not fit in the caches, [`DEEP_BYTES`]).
+    OuterEnds,
 }
 
 impl Lookahead {
@@ -201,7 +212,11 @@ impl Lookahead {
         // at `b` rewrites and whose neighbours it reads (stale entries touch
         // harmless places).
         let n = nodes.len();
-        for e in self.entries.iter().filter(|_| self.deep) {
+        for e in self
+            .entries
+            .iter()
+            .filter(|_| self.reach == Reach::OuterEnds)
+        {
             let b = e.slot as usize;
             let f = b.saturating_sub(nodes[b - 1].size as usize);
             let end = (b + nodes[b].size as usize).min(n);

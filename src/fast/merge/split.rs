@@ -51,7 +51,7 @@ use super::events::{run, Joins, JOIN_NEVER, JOIN_ZERO};
 use super::history::History;
 use super::sums::{meeting, Node, SumWord};
 use super::time::Time;
-use crate::fast::scaling::both;
+use crate::fast::scaling::{both, Cores};
 
 /// Below this many particles one thread runs the whole (the threads and
 /// the repair cost more than they save).
@@ -66,7 +66,7 @@ where
 {
     let n = x.len();
     let joins = match (n >= SPLIT_MIN).then(|| cut(x, u, n / 2)).flatten() {
-        Some(m) => run_halves::<T, W>(x, u, m, true, PART_MIN),
+        Some(m) => run_halves::<T, W>(x, u, m, Cores::Two, PART_MIN),
         None => run::<T, W>(x, u),
     };
     History::from_joins(joins)
@@ -85,18 +85,18 @@ pub(super) const PART_MIN: usize = 1 << 16;
 /// The join times of the whole from those of `..m` and `m..`, each
 /// computed alone, and cut again from `part_min` particles on; `0 < m < n`
 /// and the pair `(m − 1, m)` is not an initial contact with equal
-/// velocities. With `two`, on two threads: the pieces of equal height in
+/// velocities. On `Cores::Two`, two threads: the pieces of equal height in
 /// the tree of cuts are shared out as the threads come free (so that a
 /// slower piece or a slower core does not hold the other thread idle),
 /// and the join codes of the whole are renumbered on both.
-pub(super) fn run_halves<T, W>(x: &[T], u: &[T], m: usize, two: bool, part_min: usize) -> Joins
+pub(super) fn run_halves<T, W>(x: &[T], u: &[T], m: usize, cores: Cores, part_min: usize) -> Joins
 where
     T: Copy + PartialEq + Into<W> + Sync,
     W: SumWord,
 {
     let mut pieces = Vec::new();
     plan(x, u, 0..x.len(), Some(m), part_min, &mut pieces);
-    run_pieces::<T, W>(x, u, &pieces, two)
+    run_pieces::<T, W>(x, u, &pieces, cores)
 }
 
 /// A piece of the tree of cuts: particles `lo..hi`, either run whole or
@@ -157,10 +157,10 @@ fn plan<T: PartialEq>(
 }
 
 /// Runs the planned pieces, height by height, and returns the join times of
-/// the last one (the whole). With `two`, a second thread takes pieces of
+/// the last one (the whole). On `Cores::Two`, a second thread takes pieces of
 /// the same height as it comes free; a height with a single piece runs it
 /// with both threads (its renumbering).
-fn run_pieces<T, W>(x: &[T], u: &[T], pieces: &[Piece], two: bool) -> Joins
+fn run_pieces<T, W>(x: &[T], u: &[T], pieces: &[Piece], cores: Cores) -> Joins
 where
     T: Copy + PartialEq + Into<W> + Sync,
     W: SumWord,
@@ -175,7 +175,7 @@ where
             .take()
             .expect("a piece's halves run before it")
     };
-    let solve = |k: usize, two: bool| {
+    let solve = |k: usize, cores: Cores| {
         let piece = &pieces[k];
         let (x, u) = (&x[piece.range.clone()], &u[piece.range.clone()]);
         let joins = match piece.cut {
@@ -188,7 +188,7 @@ where
                     right: &right,
                 };
                 let growth = grow_run::<T, W>(x, u, &halves);
-                combine(&halves, &growth, x.len(), two)
+                combine(&halves, &growth, x.len(), cores)
             }
         };
         *done[k].lock().unwrap_or_else(|e| e.into_inner()) = Some(joins);
@@ -199,16 +199,16 @@ where
             .filter(|&k| pieces[k].height == height)
             .collect();
         if let [k] = level[..] {
-            solve(k, two);
+            solve(k, cores);
             continue;
         }
         let next = AtomicUsize::new(0);
         let work = || {
             while let Some(&k) = level.get(next.fetch_add(1, Relaxed)) {
-                solve(k, false);
+                solve(k, Cores::One);
             }
         };
-        both(two, work, work);
+        both(cores, work, work);
     }
     take(pieces.len() - 1)
 }
@@ -628,14 +628,14 @@ fn renumber(out: &mut [u32], codes: &[u32], map: &[u32]) {
 }
 
 /// The join times of the whole (see the module docs): the instants merged;
-/// the halves' join codes renumbered (on two threads with `two`), then the
+/// the halves' join codes renumbered (on `cores`), then the
 /// run's where it came first.
-fn combine(h: &Halves, growth: &[Growth], n: usize, two: bool) -> Joins {
+fn combine(h: &Halves, growth: &[Growth], n: usize, cores: Cores) -> Joins {
     let instants = merge_instants(h, growth);
     let mut join = vec![JOIN_NEVER; n - 1];
     let (left, right) = join.split_at_mut(h.m);
     both(
-        two,
+        cores,
         || renumber(left, &h.left.join, &instants.map_l),
         || renumber(right, &h.right.join, &instants.map_r),
     );

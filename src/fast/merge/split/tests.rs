@@ -68,10 +68,10 @@ fn every_cut_gives_the_whole_history() {
             // Combined on one thread and on two; and with every piece
             // of at least 4 particles cut again, down to the middle, on
             // one thread and on two (the pieces shared out).
-            let split = run_halves::<i128, i128>(&s.x, &s.u, m, false, usize::MAX);
-            let two = run_halves::<i128, i128>(&s.x, &s.u, m, true, usize::MAX);
-            let parts = run_halves::<i128, i128>(&s.x, &s.u, m, false, 4);
-            let shared = run_halves::<i128, i128>(&s.x, &s.u, m, true, 4);
+            let split = run_halves::<i128, i128>(&s.x, &s.u, m, Cores::One, usize::MAX);
+            let two = run_halves::<i128, i128>(&s.x, &s.u, m, Cores::Two, usize::MAX);
+            let parts = run_halves::<i128, i128>(&s.x, &s.u, m, Cores::One, 4);
+            let shared = run_halves::<i128, i128>(&s.x, &s.u, m, Cores::Two, 4);
             for (how, h) in [
                 ("one thread", &split),
                 ("two", &two),
