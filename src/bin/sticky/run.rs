@@ -248,6 +248,28 @@ fn columns(out: &mut impl Write, args: &Args) -> Result<(), Failure> {
             .state_with_progress(t, &Silent)
             .map_err(scene_err(&args.scene))?
         {
+            Answer::Words(b) if npy => {
+                // The rows in pieces of whole blocks, rounded on every core
+                // and written in order: the bytes of `row`, value by value.
+                let head = sticky::columns::npy_header(&[t_count, b.n(), 3]);
+                let head: &[u8] = if std::mem::replace(&mut header, true) {
+                    &[]
+                } else {
+                    &head
+                };
+                let pieces = b.pieces(sticky::report::json::PIECE_PARTICLES);
+                let rows = |piece: &sticky::fast::stream::Piece| {
+                    let mut bytes = Vec::new();
+                    b.push_nearest_rows(piece, &mut bytes);
+                    bytes
+                };
+                let workers = sticky::parallel::workers();
+                out.write_all(head).and_then(|()| {
+                    sticky::parallel::in_order(&pieces, workers, rows, |bytes| {
+                        out.write_all(&bytes)
+                    })
+                })
+            }
             Answer::Words(b) => {
                 let n = b.n();
                 b.rows(|i, x, u, l| row(out, n, i, x, u, l.map(|l| l as &dyn Cell)))

@@ -1,4 +1,7 @@
+use std::io;
+
 use super::*;
+use crate::fast::int::gcd;
 use crate::fast::int::narrowed;
 use crate::fast::kernel::{state_at, IntegerData};
 use crate::fast::scaling::small_word;
@@ -472,6 +475,83 @@ fn nearest_is_the_rounded_exact_state() {
             assert_eq!(bits(&got.velocities), round(&exact.velocities), "t = {t}");
             assert_eq!(bits(&got.multipliers), round(&exact.multipliers), "t = {t}");
         }
+    }
+}
+
+/// The `(N, 3)` rows `run --format npy` writes, from the kernel's exact
+/// state: `x_i, u_i, λ_{i+1}` (0 for the last particle), each the nearest
+/// double, little-endian.
+fn npy_rows_of(exact: &crate::state::State<BigRational>) -> Vec<u8> {
+    let near = |q: &BigRational| crate::rational::nearest_f64(q).unwrap();
+    let mut out = Vec::new();
+    for (i, (x, u)) in exact.positions.iter().zip(&exact.velocities).enumerate() {
+        let l = exact.multipliers.get(i).map_or(0.0, near);
+        for v in [near(x), near(u), l] {
+            out.extend_from_slice(&v.to_le_bytes());
+        }
+    }
+    out
+}
+
+/// The rows of `b` in pieces of `particles`, formatted apart and joined.
+fn rows_in_pieces(b: &LeanBlocks<'_>, particles: usize) -> Vec<u8> {
+    let mut out = Vec::new();
+    for piece in b.pieces(particles) {
+        b.push_nearest_rows(&piece, &mut out);
+    }
+    out
+}
+
+/// `LeanBlocks::push_nearest_rows` on pieces of any size, put back in
+/// order, gives the bytes of the rows of the exact state rounded value by
+/// value, on words and (a scene whose unreduced fractions leave `i128`)
+/// on the reduced path.
+#[test]
+fn nearest_rows_in_pieces_are_the_exact_rows() {
+    let mut rng = SplitMix64::new(78);
+    for k in 0..80 {
+        let data = initial_data(
+            &rng.bytes(200),
+            Limits {
+                max_n: 1 + k % 25,
+                max_den: 1 + (k % 6) as u32,
+                max_speed: 1 + (k % 7) as u32,
+            },
+        );
+        let l = lean(&data, true).expect("small data on words");
+        let history = Trajectory::new(data.clone());
+        for t in probe_times(&history, Some(4)) {
+            let b = l.blocks_at(&t).unwrap();
+            let want = npy_rows_of(&state_at(&IntegerData::new(&data), &t).unwrap());
+            assert_eq!(want.len(), 24 * data.n());
+            for particles in [1, 2, 5, data.n()] {
+                assert_eq!(rows_in_pieces(&b, particles), want, "scene {k}, t = {t}");
+            }
+        }
+    }
+    // D_y beyond i128: every piece on the reduced path.
+    let (p1, p2) = (1_125_899_906_842_597i64, 1_125_899_906_842_589i64);
+    let xs = vec![
+        (0, 1),
+        (p1 + 3, 3 * p1 as u64),
+        (2 * p2 + 3, 3 * p2 as u64),
+        (p2 + 1, p2 as u64),
+    ];
+    let us = vec![(3, 1 << 30), (-5, 1 << 30), (-1, 1 << 30), (-1, 1 << 30)];
+    let l = Lean::new(Some(q(1, 6)), 0, xs.clone(), us.clone()).unwrap();
+    let rat = |&(p, d): &(i64, u64)| BigRational::new(p.into(), d.into());
+    let data = InitialData::new(
+        q(1, 6),
+        xs.iter().map(rat).collect(),
+        us.iter().map(rat).collect(),
+    )
+    .unwrap();
+    let t = q(0, 1);
+    let b = l.blocks_at(&t).unwrap();
+    assert!(b.dy.is_none(), "the unreduced fractions leave i128");
+    let want = npy_rows_of(&state_at(&IntegerData::new(&data), &t).unwrap());
+    for particles in [1, 2, 4] {
+        assert_eq!(rows_in_pieces(&b, particles), want);
     }
 }
 
