@@ -227,7 +227,7 @@ impl State {
             velocities: OnceLock::new(),
             multipliers: OnceLock::new(),
             clusters: OnceLock::new(),
-            blocks: Some(Kept::Filtered(f)),
+            blocks: Some(Arc::new(Kept::Filtered(f))),
             exact: OnceLock::new(),
         })
     }
@@ -267,7 +267,7 @@ impl State {
         if let Some(a) = cell.get() {
             return Ok(a.bind(py).clone());
         }
-        if let Some(Kept::Filtered(f)) = &self.blocks {
+        if let Some(Kept::Filtered(f)) = self.blocks.as_deref() {
             let array = State::filtered_array(py, f, which)?.unbind();
             return Ok(cell.get_or_init(|| array).bind(py).clone());
         }
