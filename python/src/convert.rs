@@ -13,7 +13,7 @@
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{ToPrimitive, Zero};
-use numpy::{PyArray1, PyReadonlyArray1};
+use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1};
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyBool, PyFloat, PyInt, PyList, PyString, PyType};
@@ -185,6 +185,81 @@ pub fn double_columns(
     let b = b.extract::<PyReadonlyArray1<'_, f64>>().ok()?;
     let (a, b) = (a.as_slice().ok()?, b.as_slice().ok()?);
     Some(py.detach(|| copy_pair(a, b)))
+}
+
+/// Private copies of two columns of doubles in arrays of numpy's allocator
+/// (huge pages: no page fault a 4 KiB page), filled on two threads with
+/// the GIL released and made read-only, when both are contiguous
+/// one-dimensional `float64` numpy arrays of one length; `None` otherwise.
+/// Nothing else holds the copies: the caller's arrays may change after,
+/// the copies do not.
+pub fn private_columns<'py>(
+    py: Python<'py>,
+    a: &Bound<'py, PyAny>,
+    b: &Bound<'py, PyAny>,
+) -> PyResult<Option<PrivateColumns<'py>>> {
+    let (Ok(a), Ok(b)) = (
+        a.extract::<PyReadonlyArray1<'_, f64>>(),
+        b.extract::<PyReadonlyArray1<'_, f64>>(),
+    ) else {
+        return Ok(None);
+    };
+    let (Ok(a), Ok(b)) = (a.as_slice(), b.as_slice()) else {
+        return Ok(None);
+    };
+    if a.len() != b.len() {
+        return Ok(None);
+    }
+    let positions = PyArray1::<f64>::zeros(py, a.len(), false);
+    let velocities = PyArray1::<f64>::zeros(py, b.len(), false);
+    {
+        let (mut pw, mut vw) = (positions.readwrite(), velocities.readwrite());
+        let (p, v) = (pw.as_slice_mut()?, vw.as_slice_mut()?);
+        py.detach(|| copy_pair_into(a, b, p, v));
+    }
+    for array in [&positions, &velocities] {
+        array.getattr("flags")?.setattr("writeable", false)?;
+    }
+    Ok(Some(PrivateColumns {
+        positions,
+        velocities,
+    }))
+}
+
+/// The arrays of [`private_columns`].
+pub struct PrivateColumns<'py> {
+    /// The positions' copy.
+    pub positions: Bound<'py, PyArray1<f64>>,
+    /// The velocities' copy.
+    pub velocities: Bound<'py, PyArray1<f64>>,
+}
+
+/// `a` into `p` and `b` into `q`, the second on a thread of its own when it
+/// is long enough to pay for one.
+fn copy_pair_into(a: &[f64], b: &[f64], p: &mut [f64], q: &mut [f64]) {
+    const PARALLEL_MIN: usize = 1 << 16;
+    if b.len() < PARALLEL_MIN {
+        p.copy_from_slice(a);
+        q.copy_from_slice(b);
+        return;
+    }
+    // Whichever thread takes `q` first fills it.
+    let slot = std::sync::Mutex::new(Some(q));
+    let copy_b = || {
+        if let Some(q) = slot.lock().ok().and_then(|mut q| q.take()) {
+            q.copy_from_slice(b);
+        }
+    };
+    std::thread::scope(|s| {
+        let worker = std::thread::Builder::new().spawn_scoped(s, copy_b);
+        p.copy_from_slice(a);
+        match worker.map(|w| w.join()) {
+            Ok(Ok(())) => {}
+            Ok(Err(panic)) => std::panic::resume_unwind(panic),
+            // No second thread to be had: this one copies both.
+            Err(_) => copy_b(),
+        }
+    });
 }
 
 /// Copies of `a` and `b`, the second on a thread of its own when it is

@@ -9,13 +9,14 @@
 //! on the validated `BigRational` data (the same answer every way).
 
 use std::path::PathBuf;
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
 use num_rational::BigRational;
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyList;
+use sticky::fast::filter::{Checked, Doubles};
 use sticky::progress::Progress;
 use sticky::scene::{Scene as SceneFile, SceneKind};
 use sticky::solver::{Answer as Solved, Engine, Options, Solver, WorkCap};
@@ -30,9 +31,68 @@ use crate::states::States;
 pub use crate::errors::py_error;
 
 /// Everything a scene holds, shared with the worker threads: the library's
-/// [`Solver`], which chooses the engine of every answer.
+/// [`Solver`], which chooses the engine of every answer — built on first
+/// need when the scene keeps its doubles in numpy arrays ([`Private`]).
 pub struct Inner {
-    solver: Solver,
+    held: Held,
+}
+
+/// How a scene holds its data.
+enum Held {
+    /// A Solver, built with the scene.
+    Solver(Solver),
+    /// Columns of doubles validated in place, the Solver built from them
+    /// on first need.
+    Private {
+        columns: Private,
+        solver: OnceLock<Solver>,
+    },
+}
+
+/// A scene's own copies of its columns of doubles, in read-only arrays of
+/// numpy's allocator that nothing else holds (they never change), validated
+/// exactly ([`Checked`]): the certified filter runs on slices borrowed from
+/// them, and the library's `Vec` columns are made only when an exact path
+/// needs them (at `N = 10⁶`, 16 MB of fresh pages saved on construction).
+struct Private {
+    radius: Option<BigRational>,
+    checked: Checked,
+    positions: Py<PyArray1<f64>>,
+    velocities: Py<PyArray1<f64>>,
+}
+
+impl Private {
+    /// The Solver of these columns (copied into the library's vectors,
+    /// the GIL taken for the copy: callers reach here without it or on
+    /// the thread that holds it).
+    fn solver(&self) -> Solver {
+        let (x, u) = Python::attach(|py| {
+            let x = self.positions.bind(py).readonly();
+            let u = self.velocities.bind(py).readonly();
+            (x.as_array().to_vec(), u.as_array().to_vec())
+        });
+        let d = Doubles::from_checked(self.checked.clone(), x, u);
+        watched(Solver::from_filter(self.radius.clone(), d))
+    }
+}
+
+/// `solver` with work that can be interrupted: only the hopeless is
+/// refused.
+fn watched(solver: Solver) -> Solver {
+    solver.with_options(Options {
+        work: WorkCap::Watched,
+        ..Options::default()
+    })
+}
+
+/// A scene's private columns ([`Inner::private_columns`]).
+pub struct PrivateView<'a, 'py> {
+    /// What their validation established.
+    pub checked: &'a Checked,
+    /// The positions.
+    pub positions: &'a Bound<'py, PyArray1<f64>>,
+    /// The velocities.
+    pub velocities: &'a Bound<'py, PyArray1<f64>>,
 }
 
 impl Inner {
@@ -45,37 +105,65 @@ impl Inner {
     /// the hopeless is refused).
     fn new(solver: Solver) -> Inner {
         Inner {
-            solver: solver.with_options(Options {
-                work: WorkCap::Watched,
-                ..Options::default()
-            }),
+            held: Held::Solver(watched(solver)),
         }
     }
 
     /// The library's Solver of this scene.
     pub fn solver(&self) -> &Solver {
-        &self.solver
+        match &self.held {
+            Held::Solver(s) => s,
+            Held::Private { columns, solver } => {
+                if let Some(s) = solver.get() {
+                    return s;
+                }
+                // Built outside the cell: the build takes the GIL, so a
+                // thread holding the GIL must never wait on the cell
+                // while the thread initializing it waits for the GIL. Two
+                // threads may both build; the first stored is kept.
+                let built = columns.solver();
+                solver.get_or_init(|| built)
+            }
+        }
+    }
+
+    /// The scene's private columns of doubles, if it keeps them.
+    pub fn private_columns<'a, 'py>(&'a self, py: Python<'py>) -> Option<PrivateView<'a, 'py>> {
+        match &self.held {
+            Held::Private { columns, .. } => Some(PrivateView {
+                checked: &columns.checked,
+                positions: columns.positions.bind(py),
+                velocities: columns.velocities.bind(py),
+            }),
+            Held::Solver(_) => None,
+        }
     }
 
     /// The validated scene of the general path, built on first use.
     pub fn scene(&self) -> Result<&SceneFile, Error> {
-        self.solver.scene()
+        self.solver().scene()
     }
 
     /// The radius r.
     pub fn radius(&self) -> Result<BigRational, Error> {
-        self.solver.radius().cloned()
+        match &self.held {
+            Held::Private { columns, .. } => Ok(columns.checked.radius().clone()),
+            Held::Solver(s) => s.radius().cloned(),
+        }
     }
 
     /// N.
     pub fn n(&self) -> Result<usize, Error> {
-        self.solver.n()
+        match &self.held {
+            Held::Private { columns, .. } => Ok(columns.checked.n()),
+            Held::Solver(s) => s.n(),
+        }
     }
 
     /// The exact state at `t`, as the Solver's path left it, polling
     /// `stop` (Ctrl-C ends it with [`Error::Interrupted`]).
     pub fn answer(&self, t: &BigRational, stop: &dyn Progress) -> Result<Answer, Error> {
-        match self.solver.state_with_progress(t, stop)? {
+        match self.solver().state_with_progress(t, stop)? {
             Solved::Filtered(f) => Ok(Answer::from_filtered(f)),
             Solved::Dyadic(blocks) => Answer::from_dyadic(blocks, stop),
             Solved::Words(blocks) => Ok(Answer::from_blocks(&blocks)),
@@ -91,7 +179,7 @@ impl Inner {
         t: &BigRational,
         stop: &dyn Progress,
     ) -> Result<sticky::State<BigRational>, Error> {
-        Ok(self.solver.state_by_exact_paths(t, stop)?.into_state())
+        Ok(self.solver().state_by_exact_paths(t, stop)?.into_state())
     }
 }
 
@@ -136,6 +224,29 @@ impl Scene {
         radius: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Scene> {
         let radius = radius.map(|r| convert::exact(r, "radius")).transpose()?;
+        if let Some(private) = convert::private_columns(py, positions, velocities)? {
+            let checked = {
+                let (x, u) = (private.positions.readonly(), private.velocities.readonly());
+                let (x, u) = (x.as_slice()?, u.as_slice()?);
+                let r = radius.clone();
+                py.detach(|| Checked::new(r, x, u))
+            };
+            // Refused: read again below, where the paths that take such
+            // columns, or the error of record, are found.
+            if let Ok(checked) = checked {
+                return Ok(Scene::wrap(Inner {
+                    held: Held::Private {
+                        columns: Private {
+                            radius,
+                            checked,
+                            positions: private.positions.unbind(),
+                            velocities: private.velocities.unbind(),
+                        },
+                        solver: OnceLock::new(),
+                    },
+                }));
+            }
+        }
         let (x, u) = match convert::double_columns(py, positions, velocities) {
             Some((x, u)) => (Column::Doubles(x), Column::Doubles(u)),
             None => (
@@ -234,7 +345,10 @@ impl Scene {
     /// The initial positions x⁰ as a numpy float64 array (nearest doubles).
     #[getter]
     fn positions<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
-        if let Some((positions, _)) = self.inner.solver.doubles() {
+        if let Some(private) = self.inner.private_columns(py) {
+            return copy(private.positions);
+        }
+        if let Some((positions, _)) = self.inner.solver().doubles() {
             return Ok(PyArray1::from_slice(py, positions));
         }
         let v = convert::nearest(self.file(py)?.data.positions());
@@ -244,7 +358,10 @@ impl Scene {
     /// The initial velocities u⁰ as a numpy float64 array (nearest doubles).
     #[getter]
     fn velocities<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
-        if let Some((_, velocities)) = self.inner.solver.doubles() {
+        if let Some(private) = self.inner.private_columns(py) {
+            return copy(private.velocities);
+        }
+        if let Some((_, velocities)) = self.inner.solver().doubles() {
             return Ok(PyArray1::from_slice(py, velocities));
         }
         let v = convert::nearest(self.file(py)?.data.velocities());
@@ -291,7 +408,7 @@ impl Scene {
     fn events(&self, py: Python<'_>) -> PyResult<Vec<Event>> {
         let inner = Arc::clone(&self.inner);
         let collisions = interrupt::run(py, move |stop| -> Result<_, Error> {
-            Ok(inner.solver.events(stop)?.collisions())
+            Ok(inner.solver().events(stop)?.collisions())
         })?
         .map_err(py_error)?;
         Ok(collisions.into_iter().map(Event::from_collision).collect())
@@ -302,7 +419,7 @@ impl Scene {
     /// line `sticky run --explain` prints.
     fn explain(&self, py: Python<'_>) -> PyResult<String> {
         let inner = &self.inner;
-        py.detach(|| inner.solver.explain()).map_err(py_error)
+        py.detach(|| inner.solver().explain()).map_err(py_error)
     }
 
     /// project(z, exact=False): the exact projection P_K(z) of an arbitrary
@@ -329,14 +446,14 @@ impl Scene {
         if let (false, convert::Column::Doubles(d)) = (exact, &z) {
             if d.iter().all(|v| v.is_finite()) {
                 let d = d.clone();
-                let x = interrupt::run_sized(py, n, move |_| inner.solver.project_doubles(&d))?
+                let x = interrupt::run_sized(py, n, move |_| inner.solver().project_doubles(&d))?
                     .map_err(py_error)?;
                 return Ok(PyArray1::from_vec(py, x).into_any());
             }
         }
         let z = z.into_exact("z")?;
         let x =
-            interrupt::run_sized(py, n, move |_| inner.solver.project(&z))?.map_err(py_error)?;
+            interrupt::run_sized(py, n, move |_| inner.solver().project(&z))?.map_err(py_error)?;
         crate::isotonic::output(py, &x, exact)
     }
 
@@ -354,7 +471,22 @@ impl Scene {
     /// released: a few milliseconds at `N = 10⁶`, no worker thread);
     /// `None` when the filter does not answer (the Solver's paths then do).
     fn filtered(&self, py: Python<'_>, t: &BigRational) -> PyResult<Option<State>> {
-        let solver = &self.inner.solver;
+        if let Some(private) = self.inner.private_columns(py) {
+            let checked = private.checked;
+            let positions = PyArray1::<f64>::zeros(py, checked.n(), false);
+            let answer = {
+                let (x, u) = (private.positions.readonly(), private.velocities.readonly());
+                let (x, u) = (x.as_slice()?, u.as_slice()?);
+                let mut rw = positions.readwrite();
+                let out = rw.as_slice_mut()?;
+                py.detach(|| checked.at_into(x, u, t, out))
+            };
+            return match answer {
+                Some(p) => State::partitioned(Arc::clone(&self.inner), positions, p).map(Some),
+                None => Ok(None),
+            };
+        }
+        let solver = self.inner.solver();
         let Some(d) = solver.filter() else {
             return Ok(None);
         };
@@ -377,6 +509,11 @@ impl Scene {
     fn answers(&self, py: Python<'_>, times: Vec<BigRational>) -> PyResult<Vec<State>> {
         states_at(py, &self.inner, times)
     }
+}
+
+/// A writable copy of one of a scene's private arrays (numpy's own copy).
+fn copy<'py>(array: &Bound<'py, PyArray1<f64>>) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    Ok(array.call_method0("copy")?.cast_into::<PyArray1<f64>>()?)
 }
 
 /// The states of `scene` at `times`, on a worker thread (GIL released,

@@ -14,7 +14,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use sticky::cluster::Cluster;
 use sticky::fast::dyadic::DyadicBlocks;
-use sticky::fast::filter::Filtered;
+use sticky::fast::filter::{Filtered, Partition};
 use sticky::fast::stream::LeanBlocks;
 use sticky::progress::Progress;
 use sticky::Error;
@@ -45,6 +45,9 @@ pub enum Kept {
     Dyadic(DyadicBlocks),
     /// The filter's certified partition.
     Filtered(Filtered),
+    /// The filter's certified partition of a scene's private columns
+    /// (read from the scene when needed).
+    Partition(Partition),
 }
 
 impl Kept {
@@ -56,6 +59,8 @@ impl Kept {
             (Kept::Dyadic(b), Later::Multipliers) => b.multipliers(),
             (Kept::Filtered(f), Later::Velocities) => Some(f.velocities()),
             (Kept::Filtered(f), Later::Multipliers) => Some(f.multipliers()),
+            // Written from the scene's columns ([`State::partition_array`]).
+            (Kept::Partition(_), _) => None,
         }
     }
 
@@ -64,6 +69,7 @@ impl Kept {
         match self {
             Kept::Dyadic(b) => b.clusters(),
             Kept::Filtered(f) => f.clusters(),
+            Kept::Partition(p) => p.clusters(),
         }
     }
 }
@@ -232,6 +238,60 @@ impl State {
         })
     }
 
+    /// The state the filter proved on the private columns of `scene`, its
+    /// positions already in `positions` (a numpy array of numpy's
+    /// allocator, [`sticky::fast::filter::Checked::at_into`]).
+    pub fn partitioned(
+        scene: Arc<Inner>,
+        positions: Bound<'_, PyArray1<f64>>,
+        p: Partition,
+    ) -> PyResult<State> {
+        positions.getattr("flags")?.setattr("writeable", false)?;
+        Ok(State {
+            scene,
+            t: p.t().clone(),
+            positions: positions.unbind(),
+            velocities: OnceLock::new(),
+            multipliers: OnceLock::new(),
+            clusters: OnceLock::new(),
+            blocks: Some(Arc::new(Kept::Partition(p))),
+            exact: OnceLock::new(),
+        })
+    }
+
+    /// The array `which` of a state the filter proved on the scene's
+    /// private columns, written into an array of numpy's allocator from the
+    /// scene's velocities (GIL released while it is filled); `None` when
+    /// the scene keeps no such columns.
+    fn partition_array<'py>(
+        py: Python<'py>,
+        scene: &Inner,
+        p: &Partition,
+        which: Later,
+    ) -> PyResult<Option<Bound<'py, PyArray1<f64>>>> {
+        let Some(private) = scene.private_columns(py) else {
+            return Ok(None);
+        };
+        let u = private.velocities;
+        let len = match which {
+            Later::Velocities => p.n(),
+            Later::Multipliers => p.n().saturating_sub(1),
+        };
+        let array = PyArray1::<f64>::zeros(py, len, false);
+        {
+            let u = u.readonly();
+            let u = u.as_slice()?;
+            let mut rw = array.readwrite();
+            let out = rw.as_slice_mut()?;
+            py.detach(|| match which {
+                Later::Velocities => p.write_velocities(u, out),
+                Later::Multipliers => p.write_multipliers(u, out),
+            });
+        }
+        array.getattr("flags")?.setattr("writeable", false)?;
+        Ok(Some(array))
+    }
+
     /// The array `which` of a filtered state, written into an array of
     /// numpy's allocator (GIL released while it is filled).
     fn filtered_array<'py>(
@@ -270,6 +330,12 @@ impl State {
         if let Some(Kept::Filtered(f)) = self.blocks.as_deref() {
             let array = State::filtered_array(py, f, which)?.unbind();
             return Ok(cell.get_or_init(|| array).bind(py).clone());
+        }
+        if let Some(Kept::Partition(p)) = self.blocks.as_deref() {
+            if let Some(array) = State::partition_array(py, &self.scene, p, which)? {
+                let array = array.unbind();
+                return Ok(cell.get_or_init(|| array).bind(py).clone());
+            }
         }
         let blocks = &self.blocks;
         let rounded = py.detach(|| blocks.as_ref().and_then(|b| b.rounded(which)));

@@ -174,22 +174,7 @@ impl Solver {
         velocities: Vec<f64>,
     ) -> Result<Solver, Box<Refused>> {
         let refused = match Doubles::validate(radius.clone(), positions, velocities) {
-            Ok(d) => {
-                let (positions, velocities) = d.shared_columns();
-                let mut solver = Solver::with_paths(
-                    None,
-                    None,
-                    Source::Doubles {
-                        radius,
-                        positions,
-                        velocities,
-                    },
-                );
-                solver.dyadic = OnceLock::new();
-                solver.words = OnceLock::new();
-                solver.filter = Some(d);
-                return Ok(solver);
-            }
+            Ok(d) => return Ok(Solver::from_filter(radius, d)),
             Err(r) if r.reason == Refusal::Invalid => return Err(r),
             Err(r) => r,
         };
@@ -219,6 +204,26 @@ impl Solver {
                 velocities: Arc::new(velocities),
             },
         ))
+    }
+
+    /// Columns of doubles already validated ([`Doubles`]), given with
+    /// radius `radius` (`None`: `1/(2N)`): the filter answers the states,
+    /// the dyadic and streaming paths are built on first need.
+    pub fn from_filter(radius: Option<BigRational>, d: Doubles) -> Solver {
+        let (positions, velocities) = d.shared_columns();
+        let mut solver = Solver::with_paths(
+            None,
+            None,
+            Source::Doubles {
+                radius,
+                positions,
+                velocities,
+            },
+        );
+        solver.dyadic = OnceLock::new();
+        solver.words = OnceLock::new();
+        solver.filter = Some(d);
+        solver
     }
 
     /// The dyadic path's columns ([`crate::fast::dyadic`]), built from the

@@ -68,7 +68,7 @@ use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{Signed, ToPrimitive};
 
-pub use outputs::Filtered;
+pub use outputs::{Filtered, Partition};
 
 /// Every nonzero magnitude the filter takes lies in `[2^−SAFE_EXP,
 /// 2^SAFE_EXP]` (module documentation).
@@ -94,19 +94,29 @@ fn in_range(v: f64) -> bool {
     a == 0.0 || (lowest..=highest).contains(&a)
 }
 
+/// What the exact validation of columns of doubles ([`Checked::new`])
+/// established, without the columns: the radius, `2r` (a double), `N`,
+/// `max |u⁰_i|` and whether the filter's range holds. The filter runs on
+/// the columns it was made from, wherever they live ([`Checked::at_into`]).
+#[derive(Debug, Clone)]
+pub struct Checked {
+    radius: BigRational,
+    two_r: f64,
+    n: usize,
+    /// `max |u⁰_i|`.
+    u_max: f64,
+    /// Every value in the filter's range and `N ≤ MAX_N`.
+    in_range: bool,
+}
+
 /// Columns of doubles validated exactly (`df:KN`, `def:velcone`), with a
 /// radius `r` such that `2r` is a double: the data of the filter, shared
 /// with its answers.
 #[derive(Debug, Clone)]
 pub struct Doubles {
-    radius: BigRational,
-    two_r: f64,
+    checked: Checked,
     x: Arc<Vec<f64>>,
     u: Arc<Vec<f64>>,
-    /// `max |u⁰_i|`.
-    u_max: f64,
-    /// Every value in the filter's range and `N ≤ MAX_N`.
-    in_range: bool,
 }
 
 /// Why [`Doubles::validate`] did not take the columns (they are handed
@@ -152,43 +162,41 @@ impl Doubles {
         positions: Vec<f64>,
         velocities: Vec<f64>,
     ) -> Result<Doubles, Box<Refused>> {
-        let n = positions.len();
-        let refuse = |positions, velocities, reason| {
-            Err(Box::new(Refused {
+        match Checked::new(radius, &positions, &velocities) {
+            Ok(checked) => Ok(Doubles::from_checked(checked, positions, velocities)),
+            Err(reason) => Err(Box::new(Refused {
                 positions,
                 velocities,
                 reason,
-            }))
-        };
-        if n == 0 || velocities.len() != n {
-            return refuse(positions, velocities, Refusal::Undecided);
+            })),
         }
-        let radius = radius.unwrap_or_else(|| BigRational::new(1.into(), BigInt::from(2 * n)));
-        let two_r = match exact_double(&(&radius + &radius)) {
-            Some(d) if radius.is_positive() => d,
-            _ => return refuse(positions, velocities, Refusal::Undecided),
-        };
-        match check(&positions, &velocities, two_r) {
-            Some(Scan { u_max, in_range }) => Ok(Doubles {
-                radius,
-                two_r,
-                x: Arc::new(positions),
-                u: Arc::new(velocities),
-                u_max,
-                in_range: in_range && self::in_range(two_r) && n <= MAX_N,
-            }),
-            None => refuse(positions, velocities, Refusal::Invalid),
+    }
+
+    /// The columns `checked` was made from ([`Checked::new`]): nothing is
+    /// checked again. Columns other than those (of another length) make
+    /// every [`Doubles::at`] answer `None`.
+    pub fn from_checked(checked: Checked, positions: Vec<f64>, velocities: Vec<f64>) -> Doubles {
+        debug_assert!(positions.len() == checked.n && velocities.len() == checked.n);
+        Doubles {
+            checked,
+            x: Arc::new(positions),
+            u: Arc::new(velocities),
         }
+    }
+
+    /// What the validation established.
+    pub fn checked(&self) -> &Checked {
+        &self.checked
     }
 
     /// N.
     pub fn n(&self) -> usize {
-        self.x.len()
+        self.checked.n
     }
 
     /// The radius.
     pub fn radius(&self) -> &BigRational {
-        &self.radius
+        &self.checked.radius
     }
 
     /// The positions and velocities.
@@ -231,15 +239,91 @@ impl Doubles {
         positions: &mut [f64],
         parallel_min: usize,
     ) -> Option<Filtered> {
-        if !self.in_range || t.is_negative() || positions.len() != self.n() {
+        let partition = self
+            .checked
+            .at_into_with(&self.x, &self.u, t, positions, parallel_min)?;
+        Some(Filtered::new(
+            partition,
+            Arc::clone(&self.x),
+            Arc::clone(&self.u),
+        ))
+    }
+}
+
+impl Checked {
+    /// Columns of doubles validated with exact decisions in doubles
+    /// ([`Doubles::validate`], whose proof of the gap test this is), read
+    /// where they lie; `radius` `None` is the paper's `1/(2N)`.
+    pub fn new(
+        radius: Option<BigRational>,
+        positions: &[f64],
+        velocities: &[f64],
+    ) -> Result<Checked, Refusal> {
+        let n = positions.len();
+        if n == 0 || velocities.len() != n {
+            return Err(Refusal::Undecided);
+        }
+        let radius = radius.unwrap_or_else(|| BigRational::new(1.into(), BigInt::from(2 * n)));
+        let two_r = match exact_double(&(&radius + &radius)) {
+            Some(d) if radius.is_positive() => d,
+            _ => return Err(Refusal::Undecided),
+        };
+        match check(positions, velocities, two_r) {
+            Some(Scan { u_max, in_range }) => Ok(Checked {
+                radius,
+                two_r,
+                n,
+                u_max,
+                in_range: in_range && self::in_range(two_r) && n <= MAX_N,
+            }),
+            None => Err(Refusal::Invalid),
+        }
+    }
+
+    /// N.
+    pub fn n(&self) -> usize {
+        self.n
+    }
+
+    /// The radius.
+    pub fn radius(&self) -> &BigRational {
+        &self.radius
+    }
+
+    /// [`Doubles::at_into`] on the columns `x`, `u` this was made from
+    /// (borrowed, e.g. from arrays of the caller's allocator): the
+    /// certified partition ([`Partition`]), the positions' nearest doubles
+    /// in `positions`. `None` as [`Doubles::at`], or when a column or
+    /// `positions` is not `N` long.
+    pub fn at_into(
+        &self,
+        x: &[f64],
+        u: &[f64],
+        t: &BigRational,
+        positions: &mut [f64],
+    ) -> Option<Partition> {
+        self.at_into_with(x, u, t, positions, pava::PARALLEL_MIN)
+    }
+
+    /// [`Self::at_into`] on two threads from `parallel_min` particles on.
+    fn at_into_with(
+        &self,
+        x: &[f64],
+        u: &[f64],
+        t: &BigRational,
+        positions: &mut [f64],
+        parallel_min: usize,
+    ) -> Option<Partition> {
+        let n = self.n;
+        if !self.in_range || t.is_negative() || [x.len(), u.len(), positions.len()] != [n; 3] {
             return None;
         }
         let tf = exact_double(t)?;
         if !in_range(tf) {
             return None;
         }
-        let multi = pava::certified(self, tf, positions, parallel_min)?;
-        Some(Filtered::new(self.clone(), t.clone(), tf, multi))
+        let multi = pava::certified(self, x, u, tf, positions, parallel_min)?;
+        Some(Partition::new(self.clone(), t.clone(), tf, multi))
     }
 }
 

@@ -3,40 +3,47 @@
 //! multipliers (`eq:dyn-micro`) and the contact clusters (`df:Omega-micro`),
 //! each value rounded once from its exact value.
 
+use std::sync::Arc;
+
 use num_rational::BigRational;
 use num_traits::Zero;
 
 use super::eft;
 use super::pava::Multi;
-use super::Doubles;
+use super::Checked;
 use crate::cluster::Cluster;
 
-/// The state at one time whose partition the filter proved (module
-/// documentation of [`super`]): every block of one particle but the
-/// larger ones it lists, each block its own contact cluster.
+/// The partition the filter proved at one time (module documentation of
+/// [`super`]), without the columns it was proved on: every block of one
+/// particle but the larger ones it lists, each block its own contact
+/// cluster. The outputs that need the initial data read them from the
+/// columns passed in, which must be those the partition was proved on.
 #[derive(Debug, Clone)]
-pub struct Filtered {
-    d: Doubles,
+pub struct Partition {
+    checked: Checked,
     t: BigRational,
     tf: f64,
-    positions: Vec<f64>,
     multi: Vec<Multi>,
 }
 
-impl Filtered {
-    pub(crate) fn new(d: Doubles, t: BigRational, tf: f64, multi: Vec<Multi>) -> Filtered {
-        Filtered {
-            d,
+/// The state at one time whose partition the filter proved, with the
+/// columns it was proved on (shared).
+#[derive(Debug, Clone)]
+pub struct Filtered {
+    partition: Partition,
+    x: Arc<Vec<f64>>,
+    u: Arc<Vec<f64>>,
+    positions: Vec<f64>,
+}
+
+impl Partition {
+    pub(crate) fn new(checked: Checked, t: BigRational, tf: f64, multi: Vec<Multi>) -> Partition {
+        Partition {
+            checked,
             t,
             tf,
-            positions: Vec::new(),
             multi,
         }
-    }
-
-    pub(crate) fn set_positions(&mut self, positions: Vec<f64>) {
-        debug_assert_eq!(positions.len(), self.n());
-        self.positions = positions;
     }
 
     /// The time.
@@ -51,56 +58,35 @@ impl Filtered {
 
     /// N.
     pub fn n(&self) -> usize {
-        self.d.n()
+        self.checked.n()
     }
 
-    /// `x(t)`'s nearest doubles (ties to even); empty when the state was
-    /// made by [`super::Doubles::at_into`] (they are in its buffer).
-    pub fn positions(&self) -> &[f64] {
-        &self.positions
-    }
-
-    /// The positions, moved out (left empty).
-    pub fn take_positions(&mut self) -> Vec<f64> {
-        std::mem::take(&mut self.positions)
-    }
-
-    /// `u(t)`'s nearest doubles: `u⁰_i` for a particle alone, the mean of
-    /// `u⁰` over a larger block (`eq:proj-u-micro`).
-    pub fn velocities(&self) -> Vec<f64> {
-        let mut out = vec![0.0; self.n()];
-        self.write_velocities(&mut out);
-        out
-    }
-
-    /// [`Self::velocities`] written into `out` (`N` values, e.g. a buffer
-    /// of the caller's allocator).
-    pub fn write_velocities(&self, out: &mut [f64]) {
-        out.copy_from_slice(&self.d.u);
+    /// `u(t)`'s nearest doubles written into `out` (`N` values, e.g. a
+    /// buffer of the caller's allocator): `u⁰_i` for a particle alone, the
+    /// mean of `u⁰` over a larger block (`eq:proj-u-micro`). `u` is the
+    /// velocity column the partition was proved on.
+    pub fn write_velocities(&self, u: &[f64], out: &mut [f64]) {
+        debug_assert_eq!(u.len(), self.n());
+        out.copy_from_slice(u);
         for m in &self.multi {
             let (a, k) = (m.start as usize, m.k as usize);
-            let v = eft::quotient(&self.d.u[a..a + k], k as u64);
+            let v = eft::quotient(&u[a..a + k], k as u64);
             out[a..a + k].fill(v);
         }
     }
 
-    /// `λ(t)`'s nearest doubles, `N − 1` values: `0` between two blocks,
-    /// `(k Σ_{j<m} u⁰_j − m Σ_j u⁰_j) / (k N)` for the `m`-th pair of a block
-    /// of `k` (`eq:dyn-micro`).
-    pub fn multipliers(&self) -> Vec<f64> {
-        let mut out = vec![0.0; self.n().saturating_sub(1)];
-        self.write_multipliers(&mut out);
-        out
-    }
-
-    /// [`Self::multipliers`] written into `out` (`N − 1` values).
-    pub fn write_multipliers(&self, out: &mut [f64]) {
+    /// `λ(t)`'s nearest doubles written into `out` (`N − 1` values): `0`
+    /// between two blocks, `(k Σ_{j<m} u⁰_j − m Σ_j u⁰_j) / (k N)` for the
+    /// `m`-th pair of a block of `k` (`eq:dyn-micro`). `u` is the velocity
+    /// column the partition was proved on.
+    pub fn write_multipliers(&self, u: &[f64], out: &mut [f64]) {
         let n = self.n();
+        debug_assert_eq!(u.len(), n);
         out.fill(0.0);
         let mut terms = Vec::new();
         for m in &self.multi {
             let (a, k) = (m.start as usize, m.k as usize);
-            let us = &self.d.u[a..a + k];
+            let us = &u[a..a + k];
             let den = (k * n) as u64;
             let block = &mut out[a..a + k - 1];
             // `2k` terms a pair, `k ≤ MAX_BLOCK`.
@@ -145,15 +131,101 @@ impl Filtered {
 }
 
 impl Filtered {
+    pub(crate) fn new(partition: Partition, x: Arc<Vec<f64>>, u: Arc<Vec<f64>>) -> Filtered {
+        Filtered {
+            partition,
+            x,
+            u,
+            positions: Vec::new(),
+        }
+    }
+
+    pub(crate) fn set_positions(&mut self, positions: Vec<f64>) {
+        debug_assert_eq!(positions.len(), self.n());
+        self.positions = positions;
+    }
+
+    /// The certified partition.
+    pub fn partition(&self) -> &Partition {
+        &self.partition
+    }
+
+    /// The time.
+    pub fn t(&self) -> &BigRational {
+        self.partition.t()
+    }
+
+    /// The time as the double it is.
+    pub fn t_double(&self) -> f64 {
+        self.partition.t_double()
+    }
+
+    /// N.
+    pub fn n(&self) -> usize {
+        self.partition.n()
+    }
+
+    /// `x(t)`'s nearest doubles (ties to even); empty when the state was
+    /// made by [`super::Doubles::at_into`] (they are in its buffer).
+    pub fn positions(&self) -> &[f64] {
+        &self.positions
+    }
+
+    /// The positions, moved out (left empty).
+    pub fn take_positions(&mut self) -> Vec<f64> {
+        std::mem::take(&mut self.positions)
+    }
+
+    /// `u(t)`'s nearest doubles: `u⁰_i` for a particle alone, the mean of
+    /// `u⁰` over a larger block (`eq:proj-u-micro`).
+    pub fn velocities(&self) -> Vec<f64> {
+        let mut out = vec![0.0; self.n()];
+        self.write_velocities(&mut out);
+        out
+    }
+
+    /// [`Self::velocities`] written into `out` (`N` values, e.g. a buffer
+    /// of the caller's allocator).
+    pub fn write_velocities(&self, out: &mut [f64]) {
+        self.partition.write_velocities(&self.u, out);
+    }
+
+    /// `λ(t)`'s nearest doubles, `N − 1` values ([`Partition::write_multipliers`]).
+    pub fn multipliers(&self) -> Vec<f64> {
+        let mut out = vec![0.0; self.n().saturating_sub(1)];
+        self.write_multipliers(&mut out);
+        out
+    }
+
+    /// [`Self::multipliers`] written into `out` (`N − 1` values).
+    pub fn write_multipliers(&self, out: &mut [f64]) {
+        self.partition.write_multipliers(&self.u, out);
+    }
+
+    /// The contact clusters, left to right: the blocks.
+    pub fn clusters(&self) -> Vec<Cluster> {
+        self.partition.clusters()
+    }
+}
+
+impl Filtered {
     /// The exact state from the certified partition, every value in lowest
     /// terms: `x_i = S/k + 2r i` with `S = Σ_j (x⁰_j + t u⁰_j − 2r j)`,
     /// `u_i = Σ_j u⁰_j / k`, the multipliers as in [`Self::multipliers`].
     pub fn exact_state(&self) -> crate::state::State<BigRational> {
+        self.partition.exact_state(&self.x, &self.u)
+    }
+}
+
+impl Partition {
+    /// [`Filtered::exact_state`] from the columns `x`, `u` the partition
+    /// was proved on.
+    pub fn exact_state(&self, x: &[f64], u: &[f64]) -> crate::state::State<BigRational> {
         let n = self.n();
         let q = |v: f64| BigRational::from_float(v).unwrap_or_else(BigRational::zero);
         let t = self.t.clone();
-        let two_r = &self.d.radius + &self.d.radius;
-        let (x, u) = self.d.columns();
+        let radius = self.checked.radius();
+        let two_r = radius + radius;
         let clusters = self.clusters();
         let mut positions = Vec::with_capacity(n);
         let mut velocities = Vec::with_capacity(n);

@@ -23,7 +23,7 @@
 use std::cmp::Ordering;
 
 use super::eft::{self, up, Acc, U};
-use super::Doubles;
+use super::Checked;
 
 /// A block of the float PAVA: `k` entries from `start`, `sum` the float
 /// sum of their `ẑ`.
@@ -251,13 +251,15 @@ fn pools(a: &Block, b: &Block) -> bool {
 /// `positions` (`N` of them); `None` when a check fails (`positions` then
 /// holds anything).
 pub(crate) fn certified(
-    d: &Doubles,
+    d: &Checked,
+    x: &[f64],
+    u: &[f64],
     t: f64,
     positions: &mut [f64],
     parallel_min: usize,
 ) -> Option<Vec<Multi>> {
-    let (x, u) = (&d.x[..], &d.u[..]);
     let n = x.len();
+    debug_assert!(n == d.n && u.len() == n);
     let two_r = d.two_r;
     // G ≥ max|x⁰| + t max|u⁰| + 2r N (x⁰ sorted: its extremes are its ends).
     let x_max = x[0].abs().max(x[n - 1].abs());

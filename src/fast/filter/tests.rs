@@ -7,7 +7,7 @@
 use num_rational::BigRational;
 use num_traits::ToPrimitive;
 
-use super::{Doubles, Refusal};
+use super::{Checked, Doubles, Refusal};
 use crate::fast::dyadic::Dyadic;
 use crate::generate::SplitMix64;
 use crate::initial::InitialData;
@@ -360,4 +360,61 @@ fn positions_into_a_buffer_are_those_of_at() {
         assert!(d.at_into(&t, &mut vec![0.0; n + 1]).is_none());
     }
     assert!(answered >= 30, "{answered} of 40 answered");
+}
+
+/// The filter on borrowed columns ([`Checked`]) validates as
+/// [`Doubles::validate`] does and answers as [`Doubles::at`] does (the
+/// same positions, velocities, multipliers, clusters and exact state), on
+/// one thread and on two; columns or a buffer of another length are
+/// refused.
+#[test]
+fn borrowed_columns_answer_as_owned_ones() {
+    let mut rng = SplitMix64::new(0x1b1);
+    let mut answered = 0;
+    for case in 0..40 {
+        let n = 2 + (rng.next_u64() % 400) as usize;
+        let gap = [1.0, 0.01][case % 2];
+        let r = 4e-7;
+        let (x, u) = notebook(&mut rng, n, gap, r);
+        let checked = Checked::new(Some(q(r)), &x, &u).expect("valid");
+        let d = Doubles::validate(Some(q(r)), x.clone(), u.clone()).expect("valid");
+        assert_eq!(checked.n(), d.n());
+        let t = q(gap * 5.0 * (1.0 + unit(&mut rng)));
+        let Some(f) = d.at(&t) else {
+            assert!(checked.at_into(&x, &u, &t, &mut vec![0.0; n]).is_none());
+            continue;
+        };
+        answered += 1;
+        for parallel_min in [usize::MAX, 2] {
+            let mut out = vec![f64::NAN; n];
+            let p = checked
+                .at_into_with(&x, &u, &t, &mut out, parallel_min)
+                .expect("certified");
+            assert_eq!(bits(&out), bits(f.positions()));
+            let mut v = vec![f64::NAN; n];
+            p.write_velocities(&u, &mut v);
+            assert_eq!(bits(&v), bits(&f.velocities()));
+            let mut l = vec![f64::NAN; n - 1];
+            p.write_multipliers(&u, &mut l);
+            assert_eq!(bits(&l), bits(&f.multipliers()));
+            assert_eq!(p.clusters(), f.clusters());
+            assert_eq!(p.exact_state(&x, &u), f.exact_state());
+        }
+        let mut out = vec![0.0; n];
+        assert!(checked.at_into(&x[1..], &u, &t, &mut out).is_none());
+        assert!(checked.at_into(&x, &u[1..], &t, &mut out).is_none());
+        assert!(checked.at_into(&x, &u, &t, &mut out[1..]).is_none());
+    }
+    assert!(answered >= 30, "{answered} of 40 answered");
+    // Invalid and undecided columns are refused as `validate` refuses them.
+    let r = Some(q(0.25));
+    assert_eq!(
+        Checked::new(r.clone(), &[0.0, 0.25], &[0.0, 0.0]).err(),
+        Some(Refusal::Invalid)
+    );
+    assert_eq!(
+        Checked::new(r.clone(), &[0.0, 1.0], &[0.0]).err(),
+        Some(Refusal::Undecided)
+    );
+    assert_eq!(Checked::new(r, &[], &[]).err(), Some(Refusal::Undecided));
 }
