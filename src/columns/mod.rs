@@ -151,6 +151,35 @@ pub fn f64_exact(v: f64) -> Option<BigRational> {
     if !v.is_finite() {
         return None;
     }
+    let Some(OddBinary { odd, exp }) = odd_binary(v) else {
+        return Some(BigRational::from_integer(BigInt::from(0)));
+    };
+    let m = if v < 0.0 {
+        -BigInt::from(odd)
+    } else {
+        BigInt::from(odd)
+    };
+    // `m` odd: `m / 2^−exp` is in lowest terms.
+    Some(if exp >= 0 {
+        BigRational::from_integer(m << exp as u64)
+    } else {
+        BigRational::new_raw(m, BigInt::from(1) << exp.unsigned_abs())
+    })
+}
+
+/// The magnitude of a finite nonzero double as `odd · 2^exp`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct OddBinary {
+    /// Odd, below `2^53`.
+    pub odd: u64,
+    /// The power of two.
+    pub exp: i64,
+}
+
+/// The magnitude of the finite double `v` read from its fields as
+/// `odd · 2^exp` with `odd` odd; `None` for ±0. `v` must be finite.
+pub fn odd_binary(v: f64) -> Option<OddBinary> {
+    debug_assert!(v.is_finite());
     let bits = v.to_bits();
     let field = ((bits >> 52) & 0x7ff) as i64;
     let fraction = bits & ((1u64 << 52) - 1);
@@ -159,21 +188,15 @@ pub fn f64_exact(v: f64) -> Option<BigRational> {
         _ => (fraction | (1 << 52), field - 1075),
     };
     if m == 0 {
-        return Some(BigRational::from_integer(BigInt::from(0)));
+        return None;
     }
     let z = m.trailing_zeros();
-    let (m, e) = (m >> z, e + i64::from(z));
-    let m = if v < 0.0 {
-        -BigInt::from(m)
-    } else {
-        BigInt::from(m)
+    let b = OddBinary {
+        odd: m >> z,
+        exp: e + i64::from(z),
     };
-    // `m` odd: `m / 2^−e` is in lowest terms.
-    Some(if e >= 0 {
-        BigRational::from_integer(m << e as u64)
-    } else {
-        BigRational::new_raw(m, BigInt::from(1) << e.unsigned_abs())
-    })
+    debug_assert!(b.odd % 2 == 1 && b.odd < 1 << 53);
+    Some(b)
 }
 
 fn npy_err(byte: usize, message: impl Into<String>) -> ColumnsError {

@@ -220,18 +220,9 @@ pub fn double_exact_text(d: f64) -> Option<String> {
     if !d.is_finite() {
         return None;
     }
-    let bits = d.to_bits();
-    let field = ((bits >> 52) & 0x7ff) as i64;
-    let fraction = bits & ((1u64 << 52) - 1);
-    let (m, e) = match field {
-        0 => (fraction, -1074),
-        _ => (fraction | (1 << 52), field - 1075),
-    };
-    if m == 0 {
+    let Some(crate::columns::OddBinary { odd: m, exp: e }) = crate::columns::odd_binary(d) else {
         return Some("0".into());
-    }
-    let z = m.trailing_zeros();
-    let (m, e) = (m >> z, e + i64::from(z));
+    };
     let mut out = String::with_capacity(24);
     if d < 0.0 {
         out.push('-');
