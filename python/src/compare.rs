@@ -463,7 +463,9 @@ impl CompareReport {
     ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyTuple>)> {
         let f = &self.frame;
         let list = |v: &Option<Vec<BigRational>>| -> PyResult<Option<Bound<'py, PyList>>> {
-            v.as_deref().map(|v| convert::fractions(py, v)).transpose()
+            v.as_deref()
+                .map(|v| crate::bulk::fractions(py, v))
+                .transpose()
         };
         let contact_tol = match &self.report.options.contact_tol {
             ContactTolerance::Absolute(q) => q.clone(),
@@ -472,7 +474,7 @@ impl CompareReport {
         let args = (
             self.scene.clone_ref(py),
             convert::fraction(py, &f.t)?,
-            convert::fractions(py, &f.positions)?,
+            crate::bulk::fractions(py, &f.positions)?,
             list(&f.velocities)?,
             list(&f.multipliers)?,
             f.contacts.as_deref().map(clusters_of),

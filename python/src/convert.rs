@@ -16,7 +16,7 @@ use num_traits::{ToPrimitive, Zero};
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1};
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
-use pyo3::types::{PyBool, PyFloat, PyInt, PyList, PyString, PyType};
+use pyo3::types::{PyBool, PyFloat, PyInt, PyString, PyType};
 use sticky::columns::f64_exact;
 use sticky::rational::parse_exact;
 use sticky::Scalar;
@@ -349,16 +349,6 @@ pub fn shown(q: &BigRational) -> String {
 /// `q` as a `fractions.Fraction`.
 pub fn fraction<'py>(py: Python<'py>, q: &BigRational) -> PyResult<Bound<'py, PyAny>> {
     fraction_class(py)?.call1((q.numer().clone(), q.denom().clone()))
-}
-
-/// `v` as a list of `fractions.Fraction`.
-pub fn fractions<'py>(py: Python<'py>, v: &[BigRational]) -> PyResult<Bound<'py, PyList>> {
-    let class = fraction_class(py)?;
-    let items = v
-        .iter()
-        .map(|q| class.call1((q.numer().clone(), q.denom().clone())))
-        .collect::<PyResult<Vec<_>>>()?;
-    PyList::new(py, items)
 }
 
 /// A numpy array of `v` that cannot be written to (`writeable=False`): the

@@ -13,7 +13,7 @@ use crate::{convert, interrupt};
 /// list of `fractions.Fraction`.
 pub fn output<'py>(py: Python<'py>, v: &[BigRational], exact: bool) -> PyResult<Bound<'py, PyAny>> {
     if exact {
-        Ok(convert::fractions(py, v)?.into_any())
+        Ok(crate::bulk::fractions(py, v)?.into_any())
     } else {
         Ok(PyArray1::from_vec(py, convert::nearest(v)).into_any())
     }

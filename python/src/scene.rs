@@ -370,12 +370,12 @@ impl Scene {
 
     /// The initial positions x⁰, exact: a list of fractions.Fraction.
     fn exact_positions<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
-        convert::fractions(py, self.file(py)?.data.positions())
+        crate::bulk::fractions(py, self.file(py)?.data.positions())
     }
 
     /// The initial velocities u⁰, exact: a list of fractions.Fraction.
     fn exact_velocities<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
-        convert::fractions(py, self.file(py)?.data.velocities())
+        crate::bulk::fractions(py, self.file(py)?.data.velocities())
     }
 
     /// state(t) -> State: the exact state at time t ≥ 0 (a float read as

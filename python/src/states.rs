@@ -13,7 +13,6 @@ use pyo3::prelude::*;
 use pyo3::types::{PyList, PySlice, PyTuple};
 use sticky::Error;
 
-use crate::convert;
 use crate::scene::{py_error, Inner, Scene};
 use crate::state::State;
 
@@ -128,7 +127,7 @@ impl States {
     /// The times, exact (fractions.Fraction), in order.
     #[getter]
     fn times<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
-        convert::fractions(py, &self.times)
+        crate::bulk::fractions(py, &self.times)
     }
 
     /// The scene these are states of.
