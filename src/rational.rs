@@ -193,8 +193,14 @@ pub fn parse_exact(text: &str) -> Result<BigRational, NumberError> {
 pub fn render_exact(q: &BigRational) -> String {
     // `BigRational` values built through `BigRational::new` and arithmetic are
     // always reduced with a positive denominator; its `Display` prints
-    // `numer/denom`, or `numer` alone when `denom == 1`.
-    q.to_string()
+    // `numer/denom`, or `numer` alone when `denom == 1`. The same digits come
+    // from machine words when both fit them, without `BigInt`'s formatting.
+    use num_traits::ToPrimitive;
+    match (q.numer().to_i128(), q.denom().to_u128()) {
+        (Some(p), Some(1)) => p.to_string(),
+        (Some(p), Some(d)) => format!("{p}/{d}"),
+        _ => q.to_string(),
+    }
 }
 
 /// The nearest double of `q` (round to nearest, ties to even, subnormals
@@ -292,6 +298,36 @@ mod tests {
     use super::*;
 
     use super::ratio as q;
+
+    /// `render_exact` on machine words writes what `BigRational`'s own
+    /// `Display` writes, at and across the words' edges.
+    #[test]
+    fn render_exact_is_display_on_and_off_words() {
+        let big = |v: i128| BigInt::from(v);
+        let edges = [
+            big(0),
+            big(1),
+            big(-1),
+            big(i128::MAX),
+            big(i128::MIN),
+            big(i128::MAX) + 1,
+            big(i128::MIN) - 1,
+        ];
+        let denominators = [
+            BigInt::from(1),
+            BigInt::from(3),
+            BigInt::from(u128::MAX),
+            BigInt::from(u128::MAX) + 2,
+        ];
+        for p in &edges {
+            for d in &denominators {
+                let v = BigRational::new(p.clone(), d.clone());
+                assert_eq!(render_exact(&v), v.to_string(), "{p}/{d}");
+            }
+        }
+        assert_eq!(render_exact(&q(-6, 4)), "-3/2");
+        assert_eq!(render_exact(&q(8, 4)), "2");
+    }
 
     /// The next double after the finite `f`, toward `+∞` or `−∞`.
     fn neighbour(f: f64, up: bool) -> f64 {

@@ -11,6 +11,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString, PyTuple, PyType};
 use pyo3::{intern, IntoPyObjectExt};
 use sticky::json::Rational;
+use sticky::rational::render_exact;
 use sticky::report::export::{ColumnJson, ExportJson, RoundedJson};
 
 use crate::convert;
@@ -125,32 +126,13 @@ pub fn fractions<'py>(py: Python<'py>, v: &[BigRational]) -> PyResult<Bound<'py,
     made
 }
 
-/// `q` written exactly (`"p/q"` in lowest terms, `"p"` for an integer),
-/// as the library renders it ([`sticky::rational::render_exact`]): on
-/// machine words when numerator and denominator fit them.
-pub fn text(q: &BigRational) -> String {
-    use std::fmt::Write;
-    let (Some(p), Some(d)) = (q.numer().to_i128(), q.denom().to_u128()) else {
-        return sticky::rational::render_exact(q);
-    };
-    let mut out = String::with_capacity(48);
-    let written = if d == 1 {
-        write!(out, "{p}")
-    } else {
-        write!(out, "{p}/{d}")
-    };
-    match written {
-        Ok(()) => out,
-        Err(_) => sticky::rational::render_exact(q),
-    }
-}
-
-/// `v` as a list of exact strings ([`text`]; Ctrl-C: `KeyboardInterrupt`).
+/// `v` as a list of exact strings ([`render_exact`];
+/// Ctrl-C: `KeyboardInterrupt`).
 pub fn texts<'py>(py: Python<'py>, v: &[BigRational]) -> PyResult<Bound<'py, PyList>> {
     let mut items = Vec::with_capacity(v.len());
     for chunk in v.chunks(CHUNK) {
         py.check_signals()?;
-        items.extend(chunk.iter().map(|q| PyString::new(py, &text(q))));
+        items.extend(chunk.iter().map(|q| PyString::new(py, &render_exact(q))));
     }
     PyList::new(py, items)
 }

@@ -490,8 +490,8 @@ fn state_dict<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     d.set_item("n", s.positions.len())?;
-    d.set_item("radius", bulk::text(radius))?;
-    d.set_item("t", bulk::text(&s.t))?;
+    d.set_item("radius", sticky::rational::render_exact(radius))?;
+    d.set_item("t", sticky::rational::render_exact(&s.t))?;
     d.set_item("positions", bulk::texts(py, &s.positions)?)?;
     d.set_item("velocities", bulk::texts(py, &s.velocities)?)?;
     d.set_item("multipliers", bulk::texts(py, &s.multipliers)?)?;
