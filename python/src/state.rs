@@ -225,17 +225,8 @@ impl State {
         positions: Bound<'_, PyArray1<f64>>,
         f: Filtered,
     ) -> PyResult<State> {
-        positions.getattr("flags")?.setattr("writeable", false)?;
-        Ok(State {
-            scene,
-            t: f.t().clone(),
-            positions: positions.unbind(),
-            velocities: OnceLock::new(),
-            multipliers: OnceLock::new(),
-            clusters: OnceLock::new(),
-            blocks: Some(Arc::new(Kept::Filtered(f))),
-            exact: OnceLock::new(),
-        })
+        let t = f.t().clone();
+        State::proved(scene, positions, t, Kept::Filtered(f))
     }
 
     /// The state the filter proved on the private columns of `scene`, its
@@ -246,15 +237,27 @@ impl State {
         positions: Bound<'_, PyArray1<f64>>,
         p: Partition,
     ) -> PyResult<State> {
+        let t = p.t().clone();
+        State::proved(scene, positions, t, Kept::Partition(p))
+    }
+
+    /// A state at `t` whose positions the filter wrote into `positions`
+    /// (made read-only here), the other arrays found from `kept` on need.
+    fn proved(
+        scene: Arc<Inner>,
+        positions: Bound<'_, PyArray1<f64>>,
+        t: BigRational,
+        kept: Kept,
+    ) -> PyResult<State> {
         positions.getattr("flags")?.setattr("writeable", false)?;
         Ok(State {
             scene,
-            t: p.t().clone(),
+            t,
             positions: positions.unbind(),
             velocities: OnceLock::new(),
             multipliers: OnceLock::new(),
             clusters: OnceLock::new(),
-            blocks: Some(Arc::new(Kept::Partition(p))),
+            blocks: Some(Arc::new(kept)),
             exact: OnceLock::new(),
         })
     }
