@@ -16,8 +16,9 @@ use num_traits::{ToPrimitive, Zero};
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1};
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
-use pyo3::types::{PyBool, PyFloat, PyInt, PyString, PyType};
+use pyo3::types::{PyBool, PyFloat, PyInt, PySlice, PyString, PyType};
 use sticky::columns::f64_exact;
+use sticky::fast::filter::Checked;
 use sticky::rational::parse_exact;
 use sticky::Scalar;
 
@@ -187,16 +188,22 @@ pub fn double_columns(
     Some(py.detach(|| copy_pair(a, b)))
 }
 
-/// Private copies of two columns of doubles in arrays of numpy's allocator
-/// (huge pages: no page fault a 4 KiB page), filled on two threads with
-/// the GIL released and made read-only, when both are contiguous
-/// one-dimensional `float64` numpy arrays of one length; `None` otherwise.
-/// Nothing else holds the copies: the caller's arrays may change after,
-/// the copies do not.
+/// Private copies of two columns of doubles, validated exactly on the
+/// copies ([`Checked::copied`], two threads, the GIL released) and made
+/// read-only, when both are contiguous one-dimensional `float64` numpy
+/// arrays of one length that the certified filter accepts; `None`
+/// otherwise. Nothing else holds the copies: the caller's arrays may
+/// change after, the copies do not.
+///
+/// Both copies are halves of one array from `numpy.empty`, every value
+/// written before it is read: the allocator hands back the pages of a
+/// scene freed before (zeroed arrays would take fresh pages from the
+/// kernel, a page fault every 4 KiB).
 pub fn private_columns<'py>(
     py: Python<'py>,
     a: &Bound<'py, PyAny>,
     b: &Bound<'py, PyAny>,
+    radius: Option<BigRational>,
 ) -> PyResult<Option<PrivateColumns<'py>>> {
     let (Ok(a), Ok(b)) = (
         a.extract::<PyReadonlyArray1<'_, f64>>(),
@@ -207,59 +214,54 @@ pub fn private_columns<'py>(
     let (Ok(a), Ok(b)) = (a.as_slice(), b.as_slice()) else {
         return Ok(None);
     };
-    if a.len() != b.len() {
+    let n = a.len();
+    if b.len() != n || n == 0 {
         return Ok(None);
     }
-    let positions = PyArray1::<f64>::zeros(py, a.len(), false);
-    let velocities = PyArray1::<f64>::zeros(py, b.len(), false);
-    {
-        let (mut pw, mut vw) = (positions.readwrite(), velocities.readwrite());
-        let (p, v) = (pw.as_slice_mut()?, vw.as_slice_mut()?);
-        py.detach(|| copy_pair_into(a, b, p, v));
-    }
+    let both = empty(py, 2 * n)?;
+    let checked = {
+        let mut written = both.readwrite();
+        let (x, u) = written.as_slice_mut()?.split_at_mut(n);
+        py.detach(|| Checked::copied(radius, a, b, x, u))
+    };
+    let Ok(checked) = checked else {
+        return Ok(None);
+    };
+    let half = |from: usize| -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let range = PySlice::new(py, from as isize, (from + n) as isize, 1);
+        Ok(both.get_item(range)?.cast_into::<PyArray1<f64>>()?)
+    };
+    let (positions, velocities) = (half(0)?, half(n)?);
     for array in [&positions, &velocities] {
         array.getattr("flags")?.setattr("writeable", false)?;
     }
     Ok(Some(PrivateColumns {
+        checked,
         positions,
         velocities,
     }))
 }
 
+/// A new array of `len` doubles from `numpy.empty`, for a caller that
+/// writes every value before anything reads it: the allocator hands back
+/// pages already in use (`PyArray1::zeros` would take fresh, zeroed pages
+/// from the kernel at every call, a page fault every 4 KiB).
+pub fn empty(py: Python<'_>, len: usize) -> PyResult<Bound<'_, PyArray1<f64>>> {
+    static EMPTY: PyOnceLock<Py<PyAny>> = PyOnceLock::new();
+    let empty = EMPTY.get_or_try_init(py, || -> PyResult<_> {
+        Ok(py.import("numpy")?.getattr("empty")?.unbind())
+    })?;
+    Ok(empty.bind(py).call1((len,))?.cast_into::<PyArray1<f64>>()?)
+}
+
 /// The arrays of [`private_columns`].
 pub struct PrivateColumns<'py> {
+    /// What the validation of the copies established.
+    pub checked: Checked,
     /// The positions' copy.
     pub positions: Bound<'py, PyArray1<f64>>,
     /// The velocities' copy.
     pub velocities: Bound<'py, PyArray1<f64>>,
-}
-
-/// `a` into `p` and `b` into `q`, the second on a thread of its own when it
-/// is long enough to pay for one.
-fn copy_pair_into(a: &[f64], b: &[f64], p: &mut [f64], q: &mut [f64]) {
-    const PARALLEL_MIN: usize = 1 << 16;
-    if b.len() < PARALLEL_MIN {
-        p.copy_from_slice(a);
-        q.copy_from_slice(b);
-        return;
-    }
-    // Whichever thread takes `q` first fills it.
-    let slot = std::sync::Mutex::new(Some(q));
-    let copy_b = || {
-        if let Some(q) = slot.lock().ok().and_then(|mut q| q.take()) {
-            q.copy_from_slice(b);
-        }
-    };
-    std::thread::scope(|s| {
-        let worker = std::thread::Builder::new().spawn_scoped(s, copy_b);
-        p.copy_from_slice(a);
-        match worker.map(|w| w.join()) {
-            Ok(Ok(())) => {}
-            Ok(Err(panic)) => std::panic::resume_unwind(panic),
-            // No second thread to be had: this one copies both.
-            Err(_) => copy_b(),
-        }
-    });
 }
 
 /// Copies of `a` and `b`, the second on a thread of its own when it is

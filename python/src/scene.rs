@@ -224,28 +224,21 @@ impl Scene {
         radius: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Scene> {
         let radius = radius.map(|r| convert::exact(r, "radius")).transpose()?;
-        if let Some(private) = convert::private_columns(py, positions, velocities)? {
-            let checked = {
-                let (x, u) = (private.positions.readonly(), private.velocities.readonly());
-                let (x, u) = (x.as_slice()?, u.as_slice()?);
-                let r = radius.clone();
-                py.detach(|| Checked::new(r, x, u))
-            };
-            // Refused: read again below, where the paths that take such
-            // columns, or the error of record, are found.
-            if let Ok(checked) = checked {
-                return Ok(Scene::wrap(Inner {
-                    held: Held::Private {
-                        columns: Private {
-                            radius,
-                            checked,
-                            positions: private.positions.unbind(),
-                            velocities: private.velocities.unbind(),
-                        },
-                        solver: OnceLock::new(),
+        // Refused: read again below, where the paths that take such
+        // columns, or the error of record, are found.
+        if let Some(private) = convert::private_columns(py, positions, velocities, radius.clone())?
+        {
+            return Ok(Scene::wrap(Inner {
+                held: Held::Private {
+                    columns: Private {
+                        radius,
+                        checked: private.checked,
+                        positions: private.positions.unbind(),
+                        velocities: private.velocities.unbind(),
                     },
-                }));
-            }
+                    solver: OnceLock::new(),
+                },
+            }));
         }
         let (x, u) = match convert::double_columns(py, positions, velocities) {
             Some((x, u)) => (Column::Doubles(x), Column::Doubles(u)),
@@ -473,7 +466,7 @@ impl Scene {
     fn filtered(&self, py: Python<'_>, t: &BigRational) -> PyResult<Option<State>> {
         if let Some(private) = self.inner.private_columns(py) {
             let checked = private.checked;
-            let positions = PyArray1::<f64>::zeros(py, checked.n(), false);
+            let positions = convert::empty(py, checked.n())?;
             let answer = {
                 let (x, u) = (private.positions.readonly(), private.velocities.readonly());
                 let (x, u) = (x.as_slice()?, u.as_slice()?);
@@ -493,7 +486,7 @@ impl Scene {
         if solver.options().engine != Engine::Auto {
             return Ok(None);
         }
-        let positions = PyArray1::<f64>::zeros(py, d.n(), false);
+        let positions = convert::empty(py, d.n())?;
         let answer = {
             let mut rw = positions.readwrite();
             let out = rw.as_slice_mut()?;

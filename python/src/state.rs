@@ -280,7 +280,7 @@ impl State {
             Later::Velocities => p.n(),
             Later::Multipliers => p.n().saturating_sub(1),
         };
-        let array = PyArray1::<f64>::zeros(py, len, false);
+        let array = convert::empty(py, len)?;
         {
             let u = u.readonly();
             let u = u.as_slice()?;
@@ -306,7 +306,7 @@ impl State {
             Later::Velocities => f.n(),
             Later::Multipliers => f.n().saturating_sub(1),
         };
-        let array = PyArray1::<f64>::zeros(py, len, false);
+        let array = convert::empty(py, len)?;
         {
             let mut rw = array.readwrite();
             let out = rw.as_slice_mut()?;

@@ -263,12 +263,64 @@ impl Checked {
         if n == 0 || velocities.len() != n {
             return Err(Refusal::Undecided);
         }
+        let (radius, two_r) = Checked::two_r(radius, n)?;
+        let scan = check(positions, velocities, two_r);
+        Checked::of_scan(radius, two_r, n, scan)
+    }
+
+    /// [`Checked::new`] on the copies it makes: `positions` and
+    /// `velocities` are copied into `into_positions` and `into_velocities`
+    /// (each `N` long), and every decision is made on the values written
+    /// there, chunk by chunk while they are in cache. The answer is about
+    /// the copies, whatever happens to the sources meanwhile: a caller
+    /// that keeps the copies unchanged keeps what was checked.
+    pub fn copied(
+        radius: Option<BigRational>,
+        positions: &[f64],
+        velocities: &[f64],
+        into_positions: &mut [f64],
+        into_velocities: &mut [f64],
+    ) -> Result<Checked, Refusal> {
+        let n = positions.len();
+        if n == 0
+            || [
+                velocities.len(),
+                into_positions.len(),
+                into_velocities.len(),
+            ] != [n; 3]
+        {
+            return Err(Refusal::Undecided);
+        }
+        let (radius, two_r) = Checked::two_r(radius, n)?;
+        let scan = copy_and_check(
+            Pair::new(positions, velocities),
+            Copies {
+                x: into_positions,
+                u: into_velocities,
+            },
+            two_r,
+        );
+        Checked::of_scan(radius, two_r, n, scan)
+    }
+
+    /// The radius (`None` is the paper's `1/(2N)`) and `2r` as a double,
+    /// when it is one and `r > 0`.
+    fn two_r(radius: Option<BigRational>, n: usize) -> Result<(BigRational, f64), Refusal> {
         let radius = radius.unwrap_or_else(|| BigRational::new(1.into(), BigInt::from(2 * n)));
-        let two_r = match exact_double(&(&radius + &radius)) {
-            Some(d) if radius.is_positive() => d,
-            _ => return Err(Refusal::Undecided),
-        };
-        match check(positions, velocities, two_r) {
+        match exact_double(&(&radius + &radius)) {
+            Some(d) if radius.is_positive() => Ok((radius, d)),
+            _ => Err(Refusal::Undecided),
+        }
+    }
+
+    /// What a validating scan of `n` particles found.
+    fn of_scan(
+        radius: BigRational,
+        two_r: f64,
+        n: usize,
+        scan: Option<Scan>,
+    ) -> Result<Checked, Refusal> {
+        match scan {
             Some(Scan { u_max, in_range }) => Ok(Checked {
                 radius,
                 two_r,
@@ -359,11 +411,7 @@ fn check_with(x: &[f64], u: &[f64], two_r: f64, parallel_min: usize) -> Option<S
             }
         });
         if let Some((left, right)) = halves {
-            let (left, right) = (left?, right?);
-            return Some(Scan {
-                u_max: left.u_max.max(right.u_max),
-                in_range: left.in_range && right.in_range,
-            });
+            return Some(left?.and(right?));
         }
     }
     scan(x, u, two_r)
@@ -371,6 +419,112 @@ fn check_with(x: &[f64], u: &[f64], two_r: f64, parallel_min: usize) -> Option<S
 
 /// Two threads scan the columns from this many particles on.
 const PARALLEL_CHECK: usize = 1 << 16;
+
+impl Scan {
+    /// What two scans of adjacent ranges found together.
+    fn and(self, other: Scan) -> Scan {
+        Scan {
+            u_max: self.u_max.max(other.u_max),
+            in_range: self.in_range && other.in_range,
+        }
+    }
+}
+
+/// The columns read by [`copy_and_check`].
+#[derive(Clone, Copy)]
+struct Pair<'a> {
+    x: &'a [f64],
+    u: &'a [f64],
+}
+
+impl<'a> Pair<'a> {
+    fn new(x: &'a [f64], u: &'a [f64]) -> Pair<'a> {
+        debug_assert_eq!(x.len(), u.len());
+        Pair { x, u }
+    }
+
+    fn split_at(self, h: usize) -> (Pair<'a>, Pair<'a>) {
+        let ((xl, xr), (ul, ur)) = (self.x.split_at(h), self.u.split_at(h));
+        (Pair::new(xl, ul), Pair::new(xr, ur))
+    }
+}
+
+/// Where [`copy_and_check`] writes, as long as its [`Pair`].
+struct Copies<'a> {
+    x: &'a mut [f64],
+    u: &'a mut [f64],
+}
+
+impl Copies<'_> {
+    fn split_at(&mut self, h: usize) -> (Copies<'_>, Copies<'_>) {
+        let ((xl, xr), (ul, ur)) = (self.x.split_at_mut(h), self.u.split_at_mut(h));
+        (Copies { x: xl, u: ul }, Copies { x: xr, u: ur })
+    }
+}
+
+/// [`check`] of `from` made on its copy into `into`: each half on its own
+/// thread from [`PARALLEL_CHECK`] particles on, then the pair across the
+/// junction, read from the copies.
+fn copy_and_check(from: Pair<'_>, into: Copies<'_>, two_r: f64) -> Option<Scan> {
+    copy_and_check_with(from, into, two_r, PARALLEL_CHECK, COPY_CHUNK)
+}
+
+/// The particles copied, then scanned while in cache, at a time.
+const COPY_CHUNK: usize = 1 << 12;
+
+/// [`copy_and_check`] on two threads from `parallel_min` particles on (at
+/// least 2), `chunk` particles at a time.
+fn copy_and_check_with(
+    from: Pair<'_>,
+    mut into: Copies<'_>,
+    two_r: f64,
+    parallel_min: usize,
+    chunk: usize,
+) -> Option<Scan> {
+    let n = from.x.len();
+    debug_assert!(into.x.len() == n && into.u.len() == n && chunk > 0);
+    if n >= parallel_min.max(2) {
+        let h = n / 2;
+        let (left_from, right_from) = from.split_at(h);
+        let (left_into, right_into) = into.split_at(h);
+        let halves = std::thread::scope(|s| {
+            let worker = std::thread::Builder::new().spawn_scoped(s, move || {
+                copy_and_scan(right_from, right_into, two_r, chunk)
+            });
+            let left = copy_and_scan(left_from, left_into, two_r, chunk);
+            match worker.map(|w| w.join()) {
+                Ok(Ok(right)) => Some((left, right)),
+                Ok(Err(panic)) => std::panic::resume_unwind(panic),
+                // No second thread to be had: one copies everything.
+                Err(_) => None,
+            }
+        });
+        if let Some((left, right)) = halves {
+            let across = scan(&into.x[h - 1..=h], &into.u[h - 1..=h], two_r)?;
+            return Some(left?.and(right?).and(across));
+        }
+    }
+    copy_and_scan(from, into, two_r, chunk)
+}
+
+/// The copy of `from` into `into` and [`scan`] of the copy, `chunk`
+/// particles at a time, each chunk from the last particle of the one
+/// before (so every pair is checked), while it is in cache.
+fn copy_and_scan(from: Pair<'_>, into: Copies<'_>, two_r: f64, chunk: usize) -> Option<Scan> {
+    let n = from.x.len();
+    let mut found = Scan {
+        u_max: 0.0,
+        in_range: true,
+    };
+    for start in (0..n).step_by(chunk) {
+        let end = (start + chunk).min(n);
+        into.x[start..end].copy_from_slice(&from.x[start..end]);
+        into.u[start..end].copy_from_slice(&from.u[start..end]);
+        let back = start.saturating_sub(1);
+        found = found.and(scan(&into.x[back..end], &into.u[back..end], two_r)?);
+    }
+    Some(found)
+}
 
 /// The magnitude bits of a double (its sign cleared): for two non-NaN
 /// doubles `|a| ≤ |b|` iff `magnitude(a) ≤ magnitude(b)` as integers, an

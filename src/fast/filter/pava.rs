@@ -336,12 +336,17 @@ impl Context<'_> {
             start: 0,
         };
         let mut top = none;
-        for i in base..end {
-            let (xi, ui) = (self.x[i], self.u[i]);
+        let (xs, us) = (&self.x[base..end], &self.u[base..end]);
+        // `i` as a double, stepped by one: exact, `i < 2⁵³`.
+        debug_assert!(end < 1 << 53);
+        let mut i_f64 = base as f64;
+        for (j, (&xi, &ui)) in xs.iter().zip(us).enumerate() {
+            let i = base + j;
             let p = t * ui;
             let (w, e) = eft::two_sum(xi, p);
-            c.out[i - base] = eft::nearest_free_flight_of(xi, t, ui, p, w, e);
-            let s = two_r * i as f64;
+            c.out[j] = eft::nearest_free_flight_of(xi, t, ui, p, w, e);
+            let s = two_r * i_f64;
+            i_f64 += 1.0;
             let low = (xi - s) - slack;
             // Emit the blocks that are final, from the bottom.
             if bottom < stack.len() {

@@ -307,6 +307,26 @@ fn validation_on_two_threads_is_the_one_thread_one() {
         let one = super::check_with(&x, &u, two_r, usize::MAX);
         let two = super::check_with(&x, &u, two_r, 2);
         assert_eq!(one, two, "case {case}, defect at {at}");
+        // Checked on its copy, in chunks of 1 to 7 (a defect often at a
+        // chunk's first pair), on one thread and on two.
+        for (parallel_min, chunk) in [(usize::MAX, 1 + case % 7), (2, 1 + case % 5)] {
+            let (mut cx, mut cu) = (vec![f64::NAN; n], vec![f64::NAN; n]);
+            let into = super::Copies {
+                x: &mut cx,
+                u: &mut cu,
+            };
+            let copied = super::copy_and_check_with(
+                super::Pair::new(&x, &u),
+                into,
+                two_r,
+                parallel_min,
+                chunk,
+            );
+            assert_eq!(copied, one, "case {case}, defect at {at}, chunk {chunk}");
+            if copied.is_some() {
+                assert_eq!((bits(&cx), bits(&cu)), (bits(&x), bits(&u)));
+            }
+        }
         let finite = x.iter().chain(&u).all(|v| v.is_finite());
         let general = finite
             && InitialData::new(
@@ -416,5 +436,30 @@ fn borrowed_columns_answer_as_owned_ones() {
         Checked::new(r.clone(), &[0.0, 1.0], &[0.0]).err(),
         Some(Refusal::Undecided)
     );
-    assert_eq!(Checked::new(r, &[], &[]).err(), Some(Refusal::Undecided));
+    assert_eq!(
+        Checked::new(r.clone(), &[], &[]).err(),
+        Some(Refusal::Undecided)
+    );
+    // `Checked::copied` validates as `new` does, and needs copies as long.
+    let (x, u) = notebook(&mut rng, 300, 0.01, 4e-7);
+    let (mut cx, mut cu) = (vec![0.0; 300], vec![0.0; 300]);
+    let copied = Checked::copied(Some(q(4e-7)), &x, &u, &mut cx, &mut cu).expect("valid");
+    let checked = Checked::new(Some(q(4e-7)), &x, &u).expect("valid");
+    assert_eq!(copied.n(), checked.n());
+    assert_eq!((bits(&cx), bits(&cu)), (bits(&x), bits(&u)));
+    assert_eq!(
+        Checked::copied(
+            r.clone(),
+            &[0.0, 0.25],
+            &[0.0, 0.0],
+            &mut cx[..2],
+            &mut cu[..2]
+        )
+        .err(),
+        Some(Refusal::Invalid)
+    );
+    assert_eq!(
+        Checked::copied(r, &[0.0, 1.0], &[0.0, 0.0], &mut cx[..2], &mut cu[..1]).err(),
+        Some(Refusal::Undecided)
+    );
 }
