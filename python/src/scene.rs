@@ -426,8 +426,15 @@ impl Scene {
         z: &Bound<'py, PyAny>,
         exact: bool,
     ) -> PyResult<Bound<'py, PyAny>> {
-        let z = convert::column(z, "z")?;
         let n = self.n(py)?;
+        if !exact && z.len()? == n {
+            let inner = &self.inner;
+            let r = py.detach(|| inner.radius()).map_err(py_error)?;
+            if let Some(x) = crate::isotonic::filtered(py, z, &r)? {
+                return Ok(x.into_any());
+            }
+        }
+        let z = convert::column(z, "z")?;
         if z.len() != n {
             let message = format!(
                 "z has {} values but the scene has N = {n} particles",

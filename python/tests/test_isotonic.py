@@ -54,3 +54,18 @@ def test_project_is_isotonic_in_shifted_coordinates():
     shifted = [F(v) - F(1, 2) * i for i, v in enumerate(z)]
     want = [v + F(1, 2) * i for i, v in enumerate(pava(shifted))]
     assert scene.project(z, exact=True) == want
+
+
+def test_doubles_of_the_filter_are_the_nearest_of_the_exact_answer():
+    # Notebook-like data (the certified filter proves most of them), a
+    # signed zero, and a radius that is a double with a full mantissa.
+    rng = np.random.default_rng(38)
+    radius = 4e-7
+    x = np.cumsum(rng.exponential(1.0, size=3000) + 4 * radius)
+    z = x + 0.5 * rng.uniform(-1.0, 1.0, size=3000)
+    z[0] = -0.0
+    ours = sticky.isotonic(z)
+    assert [v.hex() for v in ours] == [float(v).hex() for v in sticky.isotonic(z, exact=True)]
+    scene = sticky.Scene(x, np.zeros(3000), radius)
+    ours = scene.project(z)
+    assert [v.hex() for v in ours] == [float(v).hex() for v in scene.project(z, exact=True)]

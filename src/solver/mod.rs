@@ -479,12 +479,17 @@ impl Solver {
     }
 
     /// [`Self::project`] of doubles (each read exactly), rounded to the
-    /// nearest doubles: on machine integers
-    /// ([`crate::fast::dyadic::isotonic`]) when the values and the radius
-    /// allow, else by the general projection. A NaN or an infinity is
+    /// nearest doubles: by the certified filter
+    /// ([`crate::fast::filter::project_into`]) when it proves the answer,
+    /// else on machine integers ([`crate::fast::dyadic::isotonic`]) when
+    /// the values and the radius allow, else by the general projection. A NaN or an infinity is
     /// [`Error::Unsupported`].
     pub fn project_doubles(&self, z: &[f64]) -> Result<Vec<f64>, Error> {
         let r = self.radius()?;
+        let mut x = vec![0.0; z.len()];
+        if crate::fast::filter::project_into(z, r, &mut x).is_some() {
+            return Ok(x);
+        }
         if let Some(x) = crate::fast::dyadic::isotonic::project_doubles(z, r) {
             return Ok(x);
         }
@@ -499,12 +504,18 @@ impl Solver {
 }
 
 /// The isotonic regression (non-decreasing, equal weights) of doubles, each
-/// read exactly, rounded to the nearest doubles: on machine integers
-/// ([`crate::fast::dyadic::isotonic`]) when the values allow, else by the
+/// read exactly, rounded to the nearest doubles: by the certified filter
+/// ([`crate::fast::filter::project_into`], `r = 0`) when it proves the
+/// answer, else on machine integers ([`crate::fast::dyadic::isotonic`])
+/// when the values allow, else by the
 /// general pool-adjacent-violators on rationals
 /// ([`crate::projection::isotonic`]). A NaN or an infinity is
 /// [`Error::Unsupported`].
 pub fn isotonic_doubles(z: &[f64]) -> Result<Vec<f64>, Error> {
+    let mut x = vec![0.0; z.len()];
+    if crate::fast::filter::project_into(z, &num_traits::Zero::zero(), &mut x).is_some() {
+        return Ok(x);
+    }
     if let Some(x) = crate::fast::dyadic::isotonic::isotonic_doubles(z) {
         return Ok(x);
     }

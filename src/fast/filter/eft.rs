@@ -184,6 +184,81 @@ pub(crate) fn nearest_free_flight_of(x: f64, t: f64, u: f64, p: f64, w: f64, e: 
 /// The nearest double of `(Σ terms) / d` computed exactly (the rare values
 /// the bound of [`Acc::nearest_quotient`] does not decide).
 pub(crate) fn exact_quotient(terms: &[f64], d: u64) -> f64 {
+    if let Some(q) = word_quotient(terms, d) {
+        debug_assert_eq!(q.to_bits(), rational_quotient(terms, d).to_bits());
+        return q;
+    }
+    rational_quotient(terms, d)
+}
+
+/// [`exact_quotient`] in one machine word: the terms' sum as an `i128`
+/// multiple of the least term's unit in the last place, then the integer
+/// quotient by `d` with at least 74 bits and a sticky remainder, rounded
+/// once to 53 bits (ties to even). `None` when the terms span too many
+/// binades for the word (more than 64 between their units), there are 256
+/// or more, `d` is 0 or the result leaves the normal range (the rational
+/// quotient then answers). A zero sum is `+0`.
+fn word_quotient(terms: &[f64], d: u64) -> Option<f64> {
+    if d == 0 || terms.len() >= 256 {
+        return None;
+    }
+    // Each nonzero finite term is `m 2^e` with `|m| < 2⁵³`.
+    let parts = terms.iter().filter(|t| **t != 0.0).map(|&t| {
+        let bits = t.to_bits();
+        let field = ((bits >> 52) & 0x7ff) as i32;
+        let fraction = (bits & ((1u64 << 52) - 1)) as i128;
+        let (m, e) = if field == 0 {
+            (fraction, -1074)
+        } else {
+            (fraction | (1 << 52), field - 1075)
+        };
+        (if t < 0.0 { -m } else { m }, e, field == 0x7ff)
+    });
+    let mut least = i32::MAX;
+    let mut greatest = i32::MIN;
+    for (_, e, special) in parts.clone() {
+        if special {
+            return None;
+        }
+        least = least.min(e);
+        greatest = greatest.max(e);
+    }
+    if least == i32::MAX {
+        return Some(0.0);
+    }
+    // `|m| 2^(e − least) < 2^(53 + 64)`, fewer than 2⁸ of them: `|sum| < 2¹²⁵`.
+    if greatest - least > 64 {
+        return None;
+    }
+    let sum: i128 = parts.map(|(m, e, _)| m << (e - least)).sum();
+    if sum == 0 {
+        return Some(0.0);
+    }
+    let magnitude = sum.unsigned_abs();
+    let shift = magnitude.leading_zeros() - 1;
+    let wide = magnitude << shift;
+    // `wide ≥ 2¹²⁶`, `d < 2⁶⁴`: at least 63 bits of quotient, plus a sticky
+    // bit for what the remainder leaves.
+    let (q, sticky) = (wide / u128::from(d), wide % u128::from(d) != 0);
+    let drop = 128 - q.leading_zeros() - 53;
+    let mut mantissa = q >> drop;
+    let rest = q & ((1u128 << drop) - 1);
+    let half = 1u128 << (drop - 1);
+    if rest > half || (rest == half && (sticky || mantissa & 1 == 1)) {
+        mantissa += 1;
+    }
+    // The value is `mantissa 2^exponent`, `mantissa ≤ 2⁵³`.
+    let exponent = least - shift as i32 + drop as i32;
+    if !(-1022..=1023 - 53).contains(&exponent) {
+        return None;
+    }
+    let scale = f64::from_bits(((exponent + 1023) as u64) << 52);
+    let value = mantissa as f64 * scale;
+    Some(if sum < 0 { -value } else { value })
+}
+
+/// [`exact_quotient`] on rationals.
+fn rational_quotient(terms: &[f64], d: u64) -> f64 {
     let mut sum = BigRational::zero();
     for &t in terms {
         // Finite by the filter's range.
@@ -322,5 +397,47 @@ mod tests {
         }
         assert_eq!(half_gap(0.0), None);
         assert_eq!(half_gap(f64::MIN_POSITIVE), None);
+    }
+
+    /// The word quotient is the rational one, bit for bit, or declines:
+    /// sums of 1 to 200 terms over up to 63 binades, halves of sums of
+    /// two doubles (a tie every other time), cancellations to zero,
+    /// divisors from 1 to 2⁵³; and it declines what spans more binades.
+    #[test]
+    fn word_quotients_are_the_rational_ones() {
+        let mut rng = SplitMix64::new(0x9e7);
+        let mut decided = 0;
+        for case in 0..20_000 {
+            let k = 1 + (rng.next_u64() % 200) as usize;
+            let lo = -40 - (rng.next_u64() % 4) as i32;
+            let mut terms: Vec<f64> = (0..k).map(|_| random(&mut rng, lo, 20)).collect();
+            let d = match case % 4 {
+                0 => 2,
+                1 => 1 + rng.next_u64() % 64,
+                2 => 1 + rng.next_u64() % (1u64 << 53),
+                _ => 3,
+            };
+            match case % 5 {
+                0 => terms.truncate(2),
+                1 => {
+                    let t = terms[0];
+                    terms.push(-t);
+                    terms.swap(0, k);
+                }
+                2 => terms.iter_mut().for_each(|t| *t = t.round()),
+                _ => {}
+            }
+            if case % 50 == 0 {
+                terms = vec![1.5, -1.5];
+            }
+            let want = rational_quotient(&terms, d);
+            if let Some(got) = word_quotient(&terms, d) {
+                assert_eq!(got.to_bits(), want.to_bits(), "{terms:?} / {d}");
+                decided += 1;
+            }
+        }
+        assert_eq!(decided, 20_000);
+        assert_eq!(word_quotient(&[1.0, 2f64.powi(-70)], 3), None);
+        assert_eq!(word_quotient(&[1.0, f64::NAN], 3), None);
     }
 }

@@ -59,6 +59,7 @@
 mod eft;
 mod outputs;
 mod pava;
+mod project;
 #[cfg(test)]
 mod tests;
 
@@ -69,6 +70,7 @@ use num_rational::BigRational;
 use num_traits::{Signed, ToPrimitive};
 
 pub use outputs::{Filtered, Partition};
+pub use project::project_into;
 
 /// Every nonzero magnitude the filter takes lies in `[2^−SAFE_EXP,
 /// 2^SAFE_EXP]` (module documentation).

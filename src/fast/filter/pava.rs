@@ -81,16 +81,13 @@ fn beta(ug: f64, k: u32) -> f64 {
 
 /// What every range's certificate shares.
 #[derive(Clone, Copy)]
-struct Context<'a> {
+pub(crate) struct Context<'a> {
     x: &'a [f64],
     u: &'a [f64],
     t: f64,
     two_r: f64,
     /// `u G`.
     ug: f64,
-    /// Room below the heuristic bound of the later `ẑ` (`t max|u⁰|` and
-    /// the roundings).
-    slack: f64,
     /// `up(β(1) + β(1))`: condition 1's bound between two blocks of one
     /// particle.
     m11: f64,
@@ -264,24 +261,37 @@ pub(crate) fn certified(
     // G ≥ max|x⁰| + t max|u⁰| + 2r N (x⁰ sorted: its extremes are its ends).
     let x_max = x[0].abs().max(x[n - 1].abs());
     let tu = t * d.u_max;
-    let g = up(x_max + tu + two_r * n as f64);
-    let ug = up(U * g);
-    let cx = Context {
-        x,
-        u,
-        t,
-        two_r,
-        ug,
-        slack: tu + 64.0 * ug,
-        m11: up(beta(ug, 1) + beta(ug, 1)),
-    };
-    debug_assert_eq!(positions.len(), n);
+    let cx = Context::new(x, u, t, two_r, up(x_max + tu + two_r * n as f64));
+    // Every later `ẑ_j ≥ x̃_i − t max|u⁰|` (module documentation).
+    let slack = tu + 64.0 * cx.ug;
+    let floor = move |_: usize, xi: f64, s: f64| (xi - s) - slack;
+    run(cx, positions, parallel_min, floor)
+}
+
+/// A heuristic lower bound of every `ẑ_j`, `j ≥ i`, from `(i, x_i, fl(2r
+/// i))`: a block whose mean is below it is final. Wrong bounds cost a
+/// refusal, never a wrong answer (module documentation).
+pub(crate) trait Floor: Fn(usize, f64, f64) -> f64 + Copy + Send {}
+
+impl<F: Fn(usize, f64, f64) -> f64 + Copy + Send> Floor for F {}
+
+/// The certified float PAVA of `cx` on two threads from `parallel_min`
+/// particles on, blocks made final by `floor` ([`certified`]).
+pub(crate) fn run(
+    cx: Context<'_>,
+    positions: &mut [f64],
+    parallel_min: usize,
+    floor: impl Floor,
+) -> Option<Vec<Multi>> {
+    let n = cx.x.len();
+    debug_assert!(cx.u.len() == n && positions.len() == n);
     if n >= parallel_min.max(2) {
         let h = n / 2;
         let (lo, hi) = positions.split_at_mut(h);
         let halves = std::thread::scope(|s| {
-            let worker = std::thread::Builder::new().spawn_scoped(s, move || cx.stream(h, hi));
-            let left = cx.stream(0, lo);
+            let worker =
+                std::thread::Builder::new().spawn_scoped(s, move || cx.stream(h, hi, floor));
+            let left = cx.stream(0, lo, floor);
             match worker.map(|w| w.join()) {
                 Ok(Ok(right)) => Some((left, right)),
                 Ok(Err(panic)) => std::panic::resume_unwind(panic),
@@ -291,7 +301,7 @@ pub(crate) fn certified(
         });
         if let Some((Some(mut left), Some(right))) = halves {
             let joined = match (left.last, right.first) {
-                (Some(a), Some(b)) => increasing(ug, a, b).is_some(),
+                (Some(a), Some(b)) => increasing(cx.ug, a, b).is_some(),
                 _ => false,
             };
             if joined {
@@ -300,7 +310,28 @@ pub(crate) fn certified(
             }
         }
     }
-    Some(cx.stream(0, positions)?.multi)
+    Some(cx.stream(0, positions, floor)?.multi)
+}
+
+impl<'a> Context<'a> {
+    /// The data `x`, `u` at `t`, with `G = g ≥ max_i |ẑ_i|` bounding every
+    /// term (module documentation).
+    pub(crate) fn new(x: &'a [f64], u: &'a [f64], t: f64, two_r: f64, g: f64) -> Context<'a> {
+        let ug = up(U * g);
+        Context {
+            x,
+            u,
+            t,
+            two_r,
+            ug,
+            m11: up(beta(ug, 1) + beta(ug, 1)),
+        }
+    }
+
+    /// `u G`.
+    pub(crate) fn ug(&self) -> f64 {
+        self.ug
+    }
 }
 
 impl Context<'_> {
@@ -315,9 +346,9 @@ impl Context<'_> {
     /// the stack stays in registers (`top`, `k = 0` when there is none):
     /// on sparse data a particle is pushed, then emitted by the next one,
     /// without the stack in memory.
-    fn stream(self, base: usize, out: &mut [f64]) -> Option<Part> {
+    fn stream(self, base: usize, out: &mut [f64], floor: impl Floor) -> Option<Part> {
         let end = base + out.len();
-        let (t, two_r, slack) = (self.t, self.two_r, self.slack);
+        let (t, two_r) = (self.t, self.two_r);
         let mut c = Certifier {
             cx: self,
             out,
@@ -347,7 +378,7 @@ impl Context<'_> {
             c.out[j] = eft::nearest_free_flight_of(xi, t, ui, p, w, e);
             let s = two_r * i_f64;
             i_f64 += 1.0;
-            let low = (xi - s) - slack;
+            let low = floor(i, xi, s);
             // Emit the blocks that are final, from the bottom.
             if bottom < stack.len() {
                 while let Some(&b) = stack.get(bottom) {
