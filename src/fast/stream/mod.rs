@@ -33,7 +33,7 @@ use num_traits::{Signed, ToPrimitive};
 
 use crate::columns::{f64_small, Small};
 use crate::error::Error;
-use crate::fast::kernel::{pava_words, size_bits};
+use crate::fast::kernel::{i128_runs, size_bits};
 use crate::fast::scaling::{scale_pairs, small_word, Range};
 use crate::scene::{column_scene, inline_scene, ColumnScene, MAX_NUMBER_BITS, MAX_SCENE_BYTES};
 
@@ -374,14 +374,9 @@ impl Lean {
         if b_y + b_k >= 128 || self.u_bits + b_k >= 128 {
             return None;
         }
-        let (a, b) = (i128::from(a), i128::from(b));
-        let (xs, us) = (&self.x, &self.u);
-        // |a|, |X_i|, |b|, |U_i| < 2^63 and the sums below 2^(b_Y + b_K)
-        // (the kernel's proof): the wrapping operations are exact.
-        let runs = pava_words(self.n(), |i| {
-            let (x, u) = (i128::from(xs[i]), i128::from(us[i]));
-            (a.wrapping_mul(x).wrapping_add(b.wrapping_mul(u)), u)
-        });
+        // |a|, |X_i|, |b|, |U_i| < 2^63 and the sums below 2^(b_Y + b_K):
+        // the kernel's `i128` bound, under which its loop is exact.
+        let runs = i128_runs(&self.x, &self.u, a, b, self.u_bits);
         Some(LeanBlocks {
             d: self,
             runs,
