@@ -44,6 +44,7 @@ mod exact;
 pub mod memory;
 mod nearest;
 mod read;
+mod reduce;
 mod scale;
 
 pub use blocks::{LeanBlocks, Piece};
@@ -377,11 +378,21 @@ impl Lean {
         // |a|, |X_i|, |b|, |U_i| < 2^63 and the sums below 2^(b_Y + b_K):
         // the kernel's `i128` bound, under which its loop is exact.
         let runs = i128_runs(&self.x, &self.u, a, b, self.u_bits);
+        // Every denominator of the state divides k q D_x D_u r_d N
+        // (positions, velocities, multipliers: `LeanBlocks`).
+        let fixed = [
+            u128::from(q.unsigned_abs()),
+            self.dx.unsigned_abs(),
+            self.du.unsigned_abs(),
+            self.two_r.1.unsigned_abs(),
+            self.n() as u128,
+        ];
         Some(LeanBlocks {
             d: self,
             runs,
             t: t.clone(),
             dy: (i128::from(q).checked_mul(self.dx)).and_then(|v| v.checked_mul(self.du)),
+            primes: reduce::ScenePrimes::of(&fixed),
         })
     }
 }
