@@ -555,13 +555,25 @@ pub(crate) fn blocks_on(d: &IntegerData, t: &BigRational, parallel_min: usize) -
 /// module documentation (`b_Y + b_K < 128`, `u_bits + b_K < 128`, `a`, `b`
 /// and the columns on `i64`, `u_bits ≥ bits(max|U_i|)`); the `U` sums run in
 /// `i64` when `N max|U| < 2^63`.
-pub(crate) fn i128_runs(xs: &[i64], us: &[i64], a: i64, b: i64, u_bits: u64) -> Vec<Run<i128>> {
+pub(crate) fn word_runs(xs: &[i64], us: &[i64], a: i64, b: i64, u_bits: u64) -> Vec<Run<i128>> {
+    word_runs_on(xs, us, a, b, u_bits, halves::PARALLEL_MIN)
+}
+
+/// [`word_runs`], on two threads from `parallel_min` entries on.
+pub(crate) fn word_runs_on(
+    xs: &[i64],
+    us: &[i64],
+    a: i64,
+    b: i64,
+    u_bits: u64,
+    parallel_min: usize,
+) -> Vec<Run<i128>> {
     let n = xs.len();
     // |ΣU| ≤ N max|U| < 2^(bits(N) + bits(max|U|)) ≤ 2^63.
     if u64::from(usize::BITS - n.leading_zeros()) + u_bits <= 63 {
-        halves::pava_parts::<i64>(xs, us, a, b, halves::PARALLEL_MIN).into_wide()
+        halves::pava_parts::<i64>(xs, us, a, b, parallel_min).into_wide()
     } else {
-        halves::pava_parts::<i128>(xs, us, a, b, halves::PARALLEL_MIN).into_wide()
+        halves::pava_parts::<i128>(xs, us, a, b, parallel_min).into_wide()
     }
 }
 

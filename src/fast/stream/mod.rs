@@ -33,7 +33,7 @@ use num_traits::{Signed, ToPrimitive};
 
 use crate::columns::{f64_small, Small};
 use crate::error::Error;
-use crate::fast::kernel::{i128_runs, size_bits};
+use crate::fast::kernel::{size_bits, word_runs};
 use crate::fast::scaling::{scale_pairs, small_word, Range};
 use crate::scene::{column_scene, inline_scene, ColumnScene, MAX_NUMBER_BITS, MAX_SCENE_BYTES};
 
@@ -377,7 +377,7 @@ impl Lean {
         }
         // |a|, |X_i|, |b|, |U_i| < 2^63 and the sums below 2^(b_Y + b_K):
         // the kernel's `i128` bound, under which its loop is exact.
-        let runs = i128_runs(&self.x, &self.u, a, b, self.u_bits);
+        let runs = word_runs(&self.x, &self.u, a, b, self.u_bits);
         // Every denominator of the state divides k q D_x D_u r_d N
         // (positions, velocities, multipliers: `LeanBlocks`).
         let fixed = [
