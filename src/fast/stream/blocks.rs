@@ -264,7 +264,7 @@ impl LeanBlocks<'_> {
                 runs: vec![r.clone()],
                 t: self.t.clone(),
                 dy: self.dy,
-                primes: self.primes,
+                primes: self.primes.clone(),
             };
             let (mut xs, mut us, mut ls) = (Vec::new(), Vec::new(), Vec::new());
             let k = r.k as usize;

@@ -120,9 +120,10 @@ impl PrimeSet {
     }
 }
 
-/// The odd primes of the scene's fixed numbers (`None`: not all known).
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct ScenePrimes(Option<PrimeSet>);
+/// The odd primes of the scene's fixed numbers (`None`: not all known),
+/// boxed: the blocks of a time carry them, and are moved around whole.
+#[derive(Debug, Clone)]
+pub(crate) struct ScenePrimes(Option<Box<PrimeSet>>);
 
 impl ScenePrimes {
     /// The odd prime factors of every number of `numbers` (each nonzero).
@@ -131,13 +132,13 @@ impl ScenePrimes {
         let known = numbers
             .iter()
             .try_for_each(|&m| set.add_factors(m, TRIAL_BOUND));
-        ScenePrimes(known.map(|()| set))
+        ScenePrimes(known.map(|()| Box::new(set)))
     }
 
     /// The reducer of a block of `k` particles: every denominator whose
     /// prime factors are those of `k` and of the scene's numbers.
     pub(crate) fn block(&self, k: u64) -> Reducer {
-        let set = self.0.and_then(|mut set| {
+        let set = self.0.as_deref().copied().and_then(|mut set| {
             if k > 1 {
                 // k < 2^64: a cofactor with no divisor below 2^32 is prime.
                 set.add_factors(u128::from(k), 1 << 32)?;
