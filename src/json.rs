@@ -140,6 +140,56 @@ impl<T: std::fmt::Display> Serialize for Displayed<'_, T> {
     }
 }
 
+/// The name under which serde_json's serializer writes a struct's one
+/// field verbatim, with no escape scan: what its own `RawValue` serializes
+/// as (feature `raw_value`). The tests check that [`Elements`] written
+/// through it give serde's own bytes.
+const VERBATIM: &str = "$serde_json::private::RawValue";
+
+/// A run of array elements already in the contract's spelling, written as
+/// they are: JSON strings of ASCII digits, `-` and `/` only (which need no
+/// escape), `", "` between two of them. The streaming writers format their
+/// exact values so on worker threads; serde_json then copies the run without
+/// its per-byte escape scan. Written as one element of a sequence, it gives
+/// the bytes of its strings written one by one (the separator before it is
+/// the sequence's own); it must not be empty.
+#[derive(Debug, Clone, Copy)]
+pub struct Elements<'a>(&'a str);
+
+impl<'a> Elements<'a> {
+    /// The run `text` (its form checked in debug builds: the callers build
+    /// it so).
+    pub fn new(text: &'a str) -> Elements<'a> {
+        debug_assert!(
+            is_digit_strings(text),
+            "not a run of digit strings: {text:?}"
+        );
+        Elements(text)
+    }
+}
+
+/// Is `text` one or more `"…"` of digits, `-` and `/`, joined by `", "`?
+fn is_digit_strings(text: &str) -> bool {
+    !text.is_empty()
+        && text.split(", ").all(|e| {
+            e.len() >= 2
+                && e.starts_with('"')
+                && e.ends_with('"')
+                && e[1..e.len() - 1]
+                    .bytes()
+                    .all(|b| b.is_ascii_digit() || b == b'-' || b == b'/')
+        })
+}
+
+impl Serialize for Elements<'_> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeStruct;
+        let mut st = s.serialize_struct(VERBATIM, 1)?;
+        st.serialize_field(VERBATIM, self.0)?;
+        st.end()
+    }
+}
+
 /// A JSON number with exactly `DIGITS` decimals (`0.031`): a measured time.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Fixed<const DIGITS: usize>(pub f64);
@@ -217,5 +267,29 @@ mod tests {
             to_string(&(Fixed::<3>(0.5), Fixed::<3>(f64::NAN))),
             "[0.500, null]"
         );
+    }
+
+    /// Runs of elements written verbatim give the bytes of their strings
+    /// serialised one by one, whatever the cut into runs.
+    #[test]
+    fn elements_are_the_strings_bytes() {
+        let values = ["-4367/1000", "0", "811/1375", "12", "-1/3"];
+        let want = to_string(&values);
+        for cut in 1..values.len() {
+            let runs: Vec<String> = [&values[..cut], &values[cut..]]
+                .iter()
+                .map(|run| {
+                    let quoted: Vec<String> =
+                        run.iter().map(|v| ["\"", v, "\""].concat()).collect();
+                    quoted.join(", ")
+                })
+                .collect();
+            let elements: Vec<Elements<'_>> = runs.iter().map(|r| Elements::new(r)).collect();
+            assert_eq!(to_string(&elements), want, "cut at {cut}");
+        }
+        assert!(!is_digit_strings(""));
+        assert!(!is_digit_strings("\"1\\\""));
+        assert!(!is_digit_strings("\"1\",\"2\""));
+        assert!(is_digit_strings("\"-1/2\", \"3\""));
     }
 }

@@ -209,7 +209,14 @@ impl ExactDiv {
     /// `v / g` for a multiple `v` of `g`.
     #[inline]
     pub(crate) fn apply(&self, v: i128) -> i128 {
-        let q = ((v.unsigned_abs() >> self.shift).wrapping_mul(self.inverse)) as i128;
+        let a = v.unsigned_abs() >> self.shift;
+        // A multiple below 2^64 has its quotient below 2^64: the low word of
+        // the product by the inverse's low word (the inverse mod 2^64), one
+        // machine multiplication instead of a 128-bit product.
+        let q = match u64::try_from(a) {
+            Ok(a) => i128::from(a.wrapping_mul(self.inverse as u64)),
+            Err(_) => a.wrapping_mul(self.inverse) as i128,
+        };
         if v < 0 {
             -q
         } else {

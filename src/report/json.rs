@@ -28,7 +28,7 @@ use crate::cluster::Cluster;
 use crate::contact::Impulse;
 use crate::fast::merge::WordHistory;
 use crate::fast::stream::{Exact, LeanBlocks, Piece};
-use crate::json::{Displayed, Rational};
+use crate::json::{Displayed, Elements, Rational};
 use crate::limit::continuum::Profile;
 use crate::limit::surd::Surd;
 use crate::scalar::Scalar;
@@ -154,23 +154,26 @@ pub struct LeanColumn<'a> {
     piece: usize,
 }
 
-/// The values of one piece of a column, formatted: value `j` is
-/// `text[ends[j - 1]..ends[j]]` (from 0 for the first).
+/// The values of one piece of a column, formatted as the contract writes
+/// array elements: `"v_1", "v_2", …` ([`Elements`]; empty for no value).
 struct Formatted {
     text: String,
-    ends: Vec<usize>,
 }
 
 impl LeanColumn<'_> {
-    /// The values of `piece` in this column, formatted as `Exact`'s
-    /// `Display` writes them ([`Exact::push_text`]: digits straight into
-    /// one buffer per piece).
+    /// The values of `piece` in this column, each formatted as `Exact`'s
+    /// `Display` writes it ([`Exact::push_text`]: digits straight into one
+    /// buffer per piece) between quotes, `", "` between two.
     fn format(&self, piece: &Piece) -> io::Result<Formatted> {
-        let mut text = Vec::new();
-        let mut ends = Vec::new();
+        // Room for the usual values (no growth copies): 16 bytes each.
+        let mut text = Vec::with_capacity(16 * self.piece.min(PIECE_PARTICLES));
         let each = |v: &Exact| {
+            if !text.is_empty() {
+                text.extend_from_slice(b", ");
+            }
+            text.push(b'"');
             v.push_text(&mut text);
-            ends.push(text.len());
+            text.push(b'"');
             Ok(())
         };
         match self.column {
@@ -180,7 +183,6 @@ impl LeanColumn<'_> {
         }?;
         Ok(Formatted {
             text: String::from_utf8(text).map_err(io::Error::other)?,
-            ends,
         })
     }
 }
@@ -196,12 +198,11 @@ impl Serialize for LeanColumn<'_> {
             |piece| self.format(piece),
             |formatted| {
                 let f = formatted.map_err(S::Error::custom)?;
-                let mut start = 0;
-                for &end in &f.ends {
-                    seq.serialize_element(&f.text[start..end])?;
-                    start = end;
+                // A piece may hold no value (the last particle's multiplier).
+                if f.text.is_empty() {
+                    return Ok(());
                 }
-                Ok(())
+                seq.serialize_element(&Elements::new(&f.text))
             },
         )?;
         seq.end()

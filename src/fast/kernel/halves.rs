@@ -67,6 +67,23 @@ impl<R> Parts<R> {
     }
 }
 
+impl<V: USum> Parts<Run<i128, V>> {
+    /// The blocks, left to right, in one vector with `i128` `U` sums (the
+    /// left part's vector reused when it already holds them).
+    pub(crate) fn into_wide(self) -> Vec<Run<i128>> {
+        let wide = |r: Run<i128, V>| Run {
+            k: r.k,
+            sy: r.sy,
+            su: r.su.into(),
+        };
+        let Parts { left, right, skip } = self;
+        left.into_iter()
+            .chain(right.into_iter().skip(skip))
+            .map(wide)
+            .collect()
+    }
+}
+
 /// [`pava`] of `xs`, `us`, on two threads (the two halves) when there are
 /// at least `parallel_min` entries (and at least 2): the same blocks.
 pub(crate) fn pava_parts<V: USum>(

@@ -548,6 +548,35 @@ pub(crate) fn blocks_on(d: &IntegerData, t: &BigRational, parallel_min: usize) -
     Blocks::new(sums, at.dy, d.du.clone())
 }
 
+/// The `i128` loop of [`blocks_at`] on `i64` columns with `Y_i = a X_i + b U_i`,
+/// on both cores from [`halves::PARALLEL_MIN`] entries on, its blocks in one
+/// vector with `i128` `U` sums: the streaming path's PAVA
+/// ([`crate::fast::stream`]). The caller proved the `i128` bound of the
+/// module documentation (`b_Y + b_K < 128`, `u_bits + b_K < 128`, `a`, `b`
+/// and the columns on `i64`, `u_bits ≥ bits(max|U_i|)`); the `U` sums run in
+/// `i64` when `N max|U| < 2^63`.
+pub(crate) fn word_runs(xs: &[i64], us: &[i64], a: i64, b: i64, u_bits: u64) -> Vec<Run<i128>> {
+    word_runs_on(xs, us, a, b, u_bits, halves::PARALLEL_MIN)
+}
+
+/// [`word_runs`], on two threads from `parallel_min` entries on.
+pub(crate) fn word_runs_on(
+    xs: &[i64],
+    us: &[i64],
+    a: i64,
+    b: i64,
+    u_bits: u64,
+    parallel_min: usize,
+) -> Vec<Run<i128>> {
+    let n = xs.len();
+    // |ΣU| ≤ N max|U| < 2^(bits(N) + bits(max|U|)) ≤ 2^63.
+    if u64::from(usize::BITS - n.leading_zeros()) + u_bits <= 63 {
+        halves::pava_parts::<i64>(xs, us, a, b, parallel_min).into_wide()
+    } else {
+        halves::pava_parts::<i128>(xs, us, a, b, parallel_min).into_wide()
+    }
+}
+
 /// The word `V` of a loop's `U` sums, read from the `U` column.
 pub(crate) trait FromColumn: Word {
     /// `U_i`; the caller has checked that the column's values fit `Self`

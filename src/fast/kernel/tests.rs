@@ -382,6 +382,12 @@ fn halves_and_register_loop_equal_pava_words() {
             })
             .collect();
         assert_eq!(narrow, want, "case {k}, i64 U sums");
+        // The streaming path's entry: both halves joined into one vector,
+        // U sums in i64 (|U| < 2^40, N < 2^6) or, bound taken loose, i128.
+        for u_bits in [41, 63] {
+            let got = word_runs_on(&xs, &us, a as i64, b as i64, u_bits, 2);
+            assert_eq!(got, want, "case {k}, u_bits {u_bits}");
+        }
         for h in 0..=n {
             let left = small::pava(&xs[..h], &us[..h], a as i64, b as i64);
             let right = small::pava(&xs[h..], &us[h..], a as i64, b as i64);

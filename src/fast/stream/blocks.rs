@@ -11,6 +11,7 @@ use num_traits::Zero;
 use crate::cluster::Cluster;
 use crate::fast::kernel::{i128_clusters, Run};
 
+use super::reduce::{Reducer, ScenePrimes};
 use super::{Exact, Lean};
 
 /// A stretch of whole blocks of a [`LeanBlocks`] ([`LeanBlocks::pieces`]):
@@ -31,6 +32,8 @@ pub struct LeanBlocks<'a> {
     pub(super) runs: Vec<Run<i128>>,
     pub(super) t: BigRational,
     pub(super) dy: Option<i128>,
+    /// The odd primes of the denominators of the state ([`super::reduce`]).
+    pub(super) primes: ScenePrimes,
 }
 
 impl LeanBlocks<'_> {
@@ -46,23 +49,23 @@ impl LeanBlocks<'_> {
 
     /// `s / (k d)` in lowest terms, for a block sum `s` over `k` entries and
     /// a denominator `d` (on words when `k d` fits).
-    fn mean(&self, s: i128, k: u64, d: Option<i128>, d_big: impl Fn() -> BigInt) -> Exact {
+    fn mean(red: &Reducer, s: i128, k: u64, d: Option<i128>, d_big: impl Fn() -> BigInt) -> Exact {
         match d.and_then(|d| d.checked_mul(i128::from(k))) {
-            Some(den) => Exact::ratio(s, den),
+            Some(den) => red.ratio(s, den),
             None => Exact::big(BigInt::from(s), d_big() * BigInt::from(k)),
         }
     }
 
-    fn mean_y(&self, r: &Run<i128>) -> Exact {
+    fn mean_y(&self, r: &Run<i128>, red: &Reducer) -> Exact {
         let (q, dx, du) = (self.t.denom(), self.d.dx, self.d.du);
-        self.mean(r.sy, r.k, self.dy, || {
+        Self::mean(red, r.sy, r.k, self.dy, || {
             q * BigInt::from(dx) * BigInt::from(du)
         })
     }
 
-    fn mean_u(&self, r: &Run<i128>) -> Exact {
+    fn mean_u(&self, r: &Run<i128>, red: &Reducer) -> Exact {
         let du = self.d.du;
-        self.mean(r.su, r.k, Some(du), || BigInt::from(du))
+        Self::mean(red, r.su, r.k, Some(du), || BigInt::from(du))
     }
 
     /// Calls `f` on every position `x_i(t)` in order: the block's `x̃` plus
@@ -137,7 +140,8 @@ impl LeanBlocks<'_> {
     ) -> io::Result<()> {
         let (rn, rd) = self.d.two_r;
         for r in runs {
-            let y = self.mean_y(r);
+            let red = self.primes.block(r.k);
+            let y = self.mean_y(r, &red);
             // x_i = (y_n r_d + r_n y_d i) / (y_d r_d): the numerator steps by
             // `r_n y_d` from one particle to the next (one addition, no
             // product per value); the `BigInt` form when it leaves `i128`.
@@ -154,7 +158,7 @@ impl LeanBlocks<'_> {
             };
             for _ in 0..r.k {
                 let v = match (num, den) {
-                    (Some(num), Some(den)) => Exact::ratio(num, den),
+                    (Some(num), Some(den)) => red.ratio(num, den),
                     _ => {
                         let (yn, yd) = y.numer_denom();
                         let (rn, rd) = (BigInt::from(rn), BigInt::from(rd));
@@ -181,7 +185,7 @@ impl LeanBlocks<'_> {
         mut f: impl FnMut(&Exact) -> io::Result<()>,
     ) -> io::Result<()> {
         for r in runs {
-            let v = self.mean_u(r);
+            let v = self.mean_u(r, &self.primes.block(r.k));
             for _ in 0..r.k {
                 f(&v)?;
             }
@@ -207,6 +211,7 @@ impl LeanBlocks<'_> {
         let big_n = i128::try_from(n).unwrap_or(i128::MAX);
         for r in runs {
             let k = i128::from(r.k);
+            let red = self.primes.block(r.k);
             let den = k.checked_mul(self.d.du).and_then(|v| v.checked_mul(big_n));
             let mut prefix = 0i128;
             for m in 1..=r.k as usize {
@@ -221,7 +226,7 @@ impl LeanBlocks<'_> {
                     .and_then(|a| a.checked_sub(i128::try_from(m).ok()?.checked_mul(r.su)?));
                 let v = match (num, den) {
                     (Some(0), _) => Exact::Small(0, 1),
-                    (Some(num), Some(den)) => Exact::ratio(num, den),
+                    (Some(num), Some(den)) => red.ratio(num, den),
                     _ => {
                         let num = BigInt::from(k) * BigInt::from(prefix)
                             - BigInt::from(m) * BigInt::from(r.su);
@@ -259,6 +264,7 @@ impl LeanBlocks<'_> {
                 runs: vec![r.clone()],
                 t: self.t.clone(),
                 dy: self.dy,
+                primes: self.primes.clone(),
             };
             let (mut xs, mut us, mut ls) = (Vec::new(), Vec::new(), Vec::new());
             let k = r.k as usize;

@@ -13,10 +13,16 @@ const PAIRS: &[u8; 200] = b"\
 6061626364656667686970717273747576777879\
 8081828384858687888990919293949596979899";
 
-/// Appends the decimal digits of `v` to `out`.
+/// Appends the decimal digits of `v` to `out`, written in place: the
+/// digit count first, then twenty bytes appended at once (a copy of fixed
+/// size, no call) and cut to it, then the digits from the last one back.
 fn push_u64(out: &mut Vec<u8>, mut v: u64) {
-    let mut buf = [0u8; 20];
-    let mut at = buf.len();
+    let len = v.checked_ilog10().map_or(1, |l| l as usize + 1);
+    let start = out.len();
+    out.extend_from_slice(&[0u8; 20]);
+    out.truncate(start + len);
+    let buf = &mut out[start..];
+    let mut at = len;
     while v >= 100 {
         let pair = (v % 100) as usize * 2;
         v /= 100;
@@ -31,7 +37,7 @@ fn push_u64(out: &mut Vec<u8>, mut v: u64) {
         at -= 1;
         buf[at] = b'0' + v as u8;
     }
-    out.extend_from_slice(&buf[at..]);
+    debug_assert_eq!(at, 0);
 }
 
 /// Appends the decimal digits of `v` to `out`: 19 digits at a time on

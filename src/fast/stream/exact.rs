@@ -74,7 +74,9 @@ impl Exact {
     pub fn to_f64_lossy(&self) -> f64 {
         const EXACT: i128 = 1 << 53;
         match self {
-            Exact::Small(n, d) if n.abs() <= EXACT && *d <= EXACT => *n as f64 / *d as f64,
+            Exact::Small(n, d) if n.abs() <= EXACT && *d <= EXACT => {
+                *n as i64 as f64 / *d as i64 as f64
+            }
             _ => {
                 let (n, d) = self.numer_denom();
                 crate::scalar::Scalar::to_f64_lossy(&BigRational::new(n, d))

@@ -6,7 +6,7 @@
 //! of the file being read on every core (`CHUNK_BYTES` together) and the
 //! PAVA stack: one
 //! run (`ΣY`, `ΣU`, size) per block, at most one per particle, touched only as blocks
-//! form. The projection charges the stack its worst case, so a file whose
+//! form, twice (the halves' stacks, then the joined blocks). The projection charges the stack its worst case, so a file whose
 //! projection passes the limit cannot exhaust the memory on this path.
 
 use std::fmt;
@@ -16,8 +16,10 @@ use crate::fast::kernel::Run;
 /// Bytes per particle of the two `i64` columns.
 pub const COLUMN_BYTES: u64 = 16;
 
-/// Bytes per PAVA block (one `Run` on `i128` sums).
-pub const BLOCK_BYTES: u64 = std::mem::size_of::<Run<i128>>() as u64;
+/// Bytes per PAVA block: one `Run` on `i128` sums in the stack of the half
+/// of the entries that formed it ([`crate::fast::kernel`], both cores) and
+/// one in the joined vector the state is read from.
+pub const BLOCK_BYTES: u64 = 2 * std::mem::size_of::<Run<i128>>() as u64;
 
 /// The environment variable that sets the limit, in MiB.
 pub const LIMIT_VAR: &str = "STICKY_MAX_MEMORY";

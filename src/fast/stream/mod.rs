@@ -33,7 +33,7 @@ use num_traits::{Signed, ToPrimitive};
 
 use crate::columns::{f64_small, Small};
 use crate::error::Error;
-use crate::fast::kernel::{pava_words, size_bits};
+use crate::fast::kernel::{size_bits, word_runs};
 use crate::fast::scaling::{scale_pairs, small_word, Range};
 use crate::scene::{column_scene, inline_scene, ColumnScene, MAX_NUMBER_BITS, MAX_SCENE_BYTES};
 
@@ -44,6 +44,7 @@ mod exact;
 pub mod memory;
 mod nearest;
 mod read;
+mod reduce;
 mod scale;
 
 pub use blocks::{LeanBlocks, Piece};
@@ -374,19 +375,24 @@ impl Lean {
         if b_y + b_k >= 128 || self.u_bits + b_k >= 128 {
             return None;
         }
-        let (a, b) = (i128::from(a), i128::from(b));
-        let (xs, us) = (&self.x, &self.u);
-        // |a|, |X_i|, |b|, |U_i| < 2^63 and the sums below 2^(b_Y + b_K)
-        // (the kernel's proof): the wrapping operations are exact.
-        let runs = pava_words(self.n(), |i| {
-            let (x, u) = (i128::from(xs[i]), i128::from(us[i]));
-            (a.wrapping_mul(x).wrapping_add(b.wrapping_mul(u)), u)
-        });
+        // |a|, |X_i|, |b|, |U_i| < 2^63 and the sums below 2^(b_Y + b_K):
+        // the kernel's `i128` bound, under which its loop is exact.
+        let runs = word_runs(&self.x, &self.u, a, b, self.u_bits);
+        // Every denominator of the state divides k q D_x D_u r_d N
+        // (positions, velocities, multipliers: `LeanBlocks`).
+        let fixed = [
+            u128::from(q.unsigned_abs()),
+            self.dx.unsigned_abs(),
+            self.du.unsigned_abs(),
+            self.two_r.1.unsigned_abs(),
+            self.n() as u128,
+        ];
         Some(LeanBlocks {
             d: self,
             runs,
             t: t.clone(),
             dy: (i128::from(q).checked_mul(self.dx)).and_then(|v| v.checked_mul(self.du)),
+            primes: reduce::ScenePrimes::of(&fixed),
         })
     }
 }

@@ -27,7 +27,9 @@ pub fn nearest_ratio(num: i128, den: i128) -> Option<f64> {
     let (a, b) = (num.unsigned_abs(), den.unsigned_abs());
     let sign = if num < 0 { -1.0 } else { 1.0 };
     if a <= EXACT && b <= EXACT {
-        return Some(sign * (a as f64 / b as f64));
+        // Through `u64` (exact: both ≤ 2^53): one machine conversion each,
+        // not the 128-bit one.
+        return Some(sign * (a as u64 as f64 / b as u64 as f64));
     }
     let la = 128 - i64::from(a.leading_zeros());
     let lb = 128 - i64::from(b.leading_zeros());
@@ -61,7 +63,7 @@ pub fn nearest_ratio(num: i128, den: i128) -> Option<f64> {
         return None;
     }
     let scale = f64::from_bits(u64::try_from(e + 1023).ok()? << 52);
-    Some(sign * (m as f64) * scale)
+    Some(sign * (m as u64 as f64) * scale)
 }
 
 /// A callback of the value visitors of [`LeanBlocks`].
