@@ -450,25 +450,17 @@ enum BlockSums {
 /// A block's `ΣY` as a big integer (for the exact state).
 trait SumY: Copy + Sync {
     fn big(self) -> BigInt;
-    /// The sum on one word, when it fits.
-    fn word(self) -> Option<i128>;
 }
 
 impl SumY for i128 {
     fn big(self) -> BigInt {
         BigInt::from(self)
     }
-    fn word(self) -> Option<i128> {
-        Some(self)
-    }
 }
 
 impl SumY for I256 {
     fn big(self) -> BigInt {
         self.to_bigint()
-    }
-    fn word(self) -> Option<i128> {
-        self.to_i128()
     }
 }
 
@@ -528,42 +520,6 @@ fn fill_velocities<W>(runs: &[Run<W, i128>], eu: i64, out: &mut [f64]) -> Option
 }
 
 /// `num 2^exp / den` in lowest terms.
-/// [`exact`] on machine words: `num 2^exp / den` in lowest terms, `den >
-/// 0`, with one word gcd ([`word_gcd`]) instead of a big one. `gcd(num, den)`
-/// is divided out first; the power of two then shares with the other side
-/// only `2^{min(tz, |exp|)}`, read off the trailing zeros.
-fn exact_words(num: i128, den: u128, exp: i64) -> BigRational {
-    debug_assert!(den > 0);
-    if num == 0 {
-        return BigRational::zero();
-    }
-    let g = word_gcd(num.unsigned_abs(), den);
-    // `g` divides `|num| ≤ 2^127`: `num / g` fits (and `g = 2^127` only
-    // for `num = i128::MIN`, whose quotient is `−1`).
-    let num = if g == 1 << 127 { -1 } else { num / g as i128 };
-    let den = den / g;
-    let shift = exp.unsigned_abs();
-    if exp >= 0 {
-        let z = u64::from(den.trailing_zeros()).min(shift);
-        BigRational::new_raw(BigInt::from(num) << (shift - z), BigInt::from(den >> z))
-    } else {
-        let z = u64::from(num.trailing_zeros()).min(shift);
-        BigRational::new_raw(BigInt::from(num >> z), BigInt::from(den) << (shift - z))
-    }
-}
-
-/// `gcd(a, b)` for `b > 0`: one remainder by `b`, then Stein's binary gcd
-/// on the words left (one machine word each when `b` fits one, as a
-/// block's denominator `k b_o q_o` does).
-fn word_gcd(a: u128, b: u128) -> u128 {
-    use num_integer::Integer;
-    let r = a % b;
-    match (u64::try_from(r), u64::try_from(b)) {
-        (Ok(r), Ok(b)) => u128::from(r.gcd(&b)),
-        _ => r.gcd(&b),
-    }
-}
-
 fn exact(num: BigInt, den: BigInt, exp: i64) -> BigRational {
     let shift = exp.unsigned_abs() as usize;
     if exp >= 0 {
@@ -777,59 +733,25 @@ impl DyadicBlocks {
         let mut velocities = Vec::with_capacity(n);
         let mut multipliers = Vec::with_capacity(n.saturating_sub(1));
         let mut first = 0usize;
-        // `S + k C i` over `k b_o q_o` on words when they fit (the common
-        // case), else on big integers: the same value either way.
-        let c_word = c.to_i128();
-        let den_y_word = den_y.to_u128();
         for r in runs {
             let k = r.k;
             let kb = BigInt::from(k);
             let den = &kb * &den_y;
-            let den_word = den_y_word.and_then(|d| d.checked_mul(u128::from(k)));
             for m in 0..k as usize {
-                let i = (first + m) as i128;
-                let word = (r.sy.word(), c_word, den_word);
-                let num_word = match word {
-                    (Some(sy), Some(c), Some(_)) => c
-                        .checked_mul(i128::from(k))
-                        .and_then(|kc| kc.checked_mul(i))
-                        .and_then(|kci| kci.checked_add(sy)),
-                    _ => None,
-                };
-                positions.push(match (num_word, den_word) {
-                    (Some(num), Some(d)) => exact_words(num, d, ey),
-                    _ => exact(
-                        r.sy.big() + &kb * &c * BigInt::from(first + m),
-                        den.clone(),
-                        ey,
-                    ),
-                });
+                let num = r.sy.big() + &kb * &c * BigInt::from(first + m);
+                positions.push(exact(num, den.clone(), ey));
             }
             let u = exact(BigInt::from(r.su), kb.clone(), eu);
             velocities.extend(std::iter::repeat_n(u, k as usize));
             let mut prefix = BigInt::zero();
-            // The same sums on words while they fit.
-            let mut prefix_word = Some(0i128);
-            let den_word = u128::from(k).checked_mul(n as u128);
             for m in 1..=k {
                 let i = first + m as usize - 1;
                 if i + 1 >= n {
                     break;
                 }
-                let u_i = self.d.columns.u(i).unwrap_or(0);
-                prefix += u_i;
-                prefix_word = prefix_word.and_then(|p| p.checked_add(u_i));
-                let num_word = prefix_word.and_then(|p| {
-                    let kp = p.checked_mul(i128::from(k))?;
-                    kp.checked_sub(i128::from(m).checked_mul(r.su)?)
-                });
-                multipliers.push(match (num_word, den_word) {
-                    (Some(num), Some(d)) => exact_words(num, d, eu),
-                    _ => {
-                        let num = &kb * &prefix - BigInt::from(m) * BigInt::from(r.su);
-                        exact(num, &kb * BigInt::from(n), eu)
-                    }
-                });
+                prefix += BigInt::from(self.d.columns.u(i).unwrap_or(0));
+                let num = &kb * &prefix - BigInt::from(m) * BigInt::from(r.su);
+                multipliers.push(exact(num, &kb * BigInt::from(n), eu));
             }
             first += k as usize;
         }
