@@ -53,6 +53,9 @@ fn combine(a: &BigRational, c: &BigInt, d: &BigInt) -> BigRational {
     if p.is_zero() {
         return BigRational::new_raw(c.clone(), d.clone());
     }
+    if let Some(r) = combine_binary(p, b, c, d) {
+        return r;
+    }
     let g = gcd_int(b, d);
     if g.is_one() {
         return BigRational::new_raw(p * d + c * b, b * d);
@@ -64,6 +67,30 @@ fn combine(a: &BigRational, c: &BigInt, d: &BigInt) -> BigRational {
     }
     let h = gcd_int(&t, &g);
     BigRational::new_raw(divided(&t, &h), bg * divided(d, &h))
+}
+
+/// `k` when `v > 0` is `2^k`.
+fn power_of_two(v: &BigInt) -> Option<u64> {
+    let z = v.trailing_zeros()?;
+    (v.bits() == z + 1).then_some(z)
+}
+
+/// Knuth's addition `p/b + c/d` ([`combine`]) when `b` or `d` is a power
+/// of two (a double's denominator, the dyadic path's): then
+/// `g = gcd(b, d) = 2^{min(tz b, tz d)}` and `h = gcd(t, g)` are read off
+/// the trailing zeros, and the divisions by them are shifts — no gcd, no
+/// division. `None` when neither denominator is a power of two.
+fn combine_binary(p: &BigInt, b: &BigInt, c: &BigInt, d: &BigInt) -> Option<BigRational> {
+    let (zb, zd) = (b.trailing_zeros()?, d.trailing_zeros()?);
+    power_of_two(b).or_else(|| power_of_two(d))?;
+    let g = zb.min(zd);
+    let (bg, dg) = (b >> g, d >> g);
+    let t = p * &dg + c * &bg;
+    let Some(zt) = t.trailing_zeros() else {
+        return Some(BigRational::zero());
+    };
+    let h = zt.min(g);
+    Some(BigRational::new_raw(t >> h, bg * (d >> h)))
 }
 
 /// `a · b` in lowest terms (the cross gcds `gcd(p, s)`, `gcd(r, q)` of
@@ -98,8 +125,8 @@ pub fn quotient(a: &BigRational, b: &BigRational) -> BigRational {
 mod tests {
     use super::*;
 
-    /// Deterministic big values (xorshift words, signs, small and `1`
-    /// denominators, zeros, planted common factors): every operation equals
+    /// Deterministic big values (xorshift words, signs, small, `1`,
+    /// power-of-two and `k 2^s` denominators, zeros, planted common factors): every operation equals
     /// `num-rational`'s, field by field (so the result is in lowest terms
     /// with a positive denominator).
     #[test]
@@ -123,9 +150,13 @@ mod tests {
                 _ => big(1 + next() % 12, next) * &factor,
             };
             let n = if next() % 2 == 0 { -n } else { n };
-            let d = match next() % 4 {
+            // Powers of two (doubles) and odd multiples of them (the
+            // dyadic path's `k 2^s`) take `combine_binary`.
+            let d = match next() % 6 {
                 0 => BigInt::one(),
                 1 => BigInt::from(1 + next() % 40_000) * &factor,
+                2 => BigInt::one() << (next() % 300),
+                3 => BigInt::from(1 + next() % 40_000) << (next() % 300),
                 _ => big(1 + next() % 6, next) + 1,
             };
             BigRational::new(n, d)
@@ -133,7 +164,7 @@ mod tests {
         let same = |x: BigRational, y: BigRational, what: &str| {
             assert_eq!((x.numer(), x.denom()), (y.numer(), y.denom()), "{what}");
         };
-        for k in 0..2000u64 {
+        for k in 0..4000u64 {
             let a = value(k, &mut next);
             let b = value(k / 4 + next() % 3, &mut next);
             same(sum(&a, &b), &a + &b, &format!("{a} + {b}"));

@@ -147,7 +147,7 @@ impl Scalar for BigRational {
         Some(self.clone())
     }
     fn render(&self) -> String {
-        self.to_string()
+        crate::rational::render_exact(self)
     }
     /// Over a running common denominator (the lcm of the products'
     /// denominators, no gcd while a product's denominator divides it) and one

@@ -105,12 +105,7 @@ impl<'py> Maker<'py> {
 /// again; two ints per `Fraction` make no cycle.
 pub fn fractions<'py>(py: Python<'py>, v: &[BigRational]) -> PyResult<Bound<'py, PyList>> {
     let maker = Maker::new(py)?;
-    let gc = py.import(intern!(py, "gc"))?;
-    let enabled = gc.call_method0(intern!(py, "isenabled"))?.is_truthy()?;
-    if enabled {
-        gc.call_method0(intern!(py, "disable"))?;
-    }
-    let made = (|| {
+    collector_paused(py, || {
         let mut items = Vec::with_capacity(v.len());
         for chunk in v.chunks(CHUNK) {
             py.check_signals()?;
@@ -119,7 +114,21 @@ pub fn fractions<'py>(py: Python<'py>, v: &[BigRational]) -> PyResult<Bound<'py,
             }
         }
         PyList::new(py, items)
-    })();
+    })
+}
+
+/// `make()` with Python's cyclic garbage collector paused, and restored as
+/// it was (see [`fractions`]: many new tracked objects without cycles).
+pub fn collector_paused<'py, R>(
+    py: Python<'py>,
+    make: impl FnOnce() -> PyResult<R>,
+) -> PyResult<R> {
+    let gc = py.import(intern!(py, "gc"))?;
+    let enabled = gc.call_method0(intern!(py, "isenabled"))?.is_truthy()?;
+    if enabled {
+        gc.call_method0(intern!(py, "disable"))?;
+    }
+    let made = make();
     if enabled {
         gc.call_method0(intern!(py, "enable"))?;
     }

@@ -19,6 +19,7 @@ use sticky::report::solution::Frame;
 use crate::convert::{self, Column};
 use crate::errors;
 use crate::interrupt;
+use crate::report_lists::FrameLists;
 use crate::scene::Scene;
 
 /// The nearest double of `q` (None beyond the range of doubles).
@@ -161,9 +162,15 @@ pub fn compare(
     if let Some(c) = &clusters {
         frame.contacts = Some(contacts(py, c, n)?);
     }
-    let kept = frame.clone();
+    let frame = Arc::new(frame);
+    let kept = Arc::clone(&frame);
     let report = interrupt::run_sized(py, n, move |stop| {
-        compare_solution_by(inner.solver(), &[frame], &options, stop)
+        compare_solution_by(
+            inner.solver(),
+            std::slice::from_ref(&*frame),
+            &options,
+            stop,
+        )
     })?
     .map_err(|e| {
         let message = match e {
@@ -172,10 +179,12 @@ pub fn compare(
         };
         errors::raise(py, "CompareError", message, vec![])
     })?;
-    let frames = report
-        .frames
-        .iter()
-        .map(|f| Py::new(py, FrameFigures(f.clone())))
+    let report = Arc::new(report);
+    let frames = (0..report.frames.len())
+        .map(|index| {
+            let report = Arc::clone(&report);
+            Py::new(py, FrameFigures { report, index })
+        })
         .collect::<PyResult<Vec<_>>>()?;
     Ok(CompareReport {
         report,
@@ -188,7 +197,19 @@ pub fn compare(
 /// The comparison of one time: every figure exact (`Fraction`) and as the
 /// nearest double (`*_float`), indices from 0.
 #[pyclass(module = "sticky", frozen, name = "CompareFrame")]
-pub struct FrameFigures(FrameReport);
+pub struct FrameFigures {
+    /// The whole report (shared, not copied: a frame's lists are `O(N)`).
+    report: Arc<Report>,
+    /// Which of its frames.
+    index: usize,
+}
+
+impl FrameFigures {
+    /// The frame's figures.
+    fn frame(&self) -> &FrameReport {
+        &self.report.frames[self.index]
+    }
+}
 
 /// A max error as Python sees it: `(value, value as float, index)`.
 type MaxTuple<'py> = (Bound<'py, PyAny>, Option<f64>, usize);
@@ -219,62 +240,62 @@ impl FrameFigures {
     /// The time, exact.
     #[getter]
     fn t<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        convert::fraction(py, &self.0.comparison.t)
+        convert::fraction(py, &self.frame().comparison.t)
     }
 
     /// This time's verdict: "exact", "rounding", "inexact" or "invalid".
     #[getter]
     fn verdict(&self) -> &'static str {
-        self.0.verdict.name()
+        self.frame().verdict.name()
     }
 
     /// Whether every figure is 0 (the answer is the exact one).
     #[getter]
     fn exact(&self) -> bool {
-        self.0.comparison.is_exact()
+        self.frame().comparison.is_exact()
     }
 
     /// max_i |x_i - exact x_i|, exact.
     #[getter]
     fn position_max<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        convert::fraction(py, &self.0.comparison.position_max.value)
+        convert::fraction(py, &self.frame().comparison.position_max.value)
     }
 
     /// The nearest double of position_max.
     #[getter]
     fn position_max_float(&self) -> Option<f64> {
-        float(&self.0.comparison.position_max.value)
+        float(&self.frame().comparison.position_max.value)
     }
 
     /// The first index reaching position_max.
     #[getter]
     fn position_max_index(&self) -> usize {
-        self.0.comparison.position_max.index
+        self.frame().comparison.position_max.index
     }
 
     /// (1/N) Σ e_i², the square of the L² position error, exact.
     #[getter]
     fn position_l2_squared<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        convert::fraction(py, &self.0.comparison.position_l2_squared)
+        convert::fraction(py, &self.frame().comparison.position_l2_squared)
     }
 
     /// The L² position error: the double nearest to the exact root.
     #[getter]
     fn position_l2_float(&self) -> Option<f64> {
-        root_float(&self.0.comparison.position_l2_squared)
+        root_float(&self.frame().comparison.position_l2_squared)
     }
 
     /// (value, float, index) of the max velocity error; None without
     /// velocities.
     #[getter]
     fn velocity_max<'py>(&self, py: Python<'py>) -> PyResult<Option<MaxTuple<'py>>> {
-        max_error(py, self.0.comparison.velocity_max.as_ref())
+        max_error(py, self.frame().comparison.velocity_max.as_ref())
     }
 
     /// The square of the L² velocity error, exact; None without velocities.
     #[getter]
     fn velocity_l2_squared<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
-        self.0
+        self.frame()
             .comparison
             .velocity_l2_squared
             .as_ref()
@@ -285,7 +306,7 @@ impl FrameFigures {
     /// The L² velocity error, nearest double of the exact root.
     #[getter]
     fn velocity_l2_float(&self) -> Option<f64> {
-        self.0
+        self.frame()
             .comparison
             .velocity_l2_squared
             .as_ref()
@@ -296,13 +317,13 @@ impl FrameFigures {
     /// multipliers.
     #[getter]
     fn multiplier_max<'py>(&self, py: Python<'py>) -> PyResult<Option<MaxTuple<'py>>> {
-        max_error(py, self.0.comparison.multiplier_max.as_ref())
+        max_error(py, self.frame().comparison.multiplier_max.as_ref())
     }
 
     /// Overlapping pairs (j, j+1): [(j, depth 2r - gap)], exact.
     #[getter]
     fn overlaps<'py>(&self, py: Python<'py>) -> PyResult<Vec<OverlapTuple<'py>>> {
-        self.0
+        self.frame()
             .comparison
             .overlaps
             .iter()
@@ -313,25 +334,25 @@ impl FrameFigures {
     /// Pairs in contact in the exact answer, not in the solver's.
     #[getter]
     fn missed_contacts(&self) -> usize {
-        self.0.comparison.missed_contacts
+        self.frame().comparison.missed_contacts
     }
 
     /// Pairs in contact in the solver's answer, not in the exact one.
     #[getter]
     fn spurious_contacts(&self) -> usize {
-        self.0.comparison.spurious_contacts
+        self.frame().comparison.spurious_contacts
     }
 
     /// Exact clusters (first, size) the solver does not have.
     #[getter]
     fn missed_clusters(&self) -> Vec<(usize, usize)> {
-        cluster_pairs(&self.0.comparison.missed_clusters)
+        cluster_pairs(&self.frame().comparison.missed_clusters)
     }
 
     /// The solver's clusters (first, size) the exact answer does not have.
     #[getter]
     fn spurious_clusters(&self) -> Vec<(usize, usize)> {
-        cluster_pairs(&self.0.comparison.spurious_clusters)
+        cluster_pairs(&self.frame().comparison.spurious_clusters)
     }
 
     /// Pairs with λ < 0: [(pair, λ)], exact.
@@ -340,28 +361,28 @@ impl FrameFigures {
         &self,
         py: Python<'py>,
     ) -> PyResult<Vec<(usize, Bound<'py, PyAny>)>> {
-        pairs(py, &self.0.comparison.negative_multipliers)
+        pairs(py, &self.frame().comparison.negative_multipliers)
     }
 
     /// Pairs with λ·(gap - 2r) ≠ 0: [(pair, product)], exact.
     #[getter]
     fn complementarity<'py>(&self, py: Python<'py>) -> PyResult<Vec<(usize, Bound<'py, PyAny>)>> {
-        pairs(py, &self.0.comparison.complementarity)
+        pairs(py, &self.frame().comparison.complementarity)
     }
 
     /// i for each pair (i-1, i) breaking the discrete Oleinik condition
     /// (prop:Oleinik); None when not checked.
     #[getter]
     fn oleinik(&self) -> Option<Vec<usize>> {
-        self.0.comparison.oleinik.clone()
+        self.frame().comparison.oleinik.clone()
     }
 
     fn __repr__(&self) -> String {
-        let c = &self.0.comparison;
+        let c = &self.frame().comparison;
         format!(
             "CompareFrame(t={}, verdict={:?}, position_max={} at {}, overlaps={}, missed_contacts={}, spurious_contacts={})",
             convert::shown(&c.t),
-            self.0.verdict.name(),
+            self.frame().verdict.name(),
             convert::shown(&c.position_max.value),
             c.position_max.index,
             c.overlaps.len(),
@@ -377,11 +398,11 @@ impl FrameFigures {
 /// compare`), `to_dict()` (its JSON).
 #[pyclass(module = "sticky", frozen)]
 pub struct CompareReport {
-    report: Report,
+    report: Arc<Report>,
     frames: Vec<Py<FrameFigures>>,
     /// The scene compared with, and the answer compared (for pickling).
     scene: Py<Scene>,
-    frame: Frame,
+    frame: Arc<Frame>,
 }
 
 /// The clusters `(first, size)` of a contact set (`contacts[j]`: the pair
@@ -427,8 +448,24 @@ impl CompareReport {
     /// The report as `sticky compare --json` prints it (every figure an
     /// exact string with its nearest double beside it).
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        py.import("json")?
-            .call_method1("loads", (self.report.json(),))
+        // The typed JSON off the interpreter's thread; its long lists built
+        // as Python objects directly, the rest through its text.
+        let report = Arc::clone(&self.report);
+        let steps = report.frames.len().saturating_mul(report.n);
+        let (text, lists) = interrupt::run_sized(py, steps, move |_| {
+            let mut json = report.to_json_value();
+            let lists: Vec<FrameLists> = json.times.iter_mut().map(FrameLists::take).collect();
+            (sticky::json::to_string(&json), lists)
+        })?;
+        let d = py.import("json")?.call_method1("loads", (text,))?;
+        let times = d.get_item("times")?;
+        crate::bulk::collector_paused(py, || {
+            for (k, lists) in lists.iter().enumerate() {
+                lists.fill(&times.get_item(k)?)?;
+            }
+            Ok(())
+        })?;
+        Ok(d)
     }
 
     /// With one time, the figures of that time (`report.position_max`, …).

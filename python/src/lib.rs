@@ -22,6 +22,7 @@ mod events;
 mod interrupt;
 mod isotonic;
 mod macro_scene;
+mod report_lists;
 mod scene;
 mod state;
 mod states;

@@ -1,5 +1,8 @@
 """sticky.compare: the library's comparison, from Python."""
 
+import json
+import random
+import subprocess
 from fractions import Fraction as F
 
 import numpy as np
@@ -8,7 +11,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import sticky
-from conftest import SCENES
+from conftest import SCENES, random_scene, scene_toml
 from test_properties import scenes, times
 
 
@@ -71,3 +74,42 @@ def test_the_exact_answer_is_exact(data, t):
     report = sticky.compare(scene, t, s.exact_positions(), s.exact_velocities(), multipliers=s.exact_multipliers())
     assert report.verdict == "exact" and report.exact
     assert report.position_max == 0
+
+
+def test_to_dict_is_the_cli_json(sticky_bin, tmp_path):
+    """`report.to_dict()` builds its long lists (overlaps, λ < 0,
+    complementarity, wrong clusters, Oleinik) as Python objects and the
+    rest through JSON text: the whole equals `sticky compare --json`."""
+    rng = random.Random(38)
+    seen = {"overlaps": 0, "negative_multipliers": 0, "complementarity": 0,
+            "missed_clusters": 0, "spurious_clusters": 0, "oleinik": 0}
+    for k in range(40):
+        x, u, r = random_scene(rng)
+        if len(x) < 3:
+            continue
+        scene = sticky.Scene(x, u, r)
+        t = F(rng.randint(1, 8), rng.randint(1, 3))
+        s = scene.state(t)
+        xs = [v + F(rng.randint(-3, 3), 7) * r for v in s.exact_positions()]
+        us = [v + F(rng.randint(-2, 2), 5) for v in s.exact_velocities()]
+        ls = [v + F(rng.randint(-2, 1), 3) for v in s.exact_multipliers()]
+        scene_file, answer = tmp_path / f"c{k}.toml", tmp_path / f"c{k}.json"
+        scene_file.write_text(scene_toml(x, u, r))
+        text = lambda vs: [str(v) for v in vs]
+        answer.write_text(json.dumps(
+            {"t": str(t), "positions": text(xs), "velocities": text(us), "multipliers": text(ls)}
+        ))
+        out = subprocess.run(
+            [sticky_bin, "compare", str(scene_file), str(answer), "--json"],
+            capture_output=True, text=True,
+        ).stdout
+        cli = json.loads(out)
+        d = sticky.compare(scene, t, xs, us, multipliers=ls).to_dict()
+        # Only the CLI names its files and the answer's line.
+        assert (d["scene"], d["solution"]) == (None, None)
+        cli["scene"] = cli["solution"] = None
+        cli["times"][0]["line"] = 0
+        assert d == cli
+        for key in seen:
+            seen[key] += bool(d["times"][0][key])
+    assert all(seen.values()), seen

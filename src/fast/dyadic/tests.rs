@@ -40,6 +40,20 @@ enum Outcome {
     Agreed,
 }
 
+/// Every value of `s` in lowest terms with a positive denominator (`==`
+/// on `BigRational` compares values, not fields).
+fn lowest_terms(s: &crate::state::State<BigRational>) {
+    let columns = [&s.positions, &s.velocities, &s.multipliers];
+    for q in columns.into_iter().flatten() {
+        let reduced = BigRational::new(q.numer().clone(), q.denom().clone());
+        assert_eq!(
+            (q.numer(), q.denom()),
+            (reduced.numer(), reduced.denom()),
+            "{q} in lowest terms"
+        );
+    }
+}
+
 /// [`check`] is [`Outcome::Agreed`].
 fn agree(radius: Option<BigRational>, xs: &[f64], us: &[f64], t: &BigRational) -> bool {
     check(radius, xs, us, t) == Outcome::Agreed
@@ -71,6 +85,7 @@ fn check(radius: Option<BigRational>, xs: &[f64], us: &[f64], t: &BigRational) -
     let want = projection::state_at(&data, t).unwrap();
     let got = blocks.exact_state();
     assert_eq!(got, want, "exact state at t = {t}, x {xs:?}, u {us:?}");
+    lowest_terms(&got);
     let near = blocks.nearest().expect("on words");
     // Two threads from two particles on: the same blocks, the same doubles.
     let halves = lean.blocks_with(t, 2).expect("the same bound");

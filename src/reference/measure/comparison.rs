@@ -160,17 +160,54 @@ impl fmt::Display for CompareError {
 impl std::error::Error for CompareError {}
 
 fn max_error(a: &[BigRational], b: &[BigRational]) -> MaxError {
-    let mut best = MaxError {
-        value: <BigRational as Zero>::zero(),
-        index: 0,
-    };
+    let mut best = Largest::default();
     for (i, (p, q)) in a.iter().zip(b).enumerate() {
-        let d = difference(p, q).abs();
-        if exceeds(&d, &best.value) {
-            best = MaxError { value: d, index: i };
+        best.offer(i, difference(p, q));
+    }
+    best.into_max()
+}
+
+/// The running `max_i |d_i|` and its first index.
+#[derive(Debug, Default)]
+struct Largest {
+    /// `d_index` itself (either sign): `|·|` is taken once, at the end.
+    value: BigRational,
+    index: usize,
+}
+
+impl Largest {
+    /// Offers `d_i`: kept when `|d_i|` exceeds the largest so far.
+    fn offer(&mut self, i: usize, d: BigRational) {
+        // |d| > |v| ⟺ |n_d| m_v > |n_v| m_d (denominators positive).
+        let (n, m) = (d.numer().magnitude(), d.denom().magnitude());
+        let (nv, mv) = (
+            self.value.numer().magnitude(),
+            self.value.denom().magnitude(),
+        );
+        if n * mv > nv * m {
+            *self = Largest { value: d, index: i };
         }
     }
-    best
+
+    fn into_max(self) -> MaxError {
+        MaxError {
+            value: self.value.abs(),
+            index: self.index,
+        }
+    }
+}
+
+/// [`max_error`] and `(1/N) Σ_i (a_i − b_i)²` ([`Squares`]) of the same
+/// columns, each difference taken once.
+fn max_and_mean_square(a: &[BigRational], b: &[BigRational]) -> (MaxError, BigRational) {
+    let mut best = Largest::default();
+    let mut squares = Squares::default();
+    for (i, (p, q)) in a.iter().zip(b).enumerate() {
+        let d = difference(p, q);
+        squares.add(&d);
+        best.offer(i, d);
+    }
+    (best.into_max(), squares.mean(a.len()))
 }
 
 /// A sum of squares `Σ n_i² / (o² 2^{2 z_i})` over one odd part `o` of the
@@ -194,33 +231,40 @@ impl DyadicSum {
     }
 }
 
-/// `(1/N) Σ_i (a_i − b_i)²`, exact. The squares are summed by the odd part
-/// of their denominators, each group as one integer over a power of two
-/// (no gcd per value: the denominators of doubles and of dyadic answers
-/// share a few odd parts), and the groups added once at the end.
-fn mean_square_error(a: &[BigRational], b: &[BigRational]) -> BigRational {
-    if a.is_empty() {
-        return <BigRational as Zero>::zero();
-    }
-    let mut groups: HashMap<BigInt, DyadicSum> = HashMap::new();
-    for (p, q) in a.iter().zip(b) {
-        let d = difference(p, q);
-        if Zero::is_zero(&d) {
-            continue;
+/// A running `Σ d_i²`. The squares are summed by the odd part of their
+/// denominators, each group as one integer over a power of two (no gcd
+/// per value: the denominators of doubles and of dyadic answers share a
+/// few odd parts), and the groups added once at the end.
+#[derive(Debug, Default)]
+struct Squares {
+    groups: HashMap<BigInt, DyadicSum>,
+}
+
+impl Squares {
+    fn add(&mut self, d: &BigRational) {
+        if Zero::is_zero(d) {
+            return;
         }
         // A denominator is positive: it has a number of trailing zeros.
         let z = d.denom().trailing_zeros().unwrap_or(0);
-        groups
+        self.groups
             .entry(d.denom() >> z)
             .or_default()
             .add(d.numer() * d.numer(), 2 * z);
     }
-    let mut s = <BigRational as Zero>::zero();
-    for (odd, group) in groups {
-        let den = (&odd * &odd) << group.shift;
-        s = crate::reduced::sum(&s, &crate::gcd::ratio(group.numerator, den));
+
+    /// `(1/n) Σ d_i²` (`0` for `n = 0`).
+    fn mean(self, n: usize) -> BigRational {
+        if n == 0 {
+            return <BigRational as Zero>::zero();
+        }
+        let mut s = <BigRational as Zero>::zero();
+        for (odd, group) in self.groups {
+            let den = (&odd * &odd) << group.shift;
+            s = crate::reduced::sum(&s, &crate::gcd::ratio(group.numerator, den));
+        }
+        quotient(&s, &BigRational::from_integer(n.into()))
     }
-    quotient(&s, &BigRational::from_integer(a.len().into()))
 }
 
 fn check_len(what: &'static str, v: &[impl Sized], expected: usize) -> Result<(), CompareError> {
@@ -271,6 +315,19 @@ pub fn compare(
     two_r: &BigRational,
     tol: &BigRational,
 ) -> Result<Comparison, CompareError> {
+    let gaps = candidate_gaps(cand.positions, two_r);
+    compare_with_gaps(cand, exact, &gaps, tol)
+}
+
+/// [`compare`] given the candidate's gaps `gaps[j] = x_{j+1} − x_j − 2r`
+/// ([`candidate_gaps`], of any length: the positions' length is checked
+/// first), for a caller that needs them too (the verdict).
+pub fn compare_with_gaps(
+    cand: &Candidate<'_>,
+    exact: &crate::state::State<BigRational>,
+    gaps: &[BigRational],
+    tol: &BigRational,
+) -> Result<Comparison, CompareError> {
     let n = exact.positions.len();
     let pairs = n.saturating_sub(1);
     check_len("positions", cand.positions, n)?;
@@ -284,7 +341,7 @@ pub fn compare(
         check_len("contacts", c, pairs)?;
     }
     let x = cand.positions;
-    let gaps = candidate_gaps(x, two_r);
+    debug_assert_eq!(gaps.len(), pairs, "one gap per pair of the candidate");
     let overlaps = gaps
         .iter()
         .enumerate()
@@ -336,7 +393,7 @@ pub fn compare(
                 })
                 .collect(),
             l.iter()
-                .zip(&gaps)
+                .zip(gaps)
                 .enumerate()
                 .filter(|(_, (v, g))| !Zero::is_zero(*v) && !Zero::is_zero(*g))
                 .map(|(pair, (v, g))| PairValue {
@@ -347,14 +404,17 @@ pub fn compare(
         ),
         None => (Vec::new(), Vec::new()),
     };
+    let (position_max, position_l2_squared) = max_and_mean_square(x, &exact.positions);
+    let (velocity_max, velocity_l2_squared) = cand
+        .velocities
+        .map(|u| max_and_mean_square(u, &exact.velocities))
+        .unzip();
     Ok(Comparison {
         t: exact.t.clone(),
-        position_max: max_error(x, &exact.positions),
-        position_l2_squared: mean_square_error(x, &exact.positions),
-        velocity_max: cand.velocities.map(|u| max_error(u, &exact.velocities)),
-        velocity_l2_squared: cand
-            .velocities
-            .map(|u| mean_square_error(u, &exact.velocities)),
+        position_max,
+        position_l2_squared,
+        velocity_max,
+        velocity_l2_squared,
         multiplier_max: cand
             .multipliers
             .filter(|_| pairs > 0)
@@ -440,6 +500,43 @@ mod compare_tests {
         // u_1 − u_0 = 1/7 over a gap 1/2 at t = 1: 1/7 < 1/2, fine.
         assert_eq!(c.oleinik, Some(vec![]));
         assert!(c.violates_model() && !c.is_exact());
+    }
+
+    /// The max error of either sign, reached twice: the first index, the
+    /// value positive; the mean square over every particle.
+    #[test]
+    fn the_first_index_of_the_max_and_the_mean_square() {
+        let e = exact();
+        let x = vec![q(0, 1), q(1, 2) - q(1, 8), q(2, 1) + q(1, 8)];
+        let u = vec![q(1, 1), q(1, 1) + q(1, 16), q(0, 1) - q(1, 4)];
+        let c = compare(
+            &Candidate {
+                positions: &x,
+                velocities: Some(&u),
+                multipliers: None,
+                contacts: None,
+            },
+            &e,
+            &q(1, 2),
+            &q(0, 1),
+        )
+        .unwrap();
+        assert_eq!(
+            c.position_max,
+            MaxError {
+                value: q(1, 8),
+                index: 1
+            }
+        );
+        assert_eq!(c.position_l2_squared, q(2, 3 * 64));
+        assert_eq!(
+            c.velocity_max,
+            Some(MaxError {
+                value: q(1, 4),
+                index: 2
+            })
+        );
+        assert_eq!(c.velocity_l2_squared, Some(q(1 + 16, 3 * 256)));
     }
 
     #[test]

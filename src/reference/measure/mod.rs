@@ -45,7 +45,8 @@ use super::{Output, SolverError};
 mod comparison;
 
 pub use comparison::{
-    candidate_gaps, compare, Candidate, CompareError, Comparison, MaxError, Overlap, PairValue,
+    candidate_gaps, compare, compare_with_gaps, Candidate, CompareError, Comparison, MaxError,
+    Overlap, PairValue,
 };
 
 /// The exact errors of one [`Output`].

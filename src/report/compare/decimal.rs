@@ -39,12 +39,19 @@ impl Value<'_> {
         let root = matches!(self, Value::SquareRoot(_));
         // √q · b^k = √(q · b^(2k)).
         let kk = if root { 2 * k } else { k };
-        let b = BigInt::from(base);
-        let p = num_traits::pow(b, kk.unsigned_abs() as usize);
-        let (n, d) = if kk >= 0 {
-            (q.numer() * p, q.denom().clone())
-        } else {
-            (q.numer().clone(), q.denom() * p)
+        let s = kk.unsigned_abs();
+        let (n, d) = match (base, kk >= 0) {
+            // Powers of two are shifts.
+            (2, true) => (q.numer() << s, q.denom().clone()),
+            (2, false) => (q.numer().clone(), q.denom() << s),
+            (_, up) => {
+                let p = num_traits::pow(BigInt::from(base), s as usize);
+                if up {
+                    (q.numer() * p, q.denom().clone())
+                } else {
+                    (q.numer().clone(), q.denom() * p)
+                }
+            }
         };
         let (f, r) = n.div_rem(&d);
         let f = f.to_biguint().unwrap_or_default();
@@ -139,6 +146,10 @@ pub fn scientific(v: Value<'_>, digits: u32) -> String {
 pub fn nearest_f64(v: Value<'_>) -> Option<f64> {
     if v.radicand().is_zero() {
         return Some(0.0);
+    }
+    if let Value::Rational(q) = v {
+        // The exponent from the bit lengths, no search.
+        return crate::rational::nearest_f64(q);
     }
     crate::rational::nearest_double_of(v.floor_log(2), v.is_negative(), |k| v.scaled_floor(2, k))
 }

@@ -240,7 +240,7 @@ fn frame(d: &mut Doubles, f: &FrameReport, two_r: &BigRational) -> FrameJson {
             .overlaps
             .iter()
             .map(|o| {
-                let rel = &o.depth / two_r;
+                let rel = crate::reduced::quotient(&o.depth, two_r);
                 OverlapJson {
                     pair: o.pair,
                     depth: o.depth.render(),

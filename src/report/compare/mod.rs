@@ -42,7 +42,9 @@ use num_traits::{Signed, Zero};
 
 use crate::initial::InitialData;
 use crate::progress::{Progress, Silent};
-use crate::reference::measure::{candidate_gaps, compare, largest, CompareError, Comparison};
+use crate::reference::measure::{
+    candidate_gaps, compare_with_gaps, largest, CompareError, Comparison,
+};
 use crate::report::solution::Frame;
 use crate::scalar::Scalar;
 use crate::solver::Solver;
@@ -294,9 +296,10 @@ pub fn compare_solution_by(
                 })
             })?
             .into_state();
-        let comparison = compare(&f.candidate(), &state, &two_r, &contact_tol).map_err(fail)?;
         let x = &f.positions;
         let gaps = candidate_gaps(x, &two_r);
+        let comparison =
+            compare_with_gaps(&f.candidate(), &state, &gaps, &contact_tol).map_err(fail)?;
         // λ ≥ 0 (eq:dyn-micro): the largest is the largest |λ|.
         debug_assert!(state.multipliers.iter().all(|l| !l.is_negative()));
         let lambda_scale = largest(&state.multipliers)
