@@ -72,9 +72,10 @@ impl Exact {
     /// correctly rounded division when both terms are exact doubles,
     /// `BigRational`'s conversion otherwise.
     pub fn to_f64_lossy(&self) -> f64 {
-        const EXACT: i128 = 1 << 53;
+        const EXACT: u128 = 1 << 53;
         match self {
-            Exact::Small(n, d) if n.abs() <= EXACT && *d <= EXACT => {
+            // `unsigned_abs`: `i128::MIN` has no `abs`.
+            Exact::Small(n, d) if n.unsigned_abs() <= EXACT && d.unsigned_abs() <= EXACT => {
                 *n as i64 as f64 / *d as i64 as f64
             }
             _ => {
@@ -88,5 +89,21 @@ impl Exact {
             Exact::Small(n, d) => (BigInt::from(*n), BigInt::from(*d)),
             Exact::Big(q) => (q.numer().clone(), q.denom().clone()),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Exact;
+
+    /// Small values of either size convert to their nearest doubles; the
+    /// least `i128` (no `abs`) goes the rational way, without a panic.
+    #[test]
+    fn nearest_doubles_of_small_values() {
+        assert_eq!(Exact::Small(-3, 4).to_f64_lossy(), -0.75);
+        assert_eq!(Exact::Small(1, 3).to_f64_lossy(), 1.0 / 3.0);
+        assert_eq!(Exact::Small(i128::MIN, 1).to_f64_lossy(), -(2f64.powi(127)));
+        let big = (1i128 << 60) + 1;
+        assert_eq!(Exact::Small(big, 1).to_f64_lossy(), 2f64.powi(60));
     }
 }
