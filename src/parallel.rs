@@ -1,6 +1,8 @@
-//! Work cut into pieces done on every core, the results taken back in the
-//! pieces' order: what the streaming writers use to format exact values on
-//! several threads and still write them one after the other.
+//! Work cut into pieces done on every core: two halves at once
+//! ([`join`], what the engines' two-core passes use), or many pieces with
+//! the results taken back in the pieces' order ([`in_order`], what the
+//! streaming writers use to format exact values on several threads and
+//! still write them one after the other).
 
 use std::sync::mpsc::sync_channel;
 
@@ -10,6 +12,29 @@ const AHEAD: usize = 2;
 /// The number of worker threads: the cores this process may use.
 pub fn workers() -> usize {
     std::thread::available_parallelism().map_or(1, std::num::NonZeroUsize::get)
+}
+
+/// `(left(), right())`, `right` on a second thread while `left` runs on
+/// this one, or on this one after `left` when no thread can be had; a
+/// panic of either is passed on.
+pub fn join<A, B: Send>(left: impl FnOnce() -> A, right: impl FnOnce() -> B + Send) -> (A, B) {
+    // Whichever thread takes `right` out of the slot runs it: the second
+    // one, or this one when the second could not be started.
+    let slot = std::sync::Mutex::new(Some(right));
+    let run = || slot.lock().ok().and_then(|mut r| r.take()).map(|f| f());
+    std::thread::scope(|s| {
+        let worker = std::thread::Builder::new().spawn_scoped(s, run);
+        let a = left();
+        let b = match worker.map(|w| w.join()) {
+            Ok(Ok(b)) => b,
+            Ok(Err(panic)) => std::panic::resume_unwind(panic),
+            Err(_) => None,
+        };
+        match b.or_else(run) {
+            Some(b) => (a, b),
+            None => unreachable!("`right` is taken once, by one of the two threads"),
+        }
+    })
 }
 
 /// Calls `take(work(item))` for every item in order, `work` running on
@@ -57,6 +82,26 @@ pub fn in_order<T: Sync, R: Send, E>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Both halves are computed, each once, with the borrows they take
+    /// (one of them mutable) given back after.
+    #[test]
+    fn join_runs_both_halves() {
+        let mut data = vec![0u64; 100];
+        let (lo, hi) = data.split_at_mut(40);
+        let (a, b) = join(
+            || {
+                lo.fill(1);
+                lo.len()
+            },
+            || {
+                hi.fill(2);
+                hi.len()
+            },
+        );
+        assert_eq!((a, b), (40, 60));
+        assert_eq!(data.iter().sum::<u64>(), 40 + 120);
+    }
 
     /// The results come back in the items' order, whatever the number of
     /// workers, and the first error of `take` stops the walk.

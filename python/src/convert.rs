@@ -271,17 +271,7 @@ fn copy_pair(a: &[f64], b: &[f64]) -> (Vec<f64>, Vec<f64>) {
     if b.len() < PARALLEL_MIN {
         return (a.to_vec(), b.to_vec());
     }
-    std::thread::scope(|s| {
-        let worker = std::thread::Builder::new().spawn_scoped(s, || b.to_vec());
-        let a = a.to_vec();
-        let b = match worker.map(|w| w.join()) {
-            Ok(Ok(b)) => b,
-            Ok(Err(panic)) => std::panic::resume_unwind(panic),
-            // No second thread to be had: this one copies it.
-            Err(_) => b.to_vec(),
-        };
-        (a, b)
-    })
+    sticky::parallel::join(|| a.to_vec(), || b.to_vec())
 }
 
 /// A column of numbers: a one-dimensional `float64` numpy array, or any

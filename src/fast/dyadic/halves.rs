@@ -96,19 +96,8 @@ fn halves<T: Copy + Into<V> + Sync, W: Sum + Send, V: Sum + Send>(
     }
     let h = n / 2;
     let (y, (xl, xr), (ul, ur)) = (&y, xs.split_at(h), us.split_at(h));
-    let (left, right) = std::thread::scope(|s| {
-        let worker = std::thread::Builder::new().spawn_scoped(s, move || pava_columns(xr, ur, y));
-        let left = pava_columns(xl, ul, y);
-        let right = match worker {
-            Ok(handle) => match handle.join() {
-                Ok(right) => right,
-                Err(panic) => std::panic::resume_unwind(panic),
-            },
-            // No second thread to be had: this one does the work.
-            Err(_) => pava_columns(xr, ur, y),
-        };
-        (left, right)
-    });
+    let (left, right) =
+        crate::parallel::join(|| pava_columns(xl, ul, y), move || pava_columns(xr, ur, y));
     Halves::Two(left, right)
 }
 
@@ -181,25 +170,12 @@ pub(crate) fn fill_by_halves<W: Sync, V: Sync>(
     debug_assert!(first <= len);
     let (lo, hi) = out.split_at_mut(first);
     let fill = &fill;
-    let halves = std::thread::scope(|s| {
-        let worker =
-            std::thread::Builder::new().spawn_scoped(s, move || fill(&runs[j..], first, hi));
-        let handle = worker.ok()?;
-        let a = fill(&runs[..j], 0, lo);
-        let b = match handle.join() {
-            Ok(b) => b,
-            Err(panic) => std::panic::resume_unwind(panic),
-        };
-        Some((a, b))
-    });
-    match halves {
-        Some((a, b)) => {
-            a?;
-            b?;
-        }
-        // No second thread to be had: this one does the work.
-        None => fill(runs, 0, &mut out)?,
-    }
+    let (a, b) = crate::parallel::join(
+        || fill(&runs[..j], 0, lo),
+        move || fill(&runs[j..], first, hi),
+    );
+    a?;
+    b?;
     Some(out)
 }
 

@@ -90,10 +90,16 @@ pub fn exact_double(q: &BigRational) -> Option<f64> {
 /// 2^SAFE_EXP]`?
 #[inline]
 fn in_range(v: f64) -> bool {
-    let lowest = f64::from_bits(((1023 - SAFE_EXP) as u64) << 52);
-    let highest = f64::from_bits(((1023 + SAFE_EXP) as u64) << 52);
-    let a = v.abs();
-    a == 0.0 || (lowest..=highest).contains(&a)
+    in_range_bits(magnitude(v))
+}
+
+/// [`in_range`] of the double whose [`magnitude`] bits are `m` (a NaN's
+/// and an infinity's lie above the range).
+#[inline(always)]
+fn in_range_bits(m: u64) -> bool {
+    const LOWEST: u64 = ((1023 - SAFE_EXP) as u64) << 52;
+    const HIGHEST: u64 = ((1023 + SAFE_EXP) as u64) << 52;
+    m == 0 || (LOWEST..=HIGHEST).contains(&m)
 }
 
 /// What the exact validation of columns of doubles ([`Checked::new`])
@@ -401,20 +407,11 @@ fn check_with(x: &[f64], u: &[f64], two_r: f64, parallel_min: usize) -> Option<S
     let n = x.len();
     if n >= parallel_min.max(2) {
         let h = n / 2;
-        let halves = std::thread::scope(|s| {
-            let worker = std::thread::Builder::new()
-                .spawn_scoped(s, || scan(&x[h - 1..], &u[h - 1..], two_r));
-            let left = scan(&x[..h], &u[..h], two_r);
-            match worker.map(|w| w.join()) {
-                Ok(Ok(right)) => Some((left, right)),
-                Ok(Err(panic)) => std::panic::resume_unwind(panic),
-                // No second thread to be had: one scans everything.
-                Err(_) => None,
-            }
-        });
-        if let Some((left, right)) = halves {
-            return Some(left?.and(right?));
-        }
+        let (left, right) = crate::parallel::join(
+            || scan(&x[..h], &u[..h], two_r),
+            || scan(&x[h - 1..], &u[h - 1..], two_r),
+        );
+        return Some(left?.and(right?));
     }
     scan(x, u, two_r)
 }
@@ -489,22 +486,12 @@ fn copy_and_check_with(
         let h = n / 2;
         let (left_from, right_from) = from.split_at(h);
         let (left_into, right_into) = into.split_at(h);
-        let halves = std::thread::scope(|s| {
-            let worker = std::thread::Builder::new().spawn_scoped(s, move || {
-                copy_and_scan(right_from, right_into, two_r, chunk)
-            });
-            let left = copy_and_scan(left_from, left_into, two_r, chunk);
-            match worker.map(|w| w.join()) {
-                Ok(Ok(right)) => Some((left, right)),
-                Ok(Err(panic)) => std::panic::resume_unwind(panic),
-                // No second thread to be had: one copies everything.
-                Err(_) => None,
-            }
-        });
-        if let Some((left, right)) = halves {
-            let across = scan(&into.x[h - 1..=h], &into.u[h - 1..=h], two_r)?;
-            return Some(left?.and(right?).and(across));
-        }
+        let (left, right) = crate::parallel::join(
+            move || copy_and_scan(left_from, left_into, two_r, chunk),
+            move || copy_and_scan(right_from, right_into, two_r, chunk),
+        );
+        let across = scan(&into.x[h - 1..=h], &into.u[h - 1..=h], two_r)?;
+        return Some(left?.and(right?).and(across));
     }
     copy_and_scan(from, into, two_r, chunk)
 }
@@ -551,16 +538,13 @@ const INFINITY_BITS: u64 = 0x7ff0_0000_0000_0000;
 ///   ([`Doubles::validate`]); only when some float gap is not above `2r`
 ///   (or is a NaN) does the exact pair-by-pair decision run.
 fn scan(x: &[f64], u: &[f64], two_r: f64) -> Option<Scan> {
-    let lowest = ((1023 - SAFE_EXP) as u64) << 52;
-    let highest = ((1023 + SAFE_EXP) as u64) << 52;
-    let ranged = |m: u64| m == 0 || (lowest..=highest).contains(&m);
     let (mut x_bits, mut u_bits) = (0u64, 0u64);
     let mut ok = true;
     for (&xi, &ui) in x.iter().zip(u) {
         let (mx, mu) = (magnitude(xi), magnitude(ui));
         x_bits = x_bits.max(mx);
         u_bits = u_bits.max(mu);
-        ok &= ranged(mx) & ranged(mu);
+        ok &= in_range_bits(mx) & in_range_bits(mu);
     }
     if x_bits >= INFINITY_BITS || u_bits >= INFINITY_BITS {
         return None;

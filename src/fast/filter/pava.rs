@@ -288,18 +288,9 @@ pub(crate) fn run(
     if n >= parallel_min.max(2) {
         let h = n / 2;
         let (lo, hi) = positions.split_at_mut(h);
-        let halves = std::thread::scope(|s| {
-            let worker =
-                std::thread::Builder::new().spawn_scoped(s, move || cx.stream(h, hi, floor));
-            let left = cx.stream(0, lo, floor);
-            match worker.map(|w| w.join()) {
-                Ok(Ok(right)) => Some((left, right)),
-                Ok(Err(panic)) => std::panic::resume_unwind(panic),
-                // No second thread to be had: one streams everything.
-                Err(_) => None,
-            }
-        });
-        if let Some((Some(mut left), Some(right))) = halves {
+        let (left, right) =
+            crate::parallel::join(|| cx.stream(0, lo, floor), move || cx.stream(h, hi, floor));
+        if let (Some(mut left), Some(right)) = (left, right) {
             let joined = match (left.last, right.first) {
                 (Some(a), Some(b)) => increasing(cx.ug, a, b).is_some(),
                 _ => false,

@@ -21,7 +21,7 @@ use num_rational::BigRational;
 use num_traits::{Signed, Zero};
 
 use super::pava::{self, Context};
-use super::{exact_double, in_range, magnitude, MAX_N, SAFE_EXP};
+use super::{exact_double, in_range, in_range_bits, magnitude, MAX_N};
 
 /// The particles of one chunk of the floors.
 const CHUNK_BITS: u32 = 12;
@@ -70,8 +70,6 @@ fn project_with(
 /// `z`. `None` when a value is neither zero nor in the filter's range
 /// (a NaN or an infinity among them).
 fn chunk_floors(z: &[f64], two_r: f64, chunk_bits: u32) -> Option<(Vec<f64>, f64)> {
-    let lowest = ((1023 - SAFE_EXP) as u64) << 52;
-    let highest = ((1023 + SAFE_EXP) as u64) << 52;
     let (mut largest, mut ok) = (0u64, true);
     let mut floors: Vec<f64> = z
         .chunks(1 << chunk_bits)
@@ -82,7 +80,7 @@ fn chunk_floors(z: &[f64], two_r: f64, chunk_bits: u32) -> Option<(Vec<f64>, f64
             for (j, &v) in chunk.iter().enumerate() {
                 let m = magnitude(v);
                 largest = largest.max(m);
-                ok &= m == 0 || (lowest..=highest).contains(&m);
+                ok &= in_range_bits(m);
                 least = least.min(v - two_r * (base + j) as f64);
             }
             least

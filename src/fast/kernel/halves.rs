@@ -101,20 +101,10 @@ pub(crate) fn pava_parts<V: USum>(
     let ((xl, xr), (ul, ur)) = (xs.split_at(h), us.split_at(h));
     // Both stacks allocated here: memory from this thread's (warm) arena.
     let stack = Vec::with_capacity(n - h);
-    let (left, right) = std::thread::scope(|s| {
-        let worker =
-            std::thread::Builder::new().spawn_scoped(s, move || pava_into(stack, xr, ur, a, b));
-        let left = pava(xl, ul, a, b);
-        let right = match worker {
-            Ok(handle) => match handle.join() {
-                Ok(right) => right,
-                Err(panic) => std::panic::resume_unwind(panic),
-            },
-            // No second thread to be had: this one does the work.
-            Err(_) => pava(xr, ur, a, b),
-        };
-        (left, right)
-    });
+    let (left, right) = crate::parallel::join(
+        || pava(xl, ul, a, b),
+        move || pava_into(stack, xr, ur, a, b),
+    );
     join(left, right)
 }
 
