@@ -32,19 +32,26 @@ pub fn isotonic<'py>(
     z: &Bound<'py, PyAny>,
     exact: bool,
 ) -> PyResult<Bound<'py, PyAny>> {
-    if !exact {
-        if let Some(fitted) = filtered(py, z, &BigRational::zero())? {
-            return Ok(fitted.into_any());
-        }
-    }
+    let zero = BigRational::zero();
+    let refused = match (exact, filtered(py, z, &zero)?) {
+        (false, Filtered::Proved(fitted)) => return Ok(fitted.into_any()),
+        (false, Filtered::Refused) => true,
+        _ => false,
+    };
     let z = convert::column(z, "z")?;
     if let (false, convert::Column::Doubles(d)) = (exact, &z) {
         if d.iter().all(|v| v.is_finite()) {
             let d = d.clone();
             let steps = d.len();
-            let fitted =
-                interrupt::run_sized(py, steps, move |_| sticky::solver::isotonic_doubles(&d))?
-                    .map_err(crate::errors::py_error)?;
+            let fitted = interrupt::run_sized(py, steps, move |_| {
+                // The filter has refused these values already.
+                if refused {
+                    sticky::solver::project_doubles_exactly(&d, &zero)
+                } else {
+                    sticky::solver::isotonic_doubles(&d)
+                }
+            })?
+            .map_err(crate::errors::py_error)?;
             return Ok(PyArray1::from_vec(py, fitted).into_any());
         }
     }
@@ -54,27 +61,41 @@ pub fn isotonic<'py>(
     output(py, &fitted, exact)
 }
 
+/// What [`filtered`] made of a column.
+pub enum Filtered<'py> {
+    /// The certified answer.
+    Proved(Bound<'py, PyArray1<f64>>),
+    /// A column of doubles the filter did not prove: the exact paths answer
+    /// ([`sticky::solver::project_doubles_exactly`]).
+    Refused,
+    /// Not a contiguous `float64` numpy array: not tried.
+    NotTried,
+}
+
 /// `P_K(z)` for the radius `radius` (`0`: the isotonic regression) by the
-/// certified filter ([`sticky::fast::filter::project_into`]), read from a
-/// contiguous `float64` numpy array where it lies and written into a new
-/// one, the GIL released (a few milliseconds at `N = 10⁶`); `None` when `z`
-/// is no such array or the filter does not prove the answer.
+/// certified path ([`sticky::solver::project_doubles_certified`]), read
+/// from a contiguous `float64` numpy array where it lies and written into a
+/// new one, the GIL released (a few milliseconds at `N = 10⁶`).
 pub fn filtered<'py>(
     py: Python<'py>,
     z: &Bound<'py, PyAny>,
     radius: &BigRational,
-) -> PyResult<Option<Bound<'py, PyArray1<f64>>>> {
+) -> PyResult<Filtered<'py>> {
     let Ok(z) = z.extract::<PyReadonlyArray1<'_, f64>>() else {
-        return Ok(None);
+        return Ok(Filtered::NotTried);
     };
     let Ok(z) = z.as_slice() else {
-        return Ok(None);
+        return Ok(Filtered::NotTried);
     };
     let out = convert::empty(py, z.len())?;
     let proved = {
         let mut written = out.readwrite();
         let x = written.as_slice_mut()?;
-        py.detach(|| sticky::fast::filter::project_into(z, radius, x))
+        py.detach(|| sticky::solver::project_doubles_certified(z, radius, x))
     };
-    Ok(proved.map(|()| out))
+    Ok(if proved {
+        Filtered::Proved(out)
+    } else {
+        Filtered::Refused
+    })
 }

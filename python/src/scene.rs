@@ -25,6 +25,7 @@ use sticky::{Error, InitialData};
 use crate::convert::{self, Column};
 use crate::events::Event;
 use crate::interrupt;
+use crate::isotonic::Filtered;
 use crate::state::{Answer, State};
 use crate::states::States;
 
@@ -427,11 +428,14 @@ impl Scene {
         exact: bool,
     ) -> PyResult<Bound<'py, PyAny>> {
         let n = self.n(py)?;
-        if !exact && z.len()? == n {
-            let inner = &self.inner;
-            let r = py.detach(|| inner.radius()).map_err(py_error)?;
-            if let Some(x) = crate::isotonic::filtered(py, z, &r)? {
-                return Ok(x.into_any());
+        let inner = Arc::clone(&self.inner);
+        let radius = || py.detach(|| inner.radius()).map_err(py_error);
+        let mut refused = false;
+        if !exact && z.len().ok() == Some(n) {
+            match crate::isotonic::filtered(py, z, &radius()?)? {
+                Filtered::Proved(x) => return Ok(x.into_any()),
+                Filtered::Refused => refused = true,
+                Filtered::NotTried => {}
             }
         }
         let z = convert::column(z, "z")?;
@@ -442,12 +446,18 @@ impl Scene {
             );
             return Err(crate::errors::argument(py, "z", message));
         }
-        let inner = Arc::clone(&self.inner);
         if let (false, convert::Column::Doubles(d)) = (exact, &z) {
             if d.iter().all(|v| v.is_finite()) {
-                let d = d.clone();
-                let x = interrupt::run_sized(py, n, move |_| inner.solver().project_doubles(&d))?
-                    .map_err(py_error)?;
+                let (d, r) = (d.clone(), radius()?);
+                let x = interrupt::run_sized(py, n, move |_| {
+                    // The filter has refused these values already.
+                    if refused {
+                        sticky::solver::project_doubles_exactly(&d, &r)
+                    } else {
+                        sticky::solver::project_doubles(&d, &r)
+                    }
+                })?
+                .map_err(py_error)?;
                 return Ok(PyArray1::from_vec(py, x).into_any());
             }
         }

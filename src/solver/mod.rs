@@ -479,22 +479,11 @@ impl Solver {
     }
 
     /// [`Self::project`] of doubles (each read exactly), rounded to the
-    /// nearest doubles: by the certified filter
-    /// ([`crate::fast::filter::project_into`]) when it proves the answer,
-    /// else on machine integers ([`crate::fast::dyadic::isotonic`]) when
-    /// the values and the radius allow, else by the general projection. A NaN or an infinity is
+    /// nearest doubles: [`project_doubles_certified`] when it proves the
+    /// answer, else [`project_doubles_exactly`]. A NaN or an infinity is
     /// [`Error::Unsupported`].
     pub fn project_doubles(&self, z: &[f64]) -> Result<Vec<f64>, Error> {
-        let r = self.radius()?;
-        let mut x = vec![0.0; z.len()];
-        if crate::fast::filter::project_into(z, r, &mut x).is_some() {
-            return Ok(x);
-        }
-        if let Some(x) = crate::fast::dyadic::isotonic::project_doubles(z, r) {
-            return Ok(x);
-        }
-        let x = self.project(&exact_doubles(z)?)?;
-        Ok(x.iter().map(crate::Scalar::to_f64_lossy).collect())
+        project_doubles(z, self.radius()?)
     }
 
     /// The engine that answers the one-shot states when no fast path does.
@@ -504,23 +493,44 @@ impl Solver {
 }
 
 /// The isotonic regression (non-decreasing, equal weights) of doubles, each
-/// read exactly, rounded to the nearest doubles: by the certified filter
-/// ([`crate::fast::filter::project_into`], `r = 0`) when it proves the
-/// answer, else on machine integers ([`crate::fast::dyadic::isotonic`])
-/// when the values allow, else by the
-/// general pool-adjacent-violators on rationals
-/// ([`crate::projection::isotonic`]). A NaN or an infinity is
-/// [`Error::Unsupported`].
+/// read exactly, rounded to the nearest doubles: [`project_doubles`] with
+/// `r = 0`. A NaN or an infinity is [`Error::Unsupported`].
 pub fn isotonic_doubles(z: &[f64]) -> Result<Vec<f64>, Error> {
+    project_doubles(z, &BigRational::from_integer(0.into()))
+}
+
+/// `P_K(z)` for `K = {x : x_{i+1} − x_i ≥ 2r}` (`df:KN`; `r = 0`: the
+/// isotonic regression) of doubles, each read exactly, rounded to the
+/// nearest doubles: [`project_doubles_certified`] when it proves the
+/// answer, else [`project_doubles_exactly`]. A NaN or an infinity is
+/// [`Error::Unsupported`].
+pub fn project_doubles(z: &[f64], radius: &BigRational) -> Result<Vec<f64>, Error> {
     let mut x = vec![0.0; z.len()];
-    if crate::fast::filter::project_into(z, &num_traits::Zero::zero(), &mut x).is_some() {
+    if project_doubles_certified(z, radius, &mut x) {
         return Ok(x);
     }
-    if let Some(x) = crate::fast::dyadic::isotonic::isotonic_doubles(z) {
+    project_doubles_exactly(z, radius)
+}
+
+/// The first path of [`Solver::project_doubles`] and [`isotonic_doubles`]
+/// (`radius` `0`): the certified filter
+/// ([`crate::fast::filter::project_into`]), on the caller's buffers, `out`
+/// as long as `z` — milliseconds at `N = 10⁶`. `false` when it does not
+/// prove the answer (`out` then holds anything): [`project_doubles_exactly`]
+/// answers.
+pub fn project_doubles_certified(z: &[f64], radius: &BigRational, out: &mut [f64]) -> bool {
+    crate::fast::filter::project_into(z, radius, out).is_some()
+}
+
+/// The other paths of [`Solver::project_doubles`] and [`isotonic_doubles`]
+/// (`radius` `0`): on machine integers ([`crate::fast::dyadic::isotonic`])
+/// when the values and the radius allow, else by the general projection on
+/// the exact values. A NaN or an infinity is [`Error::Unsupported`].
+pub fn project_doubles_exactly(z: &[f64], radius: &BigRational) -> Result<Vec<f64>, Error> {
+    if let Some(x) = crate::fast::dyadic::isotonic::project_doubles(z, radius) {
         return Ok(x);
     }
-    let exact = exact_doubles(z)?;
-    let x = crate::projection::isotonic(&exact);
+    let x = crate::projection::project_k(&exact_doubles(z)?, &(radius + radius));
     Ok(x.iter().map(crate::Scalar::to_f64_lossy).collect())
 }
 
