@@ -14,13 +14,15 @@ use crate::generate::{initial_data, Limits};
 use crate::scalar::Scalar;
 use crate::scene::{self, particles_toml};
 
-/// The witness text and data of a failure found on `data`.
-fn report(
+/// The counterexample outcome of `cases` cases whose failure `found` lies
+/// on `scene`: its witness text (`tail` last) and data.
+fn outcome(
+    cases: usize,
     found: &Found,
     scene: WitnessScene,
     domain: &Domain,
     tail: String,
-) -> (String, WitnessData) {
+) -> Outcome {
     let mut text = found.violations[0].witness.clone();
     if let (Some(iv), [_, b]) = (&found.interval, found.violations.as_slice()) {
         text.push_str(&format!(
@@ -44,7 +46,14 @@ fn report(
         interval: found.interval.as_ref().map(witness::interval),
         failures: found.violations.iter().map(Failure::of).collect(),
     };
-    (text, data)
+    Outcome {
+        status: Status::Counterexample,
+        cases,
+        witness: Some(text),
+        note: None,
+        witness_data: Some(data),
+        tightness: Vec::new(),
+    }
 }
 
 /// The outcome of a random case that fails `check` inside `domain`: shrunk
@@ -58,7 +67,8 @@ pub(super) fn random_counterexample(
 ) -> Outcome {
     let (b, l, found) = shrink(bytes, limits, check, domain);
     let data = initial_data(&b, l);
-    let (text, wd) = report(
+    outcome(
+        cases,
         &found,
         witness::particles(&data),
         domain,
@@ -67,15 +77,7 @@ pub(super) fn random_counterexample(
             data.n(),
             particles_toml(&data, Some("witness"))
         ),
-    );
-    Outcome {
-        status: Status::Counterexample,
-        cases,
-        witness: Some(text),
-        note: None,
-        witness_data: Some(wd),
-        tightness: Vec::new(),
-    }
+    )
 }
 
 /// The outcome of a shipped scene that fails inside `domain`: the
@@ -86,22 +88,15 @@ pub(super) fn shipped_counterexample(
     found: &Found,
     domain: &Domain,
 ) -> Outcome {
-    let (text, wd) = report(
+    outcome(
+        cases,
         found,
         WitnessScene::Shipped {
             name: name.to_string(),
         },
         domain,
         format!("\nwitness: scenes/{name}.toml"),
-    );
-    Outcome {
-        status: Status::Counterexample,
-        cases,
-        witness: Some(text),
-        note: None,
-        witness_data: Some(wd),
-        tightness: Vec::new(),
-    }
+    )
 }
 
 /// The witness data of a claim checked without a particle datum (a
