@@ -141,16 +141,24 @@ impl Acc {
 /// gap below it is half the gap above). `None` near the subnormal range.
 #[inline]
 pub(crate) fn half_gap(r: f64) -> Option<f64> {
+    let h = half_gap_or_zero(r);
+    (h != 0.0).then_some(h)
+}
+
+/// [`half_gap`], `0` where it is `None`: branch-free, for loops the
+/// compiler vectorizes.
+#[inline(always)]
+fn half_gap_or_zero(r: f64) -> f64 {
     let bits = r.to_bits() & !(1u64 << 63);
     let field = bits >> 52;
-    let shift = if bits & ((1u64 << 52) - 1) == 0 {
-        54
-    } else {
-        53
-    };
+    let shift = 53 + u64::from(bits & ((1u64 << 52) - 1) == 0);
     // `2^(E − shift)` with `E = field − 1023`, a normal double when
     // `field > shift`.
-    (field > shift).then(|| f64::from_bits((field - shift) << 52))
+    f64::from_bits(if field > shift {
+        (field - shift) << 52
+    } else {
+        0
+    })
 }
 
 /// The nearest double of `x + t u` (ties to even) for doubles in the
@@ -175,10 +183,18 @@ pub(crate) fn nearest_free_flight(x: f64, t: f64, u: f64) -> f64 {
 #[inline(always)]
 pub(crate) fn nearest_free_flight_of(x: f64, t: f64, u: f64, p: f64, w: f64, e: f64) -> f64 {
     debug_assert!(p.to_bits() == (t * u).to_bits() && (w, e) == two_sum(x, p));
-    match half_gap(w) {
-        Some(h) if e.abs() + p.abs() * f64::EPSILON < h => w,
-        _ => u.mul_add(t, x),
+    if is_nearest_free_flight(p, w, e) {
+        w
+    } else {
+        u.mul_add(t, x)
     }
+}
+
+/// Does [`nearest_free_flight_of`] prove `w` the nearest double (the test
+/// above, branch-free: a zero [`half_gap`] proves nothing)?
+#[inline(always)]
+pub(crate) fn is_nearest_free_flight(p: f64, w: f64, e: f64) -> bool {
+    e.abs() + p.abs() * f64::EPSILON < half_gap_or_zero(w)
 }
 
 /// The nearest double of `(Σ terms) / d` computed exactly (the rare values

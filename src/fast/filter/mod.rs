@@ -516,39 +516,29 @@ fn copy_and_scan(from: Pair<'_>, into: Copies<'_>, two_r: f64, chunk: usize) -> 
 }
 
 /// The magnitude bits of a double (its sign cleared): for two non-NaN
-/// doubles `|a| ≤ |b|` iff `magnitude(a) ≤ magnitude(b)` as integers, an
-/// infinity's is `INFINITY_BITS` and a NaN's above it.
+/// doubles `|a| ≤ |b|` iff `magnitude(a) ≤ magnitude(b)` as integers.
 #[inline(always)]
 fn magnitude(v: f64) -> u64 {
     v.to_bits() & !(1u64 << 63)
 }
 
-/// The bits of `+∞`.
-const INFINITY_BITS: u64 = 0x7ff0_0000_0000_0000;
-
-/// The checks of [`check`] on one range, in one pass of integer and
-/// comparison operations the compiler can vectorize:
+/// The checks of [`check`] on one range, in passes of operations on
+/// doubles the compiler vectorizes:
 ///
-/// * every value finite: the largest magnitude bits below
-///   [`INFINITY_BITS`] (`max |u⁰|` is then the double of the velocities'
-///   largest magnitude bits, exactly);
-/// * in the filter's range ([`in_range`], by the same ordering of the
-///   bits);
 /// * every gap: `fl(x_{i+1} − x_i) > 2r` proves the exact gap `> 2r`
 ///   ([`Doubles::validate`]); only when some float gap is not above `2r`
-///   (or is a NaN) does the exact pair-by-pair decision run.
+///   (or is a NaN) does the exact pair-by-pair decision run. Either way
+///   the positions are then increasing (`2r > 0`), and finite when the
+///   first and last are: an infinity or a NaN inside makes a gap on its
+///   side `−∞` or a NaN, never above `2r`;
+/// * the positions in the filter's range ([`in_range`]): being
+///   increasing, the largest magnitude is at an end and the least nonzero
+///   one next to the first position `≥ 0`;
+/// * the velocities finite and in range, and `max |u⁰|`, by
+///   [`Magnitudes`].
 fn scan(x: &[f64], u: &[f64], two_r: f64) -> Option<Scan> {
-    let (mut x_bits, mut u_bits) = (0u64, 0u64);
-    let mut ok = true;
-    for (&xi, &ui) in x.iter().zip(u) {
-        let (mx, mu) = (magnitude(xi), magnitude(ui));
-        x_bits = x_bits.max(mx);
-        u_bits = u_bits.max(mu);
-        ok &= in_range_bits(mx) & in_range_bits(mu);
-    }
-    if x_bits >= INFINITY_BITS || u_bits >= INFINITY_BITS {
-        return None;
-    }
+    let n = x.len();
+    debug_assert!(n > 0 && u.len() == n);
     let wide = x
         .iter()
         .zip(&x[1..])
@@ -556,10 +546,77 @@ fn scan(x: &[f64], u: &[f64], two_r: f64) -> Option<Scan> {
     if !wide {
         exact_gaps(x, u, two_r)?;
     }
+    let (first, last) = (x[0], x[n - 1]);
+    if !(first.abs() <= f64::MAX && last.abs() <= f64::MAX) {
+        return None;
+    }
+    let velocities = Magnitudes::of(u)?;
+    // The positions next to the first one `≥ 0`.
+    let k = x.partition_point(|&v| v < 0.0);
+    let near_zero = &x[k.saturating_sub(1)..n.min(k + 2)];
+    let in_range = velocities.in_range()
+        && [first, last]
+            .into_iter()
+            .chain(near_zero.iter().copied())
+            .all(self::in_range);
     Some(Scan {
-        u_max: f64::from_bits(u_bits),
-        in_range: ok,
+        u_max: velocities.largest,
+        in_range,
     })
+}
+
+/// The largest and the least nonzero magnitude of a column of finite
+/// doubles, found in four lanes of running maxima and minima (the
+/// compiler vectorizes them).
+#[derive(Debug, Clone, Copy)]
+struct Magnitudes {
+    largest: f64,
+    /// `+∞` when every value is zero.
+    least_nonzero: f64,
+}
+
+impl Magnitudes {
+    /// Those of `v`; `None` when a value is an infinity or a NaN (`0 v`
+    /// is then a NaN, and a NaN in a lane's running sum stays).
+    fn of(v: &[f64]) -> Option<Magnitudes> {
+        const LANES: usize = 4;
+        let mut not_finite = [0.0f64; LANES];
+        let mut largest = [0.0f64; LANES];
+        let mut least = [f64::INFINITY; LANES];
+        let mut lane = |l: usize, value: f64| {
+            let a = value.abs();
+            not_finite[l] += value * 0.0;
+            largest[l] = largest[l].max(a);
+            least[l] = least[l].min(if a == 0.0 { f64::INFINITY } else { a });
+        };
+        let mut chunks = v.chunks_exact(LANES);
+        for c in &mut chunks {
+            for (l, &value) in c.iter().enumerate() {
+                lane(l, value);
+            }
+        }
+        for (l, &value) in chunks.remainder().iter().enumerate() {
+            lane(l, value);
+        }
+        if not_finite.iter().any(|&s| s != 0.0) {
+            return None;
+        }
+        let found = Magnitudes {
+            largest: largest.into_iter().fold(0.0, f64::max),
+            least_nonzero: least.into_iter().fold(f64::INFINITY, f64::min),
+        };
+        debug_assert_eq!(
+            found.largest.to_bits(),
+            v.iter().map(|d| magnitude(*d)).max().unwrap_or(0)
+        );
+        Some(found)
+    }
+
+    /// Every value zero or in the filter's range ([`in_range`]).
+    fn in_range(self) -> bool {
+        in_range(self.largest)
+            && (self.least_nonzero == f64::INFINITY || in_range(self.least_nonzero))
+    }
 }
 
 /// The gap decisions of [`Doubles::validate`], pair by pair (finite

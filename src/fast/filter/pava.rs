@@ -1,9 +1,11 @@
 //! The float PAVA of the filter, streamed over the particles, and the
 //! certificate (module documentation of [`super`]) checked on each block
 //! the moment it is final: one pass over the columns, a stack that stays in
-//! cache. Each particle's free flight is written when it is pushed (its
-//! position if it stays alone); a larger block writes its positions over
-//! them when it is final.
+//! cache. The particles' free flights (their positions if they stay
+//! alone), `ẑ` and floors are computed a few hundred at a time by a loop
+//! without branches, before the PAVA reads them; a larger block writes its
+//! positions over the free flights when it is final. A particle alone
+//! between blocks alone costs the PAVA two comparisons.
 //!
 //! **When a block is final.** `x̃_i = x⁰_i − 2r i` is non-decreasing
 //! (`df:KN`), so every later `z_j = x̃_j + t u⁰_j ≥ x̃_i − t max|u⁰|` for
@@ -255,17 +257,22 @@ pub(crate) fn certified(
     positions: &mut [f64],
     parallel_min: usize,
 ) -> Option<Vec<Multi>> {
-    let n = x.len();
-    debug_assert!(n == d.n && u.len() == n);
-    let two_r = d.two_r;
-    // G ≥ max|x⁰| + t max|u⁰| + 2r N (x⁰ sorted: its extremes are its ends).
-    let x_max = x[0].abs().max(x[n - 1].abs());
-    let tu = t * d.u_max;
-    let cx = Context::new(x, u, t, two_r, up(x_max + tu + two_r * n as f64));
+    let (cx, tu) = context(d, x, u, t);
     // Every later `ẑ_j ≥ x̃_i − t max|u⁰|` (module documentation).
     let slack = tu + 64.0 * cx.ug;
     let floor = move |_: usize, xi: f64, s: f64| (xi - s) - slack;
     run(cx, positions, parallel_min, floor)
+}
+
+/// The context of [`certified`], and `fl(t max|u⁰|)`.
+pub(crate) fn context<'a>(d: &Checked, x: &'a [f64], u: &'a [f64], t: f64) -> (Context<'a>, f64) {
+    let n = x.len();
+    debug_assert!(n == d.n && u.len() == n);
+    // G ≥ max|x⁰| + t max|u⁰| + 2r N (x⁰ sorted: its extremes are its ends).
+    let x_max = x[0].abs().max(x[n - 1].abs());
+    let tu = t * d.u_max;
+    let g = up(x_max + tu + d.two_r * n as f64);
+    (Context::new(x, u, t, d.two_r, g), tu)
 }
 
 /// A heuristic lower bound of every `ẑ_j`, `j ≥ i`, from `(i, x_i, fl(2r
@@ -325,21 +332,67 @@ impl<'a> Context<'a> {
     }
 }
 
+/// The particles whose free flights, `ẑ` and floors are computed at a time
+/// ([`Context::flights`]): a few kilobytes, in the first-level cache while
+/// the PAVA reads them.
+const FLIGHTS: usize = 256;
+
+/// What [`Context::flights`] computes for a run of particles, read by the
+/// PAVA: `ẑ_i` and the floor of the blocks final at `i`.
+struct Flights {
+    z: [f64; FLIGHTS],
+    low: [f64; FLIGHTS],
+}
+
 impl Context<'_> {
+    /// For the `out.len() ≤ FLIGHTS` particles from `i0` on: each free
+    /// flight `x⁰_i + t u⁰_i` rounded to its nearest double into `out`
+    /// ([`eft::nearest_free_flight_of`], from the `fl(t u)` and
+    /// `fl(x + t u)` that `ẑ_i` is made of), `ẑ_i` and `floor` into `f`.
+    /// Branch-free (the compiler vectorizes it): the rare free flight the
+    /// test does not prove is rounded again, exactly, afterwards.
+    #[inline(always)]
+    fn flights(&self, i0: usize, out: &mut [f64], f: &mut Flights, floor: impl Floor) {
+        let m = out.len();
+        debug_assert!(m <= FLIGHTS && i0 + m <= self.x.len());
+        let (xs, us) = (&self.x[i0..i0 + m], &self.u[i0..i0 + m]);
+        let (zs, lows) = (&mut f.z[..m], &mut f.low[..m]);
+        // `i0 + j` as a double: exact, `i < 2⁵³`.
+        let i0_f64 = i0 as f64;
+        let mut proved = true;
+        for j in 0..m {
+            let (xi, ui) = (xs[j], us[j]);
+            let p = self.t * ui;
+            let (w, e) = eft::two_sum(xi, p);
+            let s = self.two_r * (i0_f64 + f64::from(j as u32));
+            out[j] = w;
+            zs[j] = w - s;
+            lows[j] = floor(i0 + j, xi, s);
+            proved &= eft::is_nearest_free_flight(p, w, e);
+        }
+        if !proved {
+            for j in 0..m {
+                let (xi, ui) = (xs[j], us[j]);
+                let p = self.t * ui;
+                let (w, e) = eft::two_sum(xi, p);
+                out[j] = eft::nearest_free_flight_of(xi, self.t, ui, p, w, e);
+            }
+        }
+    }
+
     /// The float PAVA on the particles from `base` on (`out.len()` of
     /// them), its positions into `out`, its certificate checked.
     ///
-    /// Each particle's free flight `x⁰_i + t u⁰_i` is rounded to its
-    /// nearest double ([`eft::nearest_free_flight_of`], from the `fl(t u)` and
-    /// `fl(x + t u)` that `ẑ_i` is made of) and written when the particle is
-    /// pushed: it is the position when the particle stays alone, and a
-    /// larger block writes its own over it when it is emitted. The top of
-    /// the stack stays in registers (`top`, `k = 0` when there is none):
-    /// on sparse data a particle is pushed, then emitted by the next one,
-    /// without the stack in memory.
+    /// Each particle's free flight is written first, `FLIGHTS` particles
+    /// at a time ([`Self::flights`]): it is the position when the particle
+    /// stays alone, and a larger block writes its own over it when it is
+    /// emitted. The top of the stack stays in registers (`top`, `k = 0`
+    /// when there is none): on sparse data a particle is pushed, then
+    /// emitted by the next one, without the stack in memory; a run of such
+    /// particles is crossed by a loop of two comparisons each.
     fn stream(self, base: usize, out: &mut [f64], floor: impl Floor) -> Option<Part> {
-        let end = base + out.len();
-        let (t, two_r) = (self.t, self.two_r);
+        let len = out.len();
+        let m11 = self.m11;
         let mut c = Certifier {
             cx: self,
             out,
@@ -358,68 +411,95 @@ impl Context<'_> {
             start: 0,
         };
         let mut top = none;
-        let (xs, us) = (&self.x[base..end], &self.u[base..end]);
-        // `i` as a double, stepped by one: exact, `i < 2⁵³`.
-        debug_assert!(end < 1 << 53);
-        let mut i_f64 = base as f64;
-        for (j, (&xi, &ui)) in xs.iter().zip(us).enumerate() {
-            let i = base + j;
-            let p = t * ui;
-            let (w, e) = eft::two_sum(xi, p);
-            c.out[j] = eft::nearest_free_flight_of(xi, t, ui, p, w, e);
-            let s = two_r * i_f64;
-            i_f64 += 1.0;
-            let low = floor(i, xi, s);
-            // Emit the blocks that are final, from the bottom.
-            if bottom < stack.len() {
-                while let Some(&b) = stack.get(bottom) {
-                    if b.sum >= low * f64::from(b.k) {
-                        break;
+        let mut f = Flights {
+            z: [0.0; FLIGHTS],
+            low: [0.0; FLIGHTS],
+        };
+        debug_assert!(base + len < 1 << 32);
+        for from in (0..len).step_by(FLIGHTS) {
+            let m = FLIGHTS.min(len - from);
+            let i0 = base + from;
+            self.flights(i0, &mut c.out[from..from + m], &mut f, floor);
+            let (zs, lows) = (&f.z[..m], &f.low[..m]);
+            let mut j = 0;
+            while j < m {
+                // A run of particles each alone and final at the next:
+                // the steps below, taken without the stack (the top is
+                // emitted, condition 1 checked with the bound `m11` of two
+                // blocks of one particle, the next particle pushed).
+                if let (1, true, Some(BlockMean { mean, k: 1 })) =
+                    (top.k, stack.is_empty(), chain.prev)
+                {
+                    let (mut prev, mut z, first) = (mean, top.sum, j);
+                    while j < m && z < lows[j] && z - prev > m11 {
+                        prev = z;
+                        z = zs[j];
+                        j += 1;
                     }
-                    c.emit(&mut chain, b)?;
-                    bottom += 1;
+                    if j > first {
+                        chain.prev = Some(BlockMean { mean: prev, k: 1 });
+                        top = Block {
+                            sum: z,
+                            k: 1,
+                            start: (i0 + j - 1) as u32,
+                        };
+                        continue;
+                    }
                 }
-                if bottom == stack.len() {
-                    stack.clear();
-                    bottom = 0;
-                }
-            }
-            if top.k != 0 && stack.is_empty() && top.sum < low * f64::from(top.k) {
-                c.emit(&mut chain, top)?;
-                top = none;
-            }
-            let mut cur = Block {
-                sum: w - s,
-                k: 1,
-                start: i as u32,
-            };
-            if top.k != 0 {
-                if pools(&top, &cur) {
-                    cur = Block {
-                        sum: top.sum + cur.sum,
-                        k: top.k + cur.k,
-                        start: top.start,
-                    };
-                    while stack.len() > bottom {
-                        let below = stack[stack.len() - 1];
-                        if !pools(&below, &cur) {
+                let i = i0 + j;
+                let low = lows[j];
+                // Emit the blocks that are final, from the bottom.
+                if bottom < stack.len() {
+                    while let Some(&b) = stack.get(bottom) {
+                        if b.sum >= low * f64::from(b.k) {
                             break;
                         }
-                        stack.pop();
-                        cur = Block {
-                            sum: below.sum + cur.sum,
-                            k: below.k + cur.k,
-                            start: below.start,
-                        };
+                        c.emit(&mut chain, b)?;
+                        bottom += 1;
                     }
-                    if cur.k > MAX_BLOCK {
-                        return None;
+                    if bottom == stack.len() {
+                        stack.clear();
+                        bottom = 0;
                     }
-                } else {
-                    stack.push(top);
                 }
+                if top.k != 0 && stack.is_empty() && top.sum < low * f64::from(top.k) {
+                    c.emit(&mut chain, top)?;
+                    top = none;
+                }
+                let mut cur = Block {
+                    sum: zs[j],
+                    k: 1,
+                    start: i as u32,
+                };
+                if top.k != 0 {
+                    if pools(&top, &cur) {
+                        cur = Block {
+                            sum: top.sum + cur.sum,
+                            k: top.k + cur.k,
+                            start: top.start,
+                        };
+                        while stack.len() > bottom {
+                            let below = stack[stack.len() - 1];
+                            if !pools(&below, &cur) {
+                                break;
+                            }
+                            stack.pop();
+                            cur = Block {
+                                sum: below.sum + cur.sum,
+                                k: below.k + cur.k,
+                                start: below.start,
+                            };
+                        }
+                        if cur.k > MAX_BLOCK {
+                            return None;
+                        }
+                    } else {
+                        stack.push(top);
+                    }
+                }
+                top = cur;
+                j += 1;
             }
-            top = cur;
         }
         for b in stack[bottom..].iter().chain((top.k != 0).then_some(&top)) {
             c.emit(&mut chain, *b)?;

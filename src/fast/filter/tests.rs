@@ -130,36 +130,46 @@ fn a_large_block_is_left_to_the_exact_path() {
     assert_eq!(dyadic(&r, &x, &u, &t), oracle(&r, &x, &u, &t));
 }
 
-/// Pairs whose free flights cross by `2⁻⁴⁰` to `2⁻¹⁰⁰` (either way), from
-/// well above to far below the resolution of `ẑ` (`2⁻⁵⁰` here): every
-/// answer certified must be exact, the closest must be refused.
+/// A pair whose free flights cross by `2⁻ᵉ` of their gap, `e` from 10 to
+/// 70 by `case`, either way (the pair meets just before or just after
+/// `t`), from well above to far below the resolution of `ẑ` (`2⁻⁵⁰`
+/// here), between two particles at rest, and for half the cases a third
+/// one meeting the pair near the same time; `None` when the drawn gap is
+/// below `2r`.
+fn near_tie(rng: &mut SplitMix64, case: usize) -> Option<(f64, Vec<f64>, Vec<f64>, f64)> {
+    let r = 2f64.powi(-20) * (1.0 + unit(rng));
+    let x0 = (1.0 + unit(rng)) * 2f64.powi((case % 3) as i32 - 3);
+    let g = 2f64.powi(-30) * (1.0 + unit(rng));
+    let x1 = x0 + 2.0 * r + g;
+    if q(x1) - q(x0) < q(2.0 * r) {
+        return None;
+    }
+    let t = 0.01 + unit(rng) * 0.001;
+    // u₁ with t u₁ ≈ −(x₁ − x₀ − 2r)(1 ± 2⁻ᵉ).
+    let gap = q(x1) - q(x0) - q(2.0 * r);
+    let target = (-gap / q(t)).to_f64().unwrap();
+    let e = [10, 14, 18, 22, 26, 70][case % 6];
+    let side = if case % 2 == 0 { 1.0 } else { -1.0 };
+    let u1 = target * (1.0 + side * (1.0 + unit(rng)) * 2f64.powi(-e));
+    let mut x = vec![x0 - 1.0, x0, x1, x1 + 1.0];
+    let mut u = vec![0.0, 0.0, u1, 0.0];
+    if case % 4 < 2 {
+        x.push(x1 + 2.0);
+        u.push(0.5);
+    }
+    Some((r, x, u, t))
+}
+
+/// Near-ties ([`near_tie`]): every answer certified must be exact, the
+/// closest must be refused.
 #[test]
 fn near_ties_are_exact_or_refused() {
     let mut rng = SplitMix64::new(0x7e5);
     let (mut yes, mut no) = (0, 0);
     for case in 0..3_000 {
-        let r = 2f64.powi(-20) * (1.0 + unit(&mut rng));
-        let x0 = (1.0 + unit(&mut rng)) * 2f64.powi((case % 3) as i32 - 3);
-        let g = 2f64.powi(-30) * (1.0 + unit(&mut rng));
-        let x1 = x0 + 2.0 * r + g;
-        if q(x1) - q(x0) < q(2.0 * r) {
+        let Some((r, x, u, t)) = near_tie(&mut rng, case) else {
             continue;
-        }
-        let t = 0.01 + unit(&mut rng) * 0.001;
-        // u₁ with t u₁ ≈ −(x₁ − x₀ − 2r)(1 ± 2⁻ᵉ): the pair meets just
-        // before or just after t.
-        let gap = q(x1) - q(x0) - q(2.0 * r);
-        let target = (-gap / q(t)).to_f64().unwrap();
-        let e = [10, 14, 18, 22, 26, 70][case % 6];
-        let side = if case % 2 == 0 { 1.0 } else { -1.0 };
-        let u1 = target * (1.0 + side * (1.0 + unit(&mut rng)) * 2f64.powi(-e));
-        let mut x = vec![x0 - 1.0, x0, x1, x1 + 1.0];
-        let mut u = vec![0.0, 0.0, u1, 0.0];
-        if case % 4 < 2 {
-            // A third particle meeting the pair near the same time.
-            x.push(x1 + 2.0);
-            u.push(0.5);
-        }
+        };
         if agrees(&q(r), &x, &u, &q(t)) {
             yes += 1;
         } else {
@@ -168,6 +178,37 @@ fn near_ties_are_exact_or_refused() {
     }
     assert!(yes > 800, "{yes} certified");
     assert!(no > 1_200, "{no} refused");
+}
+
+/// The floor only decides when a block is final (the PAVA's module
+/// documentation): a floor that makes every block final at once, wrong
+/// wherever a later particle pools, must cost refusals, never a wrong
+/// answer. Every particle is then emitted alone, and on the near-ties
+/// condition 1 between two single particles decides by itself (the
+/// floor of the filter never lets a near-tie reach that check).
+#[test]
+fn a_wrong_floor_costs_a_refusal_never_a_wrong_answer() {
+    let mut rng = SplitMix64::new(0xf10);
+    let (mut yes, mut no) = (0, 0);
+    for case in 0..3_000 {
+        let Some((r, x, u, t)) = near_tie(&mut rng, case) else {
+            continue;
+        };
+        let checked = Checked::new(Some(q(r)), &x, &u).expect("valid");
+        let mut out = vec![f64::NAN; x.len()];
+        let cx = super::pava::context(&checked, &x, &u, t).0;
+        match super::pava::run(cx, &mut out, usize::MAX, |_, _, _| f64::INFINITY) {
+            Some(multi) => {
+                assert!(multi.is_empty());
+                let want = oracle(&q(r), &x, &u, &q(t));
+                assert_eq!(bits(&out), nearest(&want.positions), "case {case}");
+                yes += 1;
+            }
+            None => no += 1,
+        }
+    }
+    assert!(yes > 400, "{yes} certified, {no} refused");
+    assert!(no > 2_000, "{no} refused, {yes} certified");
 }
 
 /// Clusters touching exactly (a gap of exactly `2r` and equal velocities:
@@ -348,6 +389,70 @@ fn validation_on_two_threads_is_the_one_thread_one() {
     assert!(
         valid >= 150 && invalid >= 350,
         "{valid} valid, {invalid} invalid"
+    );
+}
+
+/// The scan's decisions on the range and finiteness (from the ends, the
+/// positions next to zero and the velocities' lanes) are those of a value
+/// by value test: increasing positions through zero and velocities drawn
+/// from magnitudes at and beyond the range's edges, zeros of both signs,
+/// subnormals, infinities and NaNs.
+#[test]
+fn the_scan_decides_the_range_as_each_value_does() {
+    let edge = |e: i32| 2f64.powi(e);
+    let pool = [
+        0.0,
+        -0.0,
+        f64::from_bits(1),
+        edge(-301),
+        edge(-300),
+        f64::from_bits(edge(-300).to_bits() - 1),
+        edge(-299),
+        1e-200,
+        0.75,
+        1.0,
+        3.0,
+        1e200,
+        edge(300),
+        f64::from_bits(edge(300).to_bits() + 1),
+        edge(301),
+        f64::INFINITY,
+        f64::NAN,
+    ];
+    let two_r = edge(-1070);
+    let mut rng = SplitMix64::new(0x5ca);
+    let (mut valid, mut in_range) = (0, 0);
+    for case in 0..4_000 {
+        let n = 1 + case % 9;
+        let pick = |rng: &mut SplitMix64| {
+            let v = pool[(rng.next_u64() % pool.len() as u64) as usize];
+            if rng.next_u64() % 2 == 0 {
+                -v
+            } else {
+                v
+            }
+        };
+        let mut x: Vec<f64> = (0..n).map(|_| pick(&mut rng)).collect();
+        x.sort_by(f64::total_cmp);
+        let mut u: Vec<f64> = (0..n).map(|_| 0.5 + unit(&mut rng)).collect();
+        for _ in 0..rng.next_u64() % 3 {
+            let at = (rng.next_u64() % n as u64) as usize;
+            u[at] = pick(&mut rng);
+        }
+        let finite = x.iter().chain(&u).all(|v| v.is_finite());
+        let want = (finite && super::exact_gaps(&x, &u, two_r).is_some()).then(|| super::Scan {
+            u_max: u.iter().fold(0.0f64, |m, v| m.max(v.abs())),
+            in_range: x.iter().chain(&u).all(|&v| super::in_range(v)),
+        });
+        assert_eq!(super::scan(&x, &u, two_r), want, "{x:?} {u:?}");
+        if let Some(w) = want {
+            valid += 1;
+            in_range += usize::from(w.in_range);
+        }
+    }
+    assert!(
+        valid > 400 && in_range > 100 && valid - in_range > 100,
+        "{valid} valid, {in_range} in range"
     );
 }
 
