@@ -469,7 +469,7 @@ fn copy_and_check(from: Pair<'_>, into: Copies<'_>, two_r: f64) -> Option<Scan> 
 }
 
 /// The particles copied, then scanned while in cache, at a time.
-const COPY_CHUNK: usize = 1 << 12;
+const COPY_CHUNK: usize = 1 << 10;
 
 /// [`copy_and_check`] on two threads from `parallel_min` particles on (at
 /// least 2), `chunk` particles at a time.
@@ -610,6 +610,14 @@ impl Magnitudes {
             v.iter().map(|d| magnitude(*d)).max().unwrap_or(0)
         );
         Some(found)
+    }
+
+    /// Those of two columns together.
+    fn and(self, other: Magnitudes) -> Magnitudes {
+        Magnitudes {
+            largest: self.largest.max(other.largest),
+            least_nonzero: self.least_nonzero.min(other.least_nonzero),
+        }
     }
 
     /// Every value zero or in the filter's range ([`in_range`]).

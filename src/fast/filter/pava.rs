@@ -275,12 +275,29 @@ pub(crate) fn context<'a>(d: &Checked, x: &'a [f64], u: &'a [f64], t: f64) -> (C
     (Context::new(x, u, t, d.two_r, g), tu)
 }
 
-/// A heuristic lower bound of every `ẑ_j`, `j ≥ i`, from `(i, x_i, fl(2r
-/// i))`: a block whose mean is below it is final. Wrong bounds cost a
-/// refusal, never a wrong answer (module documentation).
-pub(crate) trait Floor: Fn(usize, f64, f64) -> f64 + Copy + Send {}
+/// A heuristic lower bound of every `ẑ_j`, `j ≥ i` (the floor at `i`): a
+/// block whose mean is below it is final. Wrong bounds cost a refusal,
+/// never a wrong answer (module documentation).
+pub(crate) trait Floor: Copy + Send {
+    /// The floor at `i` from `(i, x_i, fl(2r i))`, computed in the loop
+    /// without branches of [`Context::flights`].
+    fn at(&self, i: usize, x: f64, s: f64) -> f64;
 
-impl<F: Fn(usize, f64, f64) -> f64 + Copy + Send> Floor for F {}
+    /// The floors `lows` of the run of particles from `i0` on, once their
+    /// `ẑ` (`zs`) are known and [`Self::at`] has given each its own: a
+    /// floor that needs the run's `ẑ` replaces them here.
+    #[inline(always)]
+    fn run(&self, i0: usize, zs: &[f64], lows: &mut [f64]) {
+        let _ = (i0, zs, lows);
+    }
+}
+
+impl<F: Fn(usize, f64, f64) -> f64 + Copy + Send> Floor for F {
+    #[inline(always)]
+    fn at(&self, i: usize, x: f64, s: f64) -> f64 {
+        self(i, x, s)
+    }
+}
 
 /// The certified float PAVA of `cx` on two threads from `parallel_min`
 /// particles on, blocks made final by `floor` ([`certified`]).
@@ -293,7 +310,12 @@ pub(crate) fn run(
     let n = cx.x.len();
     debug_assert!(cx.u.len() == n && positions.len() == n);
     if n >= parallel_min.max(2) {
-        let h = n / 2;
+        // The right half from a multiple of `FLIGHTS` when there is one (a
+        // floor by runs then meets whole runs).
+        let h = match n / 2 / FLIGHTS * FLIGHTS {
+            0 => n / 2,
+            aligned => aligned,
+        };
         let (lo, hi) = positions.split_at_mut(h);
         let (left, right) =
             crate::parallel::join(|| cx.stream(0, lo, floor), move || cx.stream(h, hi, floor));
@@ -335,7 +357,7 @@ impl<'a> Context<'a> {
 /// The particles whose free flights, `ẑ` and floors are computed at a time
 /// ([`Context::flights`]): a few kilobytes, in the first-level cache while
 /// the PAVA reads them.
-const FLIGHTS: usize = 256;
+pub(crate) const FLIGHTS: usize = 256;
 
 /// What [`Context::flights`] computes for a run of particles, read by the
 /// PAVA: `ẑ_i` and the floor of the blocks final at `i`.
@@ -367,9 +389,10 @@ impl Context<'_> {
             let s = self.two_r * (i0_f64 + f64::from(j as u32));
             out[j] = w;
             zs[j] = w - s;
-            lows[j] = floor(i0 + j, xi, s);
+            lows[j] = floor.at(i0 + j, xi, s);
             proved &= eft::is_nearest_free_flight(p, w, e);
         }
+        floor.run(i0, zs, lows);
         if !proved {
             for j in 0..m {
                 let (xi, ui) = (xs[j], us[j]);
@@ -431,6 +454,24 @@ impl Context<'_> {
                     (top.k, stack.is_empty(), chain.prev)
                 {
                     let (mut prev, mut z, first) = (mean, top.sum, j);
+                    // Four steps at a time, then one.
+                    while j + 4 <= m {
+                        let (z1, z2, z3) = (zs[j], zs[j + 1], zs[j + 2]);
+                        let steps = (z < lows[j])
+                            & (z - prev > m11)
+                            & (z1 < lows[j + 1])
+                            & (z1 - z > m11)
+                            & (z2 < lows[j + 2])
+                            & (z2 - z1 > m11)
+                            & (z3 < lows[j + 3])
+                            & (z3 - z2 > m11);
+                        if !steps {
+                            break;
+                        }
+                        prev = z3;
+                        z = zs[j + 3];
+                        j += 4;
+                    }
                     while j < m && z < lows[j] && z - prev > m11 {
                         prev = z;
                         z = zs[j];

@@ -9,9 +9,11 @@
 //! `prop:proj-micro`). The error analysis there needs nothing of `x⁰` but
 //! `G ≥ max|ẑ_i|`, here `max|z| + 2r N`; `ẑ_i = fl(z_i − fl(2r i))`, the
 //! product by `t` being an exact zero. What changes is only the heuristic
-//! that makes a block final: `z` need not be sorted, so the lower bound of
-//! the later `ẑ` is the least `ẑ` of the chunks from the current one on,
-//! found by a first pass.
+//! that makes a block final: `z` need not be sorted, so the floor at `i`
+//! (a lower bound of the later `ẑ`) is the least `ẑ` from `i` on: within
+//! a run of the PAVA ([`pava::FLIGHTS`] particles) from the run's own
+//! `ẑ`, past it from the least `ẑ` of each chunk of particles from there
+//! on, found by a first pass.
 //!
 //! `t` is `−0.0`: `fl(−0 · z_i)` has the sign opposite to `z_i`'s, so a
 //! one-particle block's position `fl(z_i + fl(−0 · z_i))` is `+0` for
@@ -20,11 +22,11 @@
 use num_rational::BigRational;
 use num_traits::{Signed, Zero};
 
-use super::pava::{self, Context};
-use super::{exact_double, in_range, in_range_bits, magnitude, MAX_N};
+use super::pava::{self, Context, Floor};
+use super::{exact_double, in_range, Magnitudes, MAX_N};
 
-/// The particles of one chunk of the floors.
-const CHUNK_BITS: u32 = 12;
+/// The particles of one chunk of the floors: one run of the PAVA.
+const CHUNK_BITS: u32 = pava::FLIGHTS.trailing_zeros();
 
 /// `P_K(z)` (`radius` `r ≥ 0`; `r = 0`: the isotonic regression) written
 /// into `out`, each value the nearest double of the exact one: `Some`
@@ -54,47 +56,78 @@ fn project_with(
     } else {
         exact_double(&(radius + radius)).filter(|&d| in_range(d))?
     };
-    let (mut floors, z_max) = chunk_floors(z, two_r, chunk_bits)?;
-    let g = super::eft::up(z_max + two_r * n as f64);
+    let (floors, magnitudes) = chunk_floors(z, two_r, chunk_bits)?;
+    if !magnitudes.in_range() {
+        return None;
+    }
+    let g = super::eft::up(magnitudes.largest + two_r * n as f64);
     let cx = Context::new(z, z, -0.0, two_r, g);
-    let slack = 64.0 * cx.ug();
-    floors.iter_mut().for_each(|f| *f -= slack);
-    let floor = |i: usize, _: f64, _: f64| floors[i >> chunk_bits];
+    let floor = Suffix {
+        floors: &floors,
+        chunk_bits,
+        slack: 64.0 * cx.ug(),
+    };
     pava::run(cx, out, parallel_min, floor).map(|_| ())
 }
 
+/// The projection's floor at `i`: the least `ẑ_j`, `j ≥ i`, less `slack`
+/// (a margin for the float sums the PAVA compares with it).
+#[derive(Clone, Copy)]
+struct Suffix<'a> {
+    /// The least `ẑ` of each chunk of `2^chunk_bits` particles and of
+    /// those after it ([`chunk_floors`]).
+    floors: &'a [f64],
+    chunk_bits: u32,
+    slack: f64,
+}
+
+impl Floor for Suffix<'_> {
+    /// Replaced by [`Self::run`].
+    #[inline(always)]
+    fn at(&self, _: usize, _: f64, _: f64) -> f64 {
+        f64::NEG_INFINITY
+    }
+
+    /// The least `ẑ` from each particle of the run on: the run's own,
+    /// then the chunks' from the end of the run on (a chunk that begins
+    /// before it counts its earlier particles too, which only lowers it).
+    #[inline(always)]
+    fn run(&self, i0: usize, zs: &[f64], lows: &mut [f64]) {
+        let next = (i0 + zs.len()) >> self.chunk_bits;
+        let mut below = self.floors.get(next).copied().unwrap_or(f64::INFINITY);
+        for (low, &z) in lows.iter_mut().zip(zs).rev() {
+            below = below.min(z);
+            *low = below - self.slack;
+        }
+    }
+}
+
 /// In one pass over `z`: for each chunk of `2^chunk_bits` particles the
-/// least `fl(z_i − fl(2r i))` from that chunk to the end, a bound below
-/// every later `ẑ` of a particle of the chunk (the chunk's own earlier
-/// ones count too, which only lowers it); and the largest magnitude of
-/// `z`. `None` when a value is neither zero nor in the filter's range
-/// (a NaN or an infinity among them).
-fn chunk_floors(z: &[f64], two_r: f64, chunk_bits: u32) -> Option<(Vec<f64>, f64)> {
-    let (mut largest, mut ok) = (0u64, true);
-    let mut floors: Vec<f64> = z
-        .chunks(1 << chunk_bits)
-        .enumerate()
-        .map(|(c, chunk)| {
-            let base = c << chunk_bits;
-            let mut least = f64::INFINITY;
-            for (j, &v) in chunk.iter().enumerate() {
-                let m = magnitude(v);
-                largest = largest.max(m);
-                ok &= in_range_bits(m);
-                least = least.min(v - two_r * (base + j) as f64);
-            }
-            least
-        })
-        .collect();
-    if !ok {
-        return None;
+/// least `fl(z_i − fl(2r i))` from that chunk to the end, and the
+/// magnitudes of `z` ([`Magnitudes`]). `None` when a value is an infinity
+/// or a NaN.
+fn chunk_floors(z: &[f64], two_r: f64, chunk_bits: u32) -> Option<(Vec<f64>, Magnitudes)> {
+    let mut magnitudes: Option<Magnitudes> = None;
+    let mut floors = Vec::with_capacity((z.len() >> chunk_bits) + 1);
+    for (c, chunk) in z.chunks(1 << chunk_bits).enumerate() {
+        let these = Magnitudes::of(chunk)?;
+        magnitudes = Some(magnitudes.map_or(these, |m| m.and(these)));
+        // `c 2^chunk_bits + j` as a double: exact, `i < 2⁵³`.
+        let base = (c << chunk_bits) as f64;
+        let least = chunk
+            .iter()
+            .enumerate()
+            .fold(f64::INFINITY, |least, (j, &v)| {
+                least.min(v - two_r * (base + f64::from(j as u32)))
+            });
+        floors.push(least);
     }
     let mut below = f64::INFINITY;
     for f in floors.iter_mut().rev() {
         below = below.min(*f);
         *f = below;
     }
-    Some((floors, f64::from_bits(largest)))
+    Some((floors, magnitudes?))
 }
 
 #[cfg(test)]
@@ -169,9 +202,39 @@ mod tests {
         assert!(certified[3] > 0, "{certified:?} of {cases:?}");
     }
 
-    /// Refused: a NaN, an infinity, a value out of range, a negative
-    /// radius, an output of another length, an empty column, and a tie
-    /// (two equal values pool into a block whose split is not strict).
+    /// A block that pools across the end of a run of the PAVA (its floor
+    /// then comes from the chunks after the run) is certified and exact,
+    /// with the radius's shift `2r i` in the floors, on one thread and two.
+    #[test]
+    fn a_block_across_runs_is_certified() {
+        let radius = q(0.125);
+        let run = crate::fast::filter::pava::FLIGHTS;
+        // `z_i − 2r i` rises by 1/64 a particle, except for a dip of eight
+        // particles just after the first run: the end of the first run
+        // pools with it.
+        let z: Vec<f64> = (0..3 * run)
+            .map(|i| {
+                let dip = if (run..run + 8).contains(&i) {
+                    -1.0
+                } else {
+                    0.0
+                };
+                0.25 * i as f64 + i as f64 / 64.0 + dip
+            })
+            .collect();
+        let want = exact(&z, &radius);
+        for parallel_min in [usize::MAX, 2] {
+            let mut out = vec![f64::NAN; z.len()];
+            assert!(project_with(&z, &radius, &mut out, parallel_min, 8).is_some());
+            let got: Vec<u64> = out.iter().map(|v| v.to_bits()).collect();
+            assert_eq!(got, want);
+        }
+    }
+
+    /// Refused: a NaN, an infinity, a value out of range (in the first
+    /// chunk of several too), a negative radius, an output of another
+    /// length, an empty column, and a tie (two equal values pool into a
+    /// block whose split is not strict).
     #[test]
     fn what_it_cannot_prove_is_refused() {
         let zero = BigRational::zero();
@@ -187,6 +250,10 @@ mod tests {
                 "{z:?}"
             );
         }
+        // A value out of range in the first of several chunks.
+        let far = [-(2f64.powi(400)), 0.0, 1.0, 2.0, 3.0];
+        let mut five = [0.0; 5];
+        assert!(project_with(&far, &zero, &mut five, usize::MAX, 1).is_none());
         // A lone −0 is the value zero: +0, as the exact paths give it.
         let ok = [-0.0, 1.0, 2.0];
         assert!(project_with(&ok, &zero, &mut out, usize::MAX, 2).is_some());

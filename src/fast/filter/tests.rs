@@ -185,15 +185,24 @@ fn near_ties_are_exact_or_refused() {
 /// wherever a later particle pools, must cost refusals, never a wrong
 /// answer. Every particle is then emitted alone, and on the near-ties
 /// condition 1 between two single particles decides by itself (the
-/// floor of the filter never lets a near-tie reach that check).
+/// floor of the filter never lets a near-tie reach that check), at every
+/// place of a run of single particles.
 #[test]
 fn a_wrong_floor_costs_a_refusal_never_a_wrong_answer() {
     let mut rng = SplitMix64::new(0xf10);
     let (mut yes, mut no) = (0, 0);
     for case in 0..3_000 {
-        let Some((r, x, u, t)) = near_tie(&mut rng, case) else {
+        let Some((r, mut x, mut u, t)) = near_tie(&mut rng, case) else {
             continue;
         };
+        // Particles at rest before and after, so that the pair falls at
+        // every place of the PAVA's runs of single particles.
+        let (before, after) = (case % 11, 4 + case % 7);
+        let (first, last) = (x[0], x[x.len() - 1]);
+        x.splice(0..0, (0..before).map(|i| first - (before - i) as f64));
+        u.splice(0..0, std::iter::repeat_n(0.0, before));
+        x.extend((1..=after).map(|i| last + i as f64));
+        u.extend(std::iter::repeat_n(0.0, after));
         let checked = Checked::new(Some(q(r)), &x, &u).expect("valid");
         let mut out = vec![f64::NAN; x.len()];
         let cx = super::pava::context(&checked, &x, &u, t).0;
