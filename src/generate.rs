@@ -392,6 +392,11 @@ impl SplitMix64 {
             .0
             .wrapping_add(0x9E37_79B9_7F4A_7C15u64.wrapping_mul(draws as u64));
     }
+    /// A uniform double in `[0, 1)`: the top 53 bits of one draw, over
+    /// `2⁵³`.
+    pub fn unit(&mut self) -> f64 {
+        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
+    }
     /// `len` random bytes.
     pub fn bytes(&mut self, len: usize) -> Vec<u8> {
         (0..len).map(|_| self.next_u64() as u8).collect()

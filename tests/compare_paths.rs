@@ -24,7 +24,7 @@ struct Stream(SplitMix64);
 
 impl Stream {
     fn next(&mut self) -> f64 {
-        (self.0.next_u64() >> 11) as f64 / (1u64 << 53) as f64
+        self.0.unit()
     }
 }
 

@@ -304,17 +304,16 @@ fn invalid_and_non_finite_data_are_declined() {
 /// gaps above `2r` (53-bit mantissas at every scale), velocities uniform in
 /// `[−v, v]`, a double radius.
 fn notebook_scene(rng: &mut SplitMix64, n: usize, r: f64, v: f64) -> (Vec<f64>, Vec<f64>) {
-    let unit = |rng: &mut SplitMix64| (rng.next_u64() >> 11) as f64 * 2f64.powi(-53);
     let mut x = 0.0f64;
     let mut xs = Vec::with_capacity(n);
     let mut us = Vec::with_capacity(n);
     for _ in 0..n {
         // −ln(1 − v): an exponential gap of mean 1/n beyond 2r (the rounding
         // of the sum keeps the gaps above 2r by a margin).
-        let gap = -(1.0 - unit(rng)).ln() / n as f64;
+        let gap = -(1.0 - rng.unit()).ln() / n as f64;
         x += 2.0 * r + r * 1e-3 + gap;
         xs.push(x);
-        us.push((2.0 * unit(rng) - 1.0) * v);
+        us.push((2.0 * rng.unit() - 1.0) * v);
     }
     (xs, us)
 }

@@ -309,7 +309,7 @@ mod tests {
 
     /// A double with a random mantissa and an exponent in `[lo, hi)`.
     fn random(rng: &mut SplitMix64, lo: i32, hi: i32) -> f64 {
-        let m = (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64 + 0.5;
+        let m = rng.unit() + 0.5;
         let e = lo + (rng.next_u64() % (hi - lo) as u64) as i32;
         let v = m * 2f64.powi(e);
         if rng.next_u64() % 2 == 0 {

@@ -160,7 +160,7 @@ mod tests {
     #[test]
     fn certified_projections_are_the_exact_ones() {
         let mut rng = SplitMix64::new(0x150);
-        let mut unit = || (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
+        let mut unit = || rng.unit();
         let (mut certified, mut cases) = ([0; 4], [0; 4]);
         for case in 0..240 {
             let n = 1 + (case * 7) % 200;

@@ -17,11 +17,6 @@ fn q(v: f64) -> BigRational {
     BigRational::from_float(v).unwrap()
 }
 
-/// A uniform double in `[0, 1)`.
-fn unit(rng: &mut SplitMix64) -> f64 {
-    (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64
-}
-
 /// The exact state by the generic projection on the exact data (no
 /// filter, no machine words).
 fn oracle(r: &BigRational, xs: &[f64], us: &[f64], t: &BigRational) -> State<BigRational> {
@@ -85,10 +80,10 @@ fn notebook(rng: &mut SplitMix64, n: usize, gap: f64, r: f64) -> (Vec<f64>, Vec<
     let mut x = Vec::with_capacity(n);
     let mut acc = 0.0f64;
     for _ in 0..n {
-        acc += -gap * (1.0 - unit(rng)).ln() + 4.0 * r;
+        acc += -gap * (1.0 - rng.unit()).ln() + 4.0 * r;
         x.push(acc);
     }
-    let u = (0..n).map(|_| 2.0 * unit(rng) - 1.0).collect();
+    let u = (0..n).map(|_| 2.0 * rng.unit() - 1.0).collect();
     (x, u)
 }
 
@@ -102,7 +97,7 @@ fn random_scenes_are_certified_and_exact() {
         // travel: many collisions, blocks of up to tens of particles.
         let gap = [1.0, 0.01, 1e-3, 1e-4][case % 4];
         let r = [4e-7, 2f64.powi(-21), 1.0 / 3.0 * 1e-5][case % 3];
-        let t = gap * [3.0, 10.0, 30.0][case % 3] * (1.0 + unit(&mut rng));
+        let t = gap * [3.0, 10.0, 30.0][case % 3] * (1.0 + rng.unit());
         let (x, u) = notebook(&mut rng, n, gap, r.min(gap / 8.0));
         let r = r.min(gap / 8.0);
         let ok = agrees(&q(r), &x, &u, &q(t));
@@ -137,20 +132,20 @@ fn a_large_block_is_left_to_the_exact_path() {
 /// one meeting the pair near the same time; `None` when the drawn gap is
 /// below `2r`.
 fn near_tie(rng: &mut SplitMix64, case: usize) -> Option<(f64, Vec<f64>, Vec<f64>, f64)> {
-    let r = 2f64.powi(-20) * (1.0 + unit(rng));
-    let x0 = (1.0 + unit(rng)) * 2f64.powi((case % 3) as i32 - 3);
-    let g = 2f64.powi(-30) * (1.0 + unit(rng));
+    let r = 2f64.powi(-20) * (1.0 + rng.unit());
+    let x0 = (1.0 + rng.unit()) * 2f64.powi((case % 3) as i32 - 3);
+    let g = 2f64.powi(-30) * (1.0 + rng.unit());
     let x1 = x0 + 2.0 * r + g;
     if q(x1) - q(x0) < q(2.0 * r) {
         return None;
     }
-    let t = 0.01 + unit(rng) * 0.001;
+    let t = 0.01 + rng.unit() * 0.001;
     // u₁ with t u₁ ≈ −(x₁ − x₀ − 2r)(1 ± 2⁻ᵉ).
     let gap = q(x1) - q(x0) - q(2.0 * r);
     let target = (-gap / q(t)).to_f64().unwrap();
     let e = [10, 14, 18, 22, 26, 70][case % 6];
     let side = if case % 2 == 0 { 1.0 } else { -1.0 };
-    let u1 = target * (1.0 + side * (1.0 + unit(rng)) * 2f64.powi(-e));
+    let u1 = target * (1.0 + side * (1.0 + rng.unit()) * 2f64.powi(-e));
     let mut x = vec![x0 - 1.0, x0, x1, x1 + 1.0];
     let mut u = vec![0.0, 0.0, u1, 0.0];
     if case % 4 < 2 {
@@ -286,7 +281,7 @@ fn full_mantissa_times_and_radii() {
     let (x, u) = notebook(&mut rng, 500, 1e-3, r);
     let mut certified = 0;
     for k in 0..40 {
-        let t = 1e-4 * (1.0 + unit(&mut rng)) * f64::from(k);
+        let t = 1e-4 * (1.0 + rng.unit()) * f64::from(k);
         certified += usize::from(agrees(&q(r), &x, &u, &q(t)));
     }
     assert!(certified >= 38, "{certified} of 40");
@@ -299,8 +294,8 @@ fn full_mantissa_times_and_radii() {
 fn validation_in_doubles_is_exact() {
     let mut rng = SplitMix64::new(0x5a1d);
     for case in 0..5_000 {
-        let x0 = (unit(&mut rng) + 0.5) * 2f64.powi(case % 40 - 10);
-        let two_r = (unit(&mut rng) + 0.5) * 2f64.powi(case % 13 - 20);
+        let x0 = (rng.unit() + 0.5) * 2f64.powi(case % 40 - 10);
+        let two_r = (rng.unit() + 0.5) * 2f64.powi(case % 13 - 20);
         let exact = x0 + two_r;
         let ulps = (case % 7) as i64 - 3;
         let x1 = f64::from_bits((exact.to_bits() as i64 + ulps) as u64);
@@ -334,8 +329,8 @@ fn validation_on_two_threads_is_the_one_thread_one() {
     let r = q(two_r) / BigRational::from_integer(2.into());
     let (mut valid, mut invalid) = (0, 0);
     for case in 0..600 {
-        let mut x: Vec<f64> = (0..n).map(|i| i as f64 + 0.5 * unit(&mut rng)).collect();
-        let mut u: Vec<f64> = (0..n).map(|_| 2.0 * unit(&mut rng) - 1.0).collect();
+        let mut x: Vec<f64> = (0..n).map(|i| i as f64 + 0.5 * rng.unit()).collect();
+        let mut u: Vec<f64> = (0..n).map(|_| 2.0 * rng.unit() - 1.0).collect();
         // The junction of the two-thread scan is between `n/2 − 1` and
         // `n/2`: every third case puts the defect there.
         let at = if case % 3 == 0 {
@@ -443,7 +438,7 @@ fn the_scan_decides_the_range_as_each_value_does() {
         };
         let mut x: Vec<f64> = (0..n).map(|_| pick(&mut rng)).collect();
         x.sort_by(f64::total_cmp);
-        let mut u: Vec<f64> = (0..n).map(|_| 0.5 + unit(&mut rng)).collect();
+        let mut u: Vec<f64> = (0..n).map(|_| 0.5 + rng.unit()).collect();
         for _ in 0..rng.next_u64() % 3 {
             let at = (rng.next_u64() % n as u64) as usize;
             u[at] = pick(&mut rng);
@@ -478,7 +473,7 @@ fn positions_into_a_buffer_are_those_of_at() {
         let r = 4e-7;
         let (x, u) = notebook(&mut rng, n, gap, r);
         let d = Doubles::validate(Some(q(r)), x, u).expect("valid");
-        let t = q(gap * 5.0 * (1.0 + unit(&mut rng)));
+        let t = q(gap * 5.0 * (1.0 + rng.unit()));
         let Some(f) = d.at(&t) else { continue };
         answered += 1;
         for parallel_min in [usize::MAX, 2] {
@@ -513,7 +508,7 @@ fn borrowed_columns_answer_as_owned_ones() {
         let checked = Checked::new(Some(q(r)), &x, &u).expect("valid");
         let d = Doubles::validate(Some(q(r)), x.clone(), u.clone()).expect("valid");
         assert_eq!(checked.n(), d.n());
-        let t = q(gap * 5.0 * (1.0 + unit(&mut rng)));
+        let t = q(gap * 5.0 * (1.0 + rng.unit()));
         let Some(f) = d.at(&t) else {
             assert!(checked.at_into(&x, &u, &t, &mut vec![0.0; n]).is_none());
             continue;
