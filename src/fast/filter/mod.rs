@@ -87,18 +87,13 @@ pub fn exact_double(q: &BigRational) -> Option<f64> {
 }
 
 /// Is `v` zero or of a magnitude in the filter's range, `[2^−SAFE_EXP,
-/// 2^SAFE_EXP]`?
+/// 2^SAFE_EXP]`? (By its [`magnitude`] bits: a NaN's and an infinity's lie
+/// above the range.)
 #[inline]
 fn in_range(v: f64) -> bool {
-    in_range_bits(magnitude(v))
-}
-
-/// [`in_range`] of the double whose [`magnitude`] bits are `m` (a NaN's
-/// and an infinity's lie above the range).
-#[inline(always)]
-fn in_range_bits(m: u64) -> bool {
     const LOWEST: u64 = ((1023 - SAFE_EXP) as u64) << 52;
     const HIGHEST: u64 = ((1023 + SAFE_EXP) as u64) << 52;
+    let m = magnitude(v);
     m == 0 || (LOWEST..=HIGHEST).contains(&m)
 }
 
