@@ -452,24 +452,28 @@ mod compare_tests {
         }
     }
 
+    /// [`compare`] of a candidate without contacts against [`exact`]
+    /// (`2r = 1/2`, no tolerance).
+    fn against_exact(
+        positions: &[BigRational],
+        velocities: Option<&[BigRational]>,
+        multipliers: Option<&[BigRational]>,
+    ) -> Result<Comparison, CompareError> {
+        let candidate = Candidate {
+            positions,
+            velocities,
+            multipliers,
+            contacts: None,
+        };
+        compare(&candidate, &exact(), &q(1, 2), &q(0, 1))
+    }
+
     #[test]
     fn known_perturbations_exactly() {
-        let e = exact();
         let x = vec![q(0, 1), q(1, 2), q(2, 1) + q(3, 100)];
         let u = vec![q(1, 1) - q(1, 7), q(1, 1), q(0, 1)];
         let l = vec![q(1, 3), q(-1, 5)];
-        let c = compare(
-            &Candidate {
-                positions: &x,
-                velocities: Some(&u),
-                multipliers: Some(&l),
-                contacts: None,
-            },
-            &e,
-            &q(1, 2),
-            &q(0, 1),
-        )
-        .unwrap();
+        let c = against_exact(&x, Some(&u), Some(&l)).unwrap();
         assert_eq!(
             c.position_max,
             MaxError {
@@ -506,21 +510,9 @@ mod compare_tests {
     /// value positive; the mean square over every particle.
     #[test]
     fn the_first_index_of_the_max_and_the_mean_square() {
-        let e = exact();
         let x = vec![q(0, 1), q(1, 2) - q(1, 8), q(2, 1) + q(1, 8)];
         let u = vec![q(1, 1), q(1, 1) + q(1, 16), q(0, 1) - q(1, 4)];
-        let c = compare(
-            &Candidate {
-                positions: &x,
-                velocities: Some(&u),
-                multipliers: None,
-                contacts: None,
-            },
-            &e,
-            &q(1, 2),
-            &q(0, 1),
-        )
-        .unwrap();
+        let c = against_exact(&x, Some(&u), None).unwrap();
         assert_eq!(
             c.position_max,
             MaxError {
@@ -541,19 +533,7 @@ mod compare_tests {
 
     #[test]
     fn lengths_are_checked() {
-        let e = exact();
-        let x = vec![q(0, 1)];
-        let r = compare(
-            &Candidate {
-                positions: &x,
-                velocities: None,
-                multipliers: None,
-                contacts: None,
-            },
-            &e,
-            &q(1, 2),
-            &q(0, 1),
-        );
+        let r = against_exact(&[q(0, 1)], None, None);
         assert!(matches!(
             r,
             Err(CompareError::Length {
