@@ -105,16 +105,24 @@ impl<'py> Maker<'py> {
 /// again; two ints per `Fraction` make no cycle.
 pub fn fractions<'py>(py: Python<'py>, v: &[BigRational]) -> PyResult<Bound<'py, PyList>> {
     let maker = Maker::new(py)?;
-    collector_paused(py, || {
-        let mut items = Vec::with_capacity(v.len());
-        for chunk in v.chunks(CHUNK) {
-            py.check_signals()?;
-            for q in chunk {
-                items.push(maker.make(q)?);
-            }
+    collector_paused(py, || list(py, v, |_, q| maker.make(q)))
+}
+
+/// The items of `v` made by `make`, as a list (Ctrl-C: `KeyboardInterrupt`,
+/// between chunks of [`CHUNK`]).
+pub fn list<'py, T>(
+    py: Python<'py>,
+    v: &[T],
+    make: impl Fn(Python<'py>, &T) -> PyResult<Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyList>> {
+    let mut items = Vec::with_capacity(v.len());
+    for chunk in v.chunks(CHUNK) {
+        py.check_signals()?;
+        for item in chunk {
+            items.push(make(py, item)?);
         }
-        PyList::new(py, items)
-    })
+    }
+    PyList::new(py, items)
 }
 
 /// `make()` with Python's cyclic garbage collector paused, and restored as
@@ -138,12 +146,9 @@ pub fn collector_paused<'py, R>(
 /// `v` as a list of exact strings ([`render_exact`];
 /// Ctrl-C: `KeyboardInterrupt`).
 pub fn texts<'py>(py: Python<'py>, v: &[BigRational]) -> PyResult<Bound<'py, PyList>> {
-    let mut items = Vec::with_capacity(v.len());
-    for chunk in v.chunks(CHUNK) {
-        py.check_signals()?;
-        items.extend(chunk.iter().map(|q| PyString::new(py, &render_exact(q))));
-    }
-    PyList::new(py, items)
+    list(py, v, |py, q| {
+        Ok(PyString::new(py, &render_exact(q)).into_any())
+    })
 }
 
 /// Strings already written (the export's), as a list; equal strings in a

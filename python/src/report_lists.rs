@@ -12,7 +12,7 @@ use pyo3::types::{PyDict, PyList};
 use pyo3::{intern, IntoPyObjectExt};
 use sticky::report::compare::json::{FrameJson, OverlapJson, PairJson};
 
-use crate::bulk::CHUNK;
+use crate::bulk::list;
 
 /// One time's long lists, taken out of its [`FrameJson`].
 pub struct FrameLists {
@@ -68,22 +68,6 @@ impl FrameLists {
         }
         Ok(())
     }
-}
-
-/// The items of `v` made by `make`, as a list (Ctrl-C between chunks).
-fn list<'py, T>(
-    py: Python<'py>,
-    v: &[T],
-    make: impl Fn(Python<'py>, &T) -> PyResult<Bound<'py, PyAny>>,
-) -> PyResult<Bound<'py, PyList>> {
-    let mut items = Vec::with_capacity(v.len());
-    for chunk in v.chunks(CHUNK) {
-        py.check_signals()?;
-        for item in chunk {
-            items.push(make(py, item)?);
-        }
-    }
-    PyList::new(py, items)
 }
 
 /// An [`OverlapJson`] as its dict.
