@@ -33,32 +33,47 @@ pub fn isotonic<'py>(
     exact: bool,
 ) -> PyResult<Bound<'py, PyAny>> {
     let zero = BigRational::zero();
-    let refused = match (exact, filtered(py, z, &zero)?) {
-        (false, Filtered::Proved(fitted)) => return Ok(fitted.into_any()),
-        (false, Filtered::Refused) => true,
-        _ => false,
-    };
+    let mut refused = false;
+    if !exact {
+        match filtered(py, z, &zero)? {
+            Filtered::Proved(fitted) => return Ok(fitted.into_any()),
+            Filtered::Refused => refused = true,
+            Filtered::NotTried => {}
+        }
+    }
     let z = convert::column(z, "z")?;
     if let (false, convert::Column::Doubles(d)) = (exact, &z) {
         if d.iter().all(|v| v.is_finite()) {
-            let d = d.clone();
-            let steps = d.len();
-            let fitted = interrupt::run_sized(py, steps, move |_| {
-                // The filter has refused these values already.
-                if refused {
-                    sticky::solver::project_doubles_exactly(&d, &zero)
-                } else {
-                    sticky::solver::isotonic_doubles(&d)
-                }
-            })?
-            .map_err(crate::errors::py_error)?;
-            return Ok(PyArray1::from_vec(py, fitted).into_any());
+            return nearest_of_doubles(py, d.clone(), zero, refused);
         }
     }
     let z = z.into_exact("z")?;
     let steps = z.len();
     let fitted = interrupt::run_sized(py, steps, move |_| sticky::projection::isotonic(&z))?;
     output(py, &fitted, exact)
+}
+
+/// `P_K(d)` (`radius` `0`: the isotonic regression) of finite doubles as
+/// a numpy array of the nearest doubles, on a worker thread (Ctrl-C): the
+/// Solver's choice of path ([`sticky::solver::project_doubles`]), or the
+/// exact paths alone when the certified filter has refused these values
+/// already (`refused`, [`filtered`]).
+pub fn nearest_of_doubles<'py>(
+    py: Python<'py>,
+    d: Vec<f64>,
+    radius: BigRational,
+    refused: bool,
+) -> PyResult<Bound<'py, PyAny>> {
+    let steps = d.len();
+    let x = interrupt::run_sized(py, steps, move |_| {
+        if refused {
+            sticky::solver::project_doubles_exactly(&d, &radius)
+        } else {
+            sticky::solver::project_doubles(&d, &radius)
+        }
+    })?
+    .map_err(crate::errors::py_error)?;
+    Ok(PyArray1::from_vec(py, x).into_any())
 }
 
 /// What [`filtered`] made of a column.

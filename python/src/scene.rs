@@ -448,17 +448,7 @@ impl Scene {
         }
         if let (false, convert::Column::Doubles(d)) = (exact, &z) {
             if d.iter().all(|v| v.is_finite()) {
-                let (d, r) = (d.clone(), radius()?);
-                let x = interrupt::run_sized(py, n, move |_| {
-                    // The filter has refused these values already.
-                    if refused {
-                        sticky::solver::project_doubles_exactly(&d, &r)
-                    } else {
-                        sticky::solver::project_doubles(&d, &r)
-                    }
-                })?
-                .map_err(py_error)?;
-                return Ok(PyArray1::from_vec(py, x).into_any());
+                return crate::isotonic::nearest_of_doubles(py, d.clone(), radius()?, refused);
             }
         }
         let z = z.into_exact("z")?;
