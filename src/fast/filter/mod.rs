@@ -578,11 +578,18 @@ impl Magnitudes {
         let mut not_finite = [0.0f64; LANES];
         let mut largest = [0.0f64; LANES];
         let mut least = [f64::INFINITY; LANES];
+        // Compare-selects, one instruction each, not `f64::max` and
+        // `f64::min`, which also look for NaNs: `not_finite` finds those.
         let mut lane = |l: usize, value: f64| {
             let a = value.abs();
             not_finite[l] += value * 0.0;
-            largest[l] = largest[l].max(a);
-            least[l] = least[l].min(if a == 0.0 { f64::INFINITY } else { a });
+            largest[l] = if a > largest[l] { a } else { largest[l] };
+            let nonzero = if a == 0.0 { f64::INFINITY } else { a };
+            least[l] = if nonzero < least[l] {
+                nonzero
+            } else {
+                least[l]
+            };
         };
         let mut chunks = v.chunks_exact(LANES);
         for c in &mut chunks {
