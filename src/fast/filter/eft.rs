@@ -145,20 +145,24 @@ pub(crate) fn half_gap(r: f64) -> Option<f64> {
     (h != 0.0).then_some(h)
 }
 
-/// [`half_gap`], `0` where it is `None`: branch-free, for loops the
-/// compiler vectorizes.
+/// [`half_gap`], `0` where it is `None`: branch-free, in operations on
+/// doubles only, which the compiler vectorizes (it cannot vectorize the
+/// 64-bit integer compares of the bits' fields on the baseline target).
+///
+/// `2^E` (`|r|` with its significand cleared) times `2⁻⁵³`, or `2⁻⁵⁴`
+/// when `|r| = 2^E`: a power of two, exact when it is a normal double,
+/// and `None` (`0`) when it is not.
 #[inline(always)]
 fn half_gap_or_zero(r: f64) -> f64 {
-    let bits = r.to_bits() & !(1u64 << 63);
-    let field = bits >> 52;
-    let shift = 53 + u64::from(bits & ((1u64 << 52) - 1) == 0);
-    // `2^(E − shift)` with `E = field − 1023`, a normal double when
-    // `field > shift`.
-    f64::from_bits(if field > shift {
-        (field - shift) << 52
+    const EXPONENT: u64 = 0x7ff << 52;
+    let a = r.abs();
+    let binade = f64::from_bits(a.to_bits() & EXPONENT);
+    let h = binade * if a == binade { U / 2.0 } else { U };
+    if h >= f64::MIN_POSITIVE {
+        h
     } else {
-        0
-    })
+        0.0
+    }
 }
 
 /// The nearest double of `x + t u` (ties to even) for doubles in the
@@ -413,6 +417,33 @@ mod tests {
         }
         assert_eq!(half_gap(0.0), None);
         assert_eq!(half_gap(f64::MIN_POSITIVE), None);
+    }
+
+    /// The branch-free half gap on doubles of every binade (random
+    /// significands, and the powers of two and their neighbours): half the
+    /// nearer gap when that is a normal double, else `0`.
+    #[test]
+    fn branch_free_half_gaps_in_every_binade() {
+        let mut rng = SplitMix64::new(0x4a1f);
+        for field in 0..2047u64 {
+            let significands = [0, 1, (1 << 52) - 1, rng.next_u64() >> 12];
+            for (m, sign) in significands
+                .into_iter()
+                .zip([0, 1u64 << 63].into_iter().cycle())
+            {
+                let r = f64::from_bits(sign | field << 52 | m);
+                let a = r.abs();
+                let below = a - f64::from_bits(a.to_bits().saturating_sub(1));
+                let above = f64::from_bits(a.to_bits() + 1) - a;
+                let half = below.min(above) / 2.0;
+                let want = if a != 0.0 && half >= f64::MIN_POSITIVE {
+                    half
+                } else {
+                    0.0
+                };
+                assert_eq!(half_gap_or_zero(r).to_bits(), want.to_bits(), "{r:e}");
+            }
+        }
     }
 
     /// The word quotient is the rational one, bit for bit, or declines:
