@@ -103,8 +103,10 @@ struct Certifier<'a, 'o> {
     out: &'o mut [f64],
     base: usize,
     multi: Vec<Multi>,
-    /// `ẑ` of a block, then its prefix and suffix sums.
+    /// `ẑ` of a block, its prefix and suffix sums, its exact terms.
     scratch: Vec<f64>,
+    prefix: Vec<f64>,
+    suffix: Vec<f64>,
     terms: Vec<f64>,
 }
 
@@ -161,15 +163,19 @@ impl Certifier<'_, '_> {
         zs.extend((a..a + k).map(|i| self.z(i)));
         // prefix[m] = ẑ_a + … + ẑ_{a+m−1}; suffix[m] = ẑ_{a+m} + … (each a
         // recursive sum in its own order).
-        let mut prefix = vec![0.0; k + 1];
+        let (prefix, suffix) = (&mut self.prefix, &mut self.suffix);
+        prefix.clear();
+        prefix.push(0.0);
         for m in 0..k {
-            prefix[m + 1] = prefix[m] + zs[m];
+            prefix.push(prefix[m] + zs[m]);
         }
-        let mut suffix = vec![0.0; k + 1];
+        suffix.clear();
+        suffix.resize(k + 1, 0.0);
         for m in (0..k).rev() {
             suffix[m] = zs[m] + suffix[m + 1];
         }
         self.scratch = zs;
+        let (prefix, suffix) = (&self.prefix, &self.suffix);
         for m in 1..k {
             let (ml, mr) = (m as u32, (k - m) as u32);
             let left = prefix[m] / f64::from(ml);
@@ -422,6 +428,8 @@ impl Context<'_> {
             base,
             multi: Vec::new(),
             scratch: Vec::new(),
+            prefix: Vec::new(),
+            suffix: Vec::new(),
             terms: Vec::new(),
         };
         let mut chain = Chain::default();
