@@ -28,7 +28,10 @@ cumsum, u0 uniform in [-1, 1], radius = 4e-7 and t = 0.01, both Python
 floats with full mantissas: t and r are doubles, the data stay dyadic and
 take the dyadic path on wider sums. There the build counts too: a fresh
 `Scene(x0, u0, 4e-7)` plus `state(0.01).positions`, timed as one call, as
-a notebook user runs it once.
+a notebook user runs it once. Beside it, numpy's copies of the two
+columns: a fresh Scene moves its columns through memory more than once,
+scipy's PAVA mostly computes, so the ratio moves with the memory's pace
+of the moment (on a shared machine it changes from minute to minute).
 
 Each timing is the median of REPEATS runs, the tools alternating; wall time
 (`time.perf_counter`) and the process's CPU time (`time.process_time`, all
@@ -72,10 +75,11 @@ def compare(label, x0, u0, radius, t, repeats, with_build=False):
     scene = sticky.Scene(x0, u0, radius)
     build = time.perf_counter() - start
     y = x0 + t * u0 - 2 * radius * np.arange(n)
-    pos, full, theirs, built = [], [], [], []
+    pos, full, theirs, built, copies = [], [], [], [], []
     for _ in range(repeats):
         if with_build:
             built.append(timed(lambda: fresh(x0, u0, radius, t)))
+            copies.append(timed(lambda: (x0.copy(), u0.copy())))
         pos.append(timed(lambda: scene.state(t).positions))
         full.append(timed(lambda: all_three(scene, t)))
         theirs.append(timed(lambda: isotonic_regression(y)))
@@ -89,6 +93,8 @@ def compare(label, x0, u0, radius, t, repeats, with_build=False):
     if with_build:
         (c, c_cpu) = median(built)
         print(f"  Scene + state(t).positions{c * 1e3:8.1f} {c_cpu * 1e3:9.1f} (fresh Scene each time)")
+        (m, m_cpu) = median(copies)
+        print(f"  x0.copy(), u0.copy()     {m * 1e3:9.1f} {m_cpu * 1e3:9.1f} (numpy: the memory's pace)")
     print(f"  state(t).positions       {a * 1e3:9.1f} {a_cpu * 1e3:9.1f} (exact, rounded to float64)")
     print(f"  state(t), all 3 arrays   {f * 1e3:9.1f} {f_cpu * 1e3:9.1f} (x, u, lambda)")
     print(f"  scipy isotonic_regression{b * 1e3:9.1f} {b_cpu * 1e3:9.1f} (float64, x only)")
